@@ -1,0 +1,41 @@
+# tightfit — top-level entry points. `make demo` and `make test` install the Debian
+# packages (scripts/install-deps.sh), build in Release and run.
+JOBS ?= $(shell nproc)
+BUILD ?= build/release
+ASAN_BUILD ?= build/asan
+WERROR ?= $(if $(CI),ON,OFF)
+DEMO_OUT ?= out/demo
+
+.PHONY: deps build build-asan test test-asan demo bench clean format
+
+deps:
+	bash scripts/install-deps.sh
+
+build: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DTIGHTFIT_WERROR=$(WERROR)
+	cmake --build $(BUILD) -j $(JOBS)
+
+build-asan: deps
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTIGHTFIT_SANITIZE=ON \
+	  -DTIGHTFIT_BUILD_BENCH=OFF -DTIGHTFIT_WERROR=$(WERROR)
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+# Fast tests only (names ending in Slow are skipped) under AddressSanitizer + UBSan.
+test-asan: build-asan
+	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS) -E 'Slow'
+
+demo: build
+	bash scripts/demo.sh $(BUILD)/tightfit $(DEMO_OUT)
+
+bench: build
+	bash scripts/bench.sh $(BUILD)
+
+format:
+	find src tests bench -name '*.[ch]pp' | xargs clang-format -i
+
+clean:
+	rm -rf build out

@@ -1,0 +1,41 @@
+/// tightfit command-line interface: dispatches to the commands in commands/.
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+
+#include "command_registry.hpp"
+#include "tightfit/common/error.hpp"
+
+namespace tightfit::app {
+std::vector<CommandEntry>& command_registry() {
+  static std::vector<CommandEntry> registry;
+  return registry;
+}
+}  // namespace tightfit::app
+
+int main(int argc, char** argv) {
+  using namespace tightfit;
+  CLI::App root{
+      "tightfit: physics-based pattern design for skintight garments "
+      "(Montes et al., SIGGRAPH 2020).\nRun 'tightfit COMMAND --help' for a command's options."};
+  root.require_subcommand(1);
+  auto& registry = app::command_registry();
+  std::sort(registry.begin(), registry.end(),
+            [](const auto& a, const auto& b) { return a.name < b.name; });
+  for (const auto& entry : registry) entry.setup(root);
+  try {
+    root.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return root.exit(e);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const SolverError& e) {
+    std::fprintf(stderr, "solver error: %s\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

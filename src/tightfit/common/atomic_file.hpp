@@ -1,0 +1,28 @@
+#pragma once
+/// Atomic output: results are written to a temporary name beside the target and
+/// renamed into place only when complete, so a failed run leaves no partial file.
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+#include <string>
+
+namespace tightfit {
+
+/// Calls `write(stream)` on a temporary file next to `path`, then renames it to
+/// `path`. On any exception the temporary file is removed and the exception rethrown.
+/// `binary` opens the stream in binary mode.
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(std::ostream&)>& write,
+                           bool binary = false);
+
+/// Writes `text` to `path` atomically.
+void write_text_atomically(const std::filesystem::path& path, const std::string& text);
+
+/// A temporary path beside `path` (same directory, unique suffix), for writers
+/// such as cairo that need a file name; rename it with `commit_temporary`.
+std::filesystem::path temporary_path_for(const std::filesystem::path& path);
+
+/// Renames `temporary` to `path` (atomic on one file system).
+void commit_temporary(const std::filesystem::path& temporary, const std::filesystem::path& path);
+
+}  // namespace tightfit
