@@ -1,0 +1,120 @@
+#include "tightfit/common/sparse_cholesky.hpp"
+
+#include <cholmod.h>
+
+#include <vector>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+
+struct SparseCholesky::Impl {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;
+  std::vector<int> pattern_outer;
+  std::vector<int> pattern_inner;
+  Eigen::Index n = 0;
+  int analyses = 0;
+  bool factor_valid = false;
+  SparseMatrix lower;  // lower triangle of the last matrix, kept alive for CHOLMOD's view
+
+  Impl() {
+    cholmod_start(&common);
+    common.print = 0;
+    common.error_handler = nullptr;
+    common.final_ll = 1;  // keep L as LL^T (not LDL^T) so the factor size is comparable
+  }
+  ~Impl() {
+    if (factor) cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+
+  cholmod_sparse view() {
+    cholmod_sparse s{};
+    s.nrow = static_cast<size_t>(lower.rows());
+    s.ncol = static_cast<size_t>(lower.cols());
+    s.nzmax = static_cast<size_t>(lower.nonZeros());
+    s.p = lower.outerIndexPtr();
+    s.i = lower.innerIndexPtr();
+    s.nz = nullptr;
+    s.x = lower.valuePtr();
+    s.z = nullptr;
+    s.stype = -1;  // symmetric, lower triangle stored
+    s.itype = CHOLMOD_INT;
+    s.xtype = CHOLMOD_REAL;
+    s.dtype = CHOLMOD_DOUBLE;
+    s.sorted = 1;
+    s.packed = 1;
+    return s;
+  }
+
+  bool same_pattern() const {
+    if (!factor || lower.rows() != n) return false;
+    const auto nnz = static_cast<size_t>(lower.nonZeros());
+    if (pattern_inner.size() != nnz) return false;
+    return std::equal(pattern_outer.begin(), pattern_outer.end(), lower.outerIndexPtr()) &&
+           std::equal(pattern_inner.begin(), pattern_inner.end(), lower.innerIndexPtr());
+  }
+};
+
+SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
+SparseCholesky::~SparseCholesky() = default;
+
+bool SparseCholesky::factorize(const SparseMatrix& A) {
+  if (A.rows() != A.cols()) throw SolverError("SparseCholesky: matrix is not square");
+  auto& d = *impl_;
+  d.lower = A.triangularView<Eigen::Lower>();
+  d.lower.makeCompressed();
+  cholmod_sparse s = d.view();
+  if (!d.same_pattern()) {
+    if (d.factor) cholmod_free_factor(&d.factor, &d.common);
+    d.factor = cholmod_analyze(&s, &d.common);
+    if (!d.factor) throw SolverError("SparseCholesky: symbolic analysis failed");
+    d.pattern_outer.assign(d.lower.outerIndexPtr(), d.lower.outerIndexPtr() + d.lower.cols() + 1);
+    d.pattern_inner.assign(d.lower.innerIndexPtr(),
+                           d.lower.innerIndexPtr() + d.lower.nonZeros());
+    d.n = A.rows();
+    ++d.analyses;
+  }
+  const int ok = cholmod_factorize(&s, d.factor, &d.common);
+  d.factor_valid = ok && d.common.status == CHOLMOD_OK && d.factor->minor == d.factor->n;
+  return d.factor_valid;
+}
+
+VecX SparseCholesky::solve(const VecX& b) const {
+  auto& d = *impl_;
+  if (!d.factor_valid) throw SolverError("SparseCholesky: solve without a valid factorization");
+  if (b.size() != d.n) throw SolverError("SparseCholesky: right-hand side has the wrong size");
+  cholmod_dense rhs{};
+  rhs.nrow = static_cast<size_t>(b.size());
+  rhs.ncol = 1;
+  rhs.nzmax = rhs.nrow;
+  rhs.d = rhs.nrow;
+  rhs.x = const_cast<double*>(b.data());
+  rhs.z = nullptr;
+  rhs.xtype = CHOLMOD_REAL;
+  rhs.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense* x = cholmod_solve(CHOLMOD_A, d.factor, &rhs, &d.common);
+  if (!x) throw SolverError("SparseCholesky: solve failed");
+  VecX out = Eigen::Map<const VecX>(static_cast<const double*>(x->x), b.size());
+  cholmod_free_dense(&x, &d.common);
+  return out;
+}
+
+MatX SparseCholesky::solve_columns(const MatX& B) const {
+  MatX X(B.rows(), B.cols());
+  for (Eigen::Index j = 0; j < B.cols(); ++j) X.col(j) = solve(VecX(B.col(j)));
+  return X;
+}
+
+int SparseCholesky::symbolic_analyses() const { return impl_->analyses; }
+
+std::int64_t SparseCholesky::factor_nonzeros() const {
+  const auto* f = impl_->factor;
+  if (!f) return 0;
+  return static_cast<std::int64_t>(f->is_super ? f->xsize : f->nzmax);
+}
+
+Eigen::Index SparseCholesky::size() const { return impl_->n; }
+
+}  // namespace tightfit
