@@ -1,0 +1,56 @@
+#include "tightfit/common/json_fields.hpp"
+
+#include <gtest/gtest.h>
+
+namespace tightfit {
+namespace {
+
+TEST(JsonFields, ReadsTypedFieldsWithDefaults) {
+  const auto j = nlohmann::json::parse(R"({"a": 2.5, "n": 3, "s": "x", "v": [1,2,3], "o": {"b": true}})");
+  JsonFields f(j, "scene.json", "");
+  EXPECT_EQ(f.number("a"), 2.5);
+  EXPECT_EQ(f.integer("n"), 3);
+  EXPECT_EQ(f.string("s"), "x");
+  EXPECT_EQ(f.vec3("v"), Vec3(1, 2, 3));
+  EXPECT_EQ(f.number("missing", 7.0), 7.0);
+  auto o = f.object("o");
+  ASSERT_TRUE(o);
+  EXPECT_TRUE(o->boolean("b"));
+  o->finish();
+  f.finish();
+}
+
+TEST(JsonFields, NamesFileAndPathOfWrongTypes) {
+  const auto j = nlohmann::json::parse(R"({"body": {"edge_length": "small"}})");
+  JsonFields f(j, "scene.json", "");
+  auto body = f.object("body", true);
+  try {
+    body->number("edge_length");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "scene.json: /body/edge_length: expected a number, got string");
+  }
+}
+
+TEST(JsonFields, RejectsUnknownKeys) {
+  const auto j = nlohmann::json::parse(R"({"a": 1, "typo": 2})");
+  JsonFields f(j, "s.json", "/x");
+  f.number("a");
+  try {
+    f.finish();
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/x/typo: unknown key"), std::string::npos);
+  }
+}
+
+TEST(JsonFields, RejectsNonPositiveAndBadChoices) {
+  const auto j = nlohmann::json::parse(R"({"e": -1, "m": "quux"})");
+  JsonFields f(j, "s.json", "");
+  EXPECT_THROW(f.positive("e"), InputError);
+  EXPECT_THROW(f.choice("m", {"a", "b"}), InputError);
+  EXPECT_THROW(f.number("absent"), InputError);
+}
+
+}  // namespace
+}  // namespace tightfit
