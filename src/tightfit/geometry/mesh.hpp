@@ -1,6 +1,6 @@
 #pragma once
 /// Plain mesh containers shared by every layer. Topology queries live in separate
-/// classes (see mesh_topology.hpp); these hold only arrays.
+/// classes (see surface_topology.hpp); these hold only arrays.
 #include "tightfit/common/types.hpp"
 
 namespace tightfit {
