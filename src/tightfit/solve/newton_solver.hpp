@@ -1,0 +1,79 @@
+#pragma once
+/// Newton's method with a backtracking line search on the total energy and
+/// exponentially growing diagonal regularization when the Hessian is not positive
+/// definite (paper Sec. 3.3). Failure is reported as a SolverError naming the residual.
+#include <string>
+#include <vector>
+
+#include "tightfit/common/sparse_cholesky.hpp"
+#include "tightfit/solve/newton_problem.hpp"
+
+namespace tightfit {
+
+/// Tolerances in SI units. Converged when force_norm(g) ≤ max(absolute_force_tolerance,
+/// relative_force_tolerance · force_scale()).
+struct NewtonOptions {
+  double relative_force_tolerance = 1e-9;  ///< relative to the problem's force scale
+  double absolute_force_tolerance = 1e-12; ///< N
+  int max_iterations = 100;
+  int max_line_search_halvings = 40;
+  double armijo = 1e-4;                    ///< sufficient-decrease constant
+  double initial_regularization = 1e-8;    ///< first diagonal shift, relative to mean |diag(H)|
+  double regularization_growth = 10.0;     ///< factor between regularization attempts
+  int max_regularizations = 30;
+  bool throw_on_failure = true;            ///< throw SolverError if not converged
+};
+
+/// One Newton iteration, for reports and convergence tests.
+struct NewtonIteration {
+  double energy = 0.0;            ///< J, before the step
+  double force_norm = 0.0;        ///< N, before the step
+  double step_size = 0.0;         ///< accepted line-search alpha
+  double regularization = 0.0;    ///< absolute diagonal shift used (0 if none)
+  double seconds_assembly = 0.0;  ///< gradient + Hessian
+  double seconds_factorization = 0.0;
+  double seconds_solve = 0.0;
+  double seconds_line_search = 0.0;
+};
+
+struct NewtonReport {
+  bool converged = false;
+  int iterations = 0;
+  double final_energy = 0.0;
+  double final_force_norm = 0.0;   ///< N
+  double tolerance = 0.0;          ///< N, the force tolerance that was applied
+  std::vector<NewtonIteration> history;
+  std::int64_t hessian_nonzeros = 0;
+  std::int64_t factor_nonzeros = 0;
+  double seconds_total = 0.0;
+  std::string message;             ///< why it stopped
+};
+
+class NewtonSolver {
+ public:
+  explicit NewtonSolver(NewtonOptions options = {}) : options_(options) {}
+
+  /// Runs Newton from the problem's current (committed) state; on return the problem
+  /// holds the last accepted state. Throws SolverError when not converged and
+  /// options.throw_on_failure.
+  NewtonReport solve(NewtonProblem& problem);
+
+  /// The factorization of the last Hessian that was factorized (at the state before the
+  /// last step, or at the converged state after `factorize_at_current`).
+  const SparseCholesky& factorization() const { return cholesky_; }
+
+  /// Factorizes the Hessian at the problem's current state (no regularization) for
+  /// adjoint solves; returns false when it is not positive definite.
+  bool factorize_at_current(NewtonProblem& problem);
+
+  const NewtonOptions& options() const { return options_; }
+
+ private:
+  /// Factorizes H + δI with the smallest δ of the growing sequence that succeeds.
+  double factorize_regularized(const SparseMatrix& H);
+
+  NewtonOptions options_;
+  SparseCholesky cholesky_;
+};
+
+}  // namespace tightfit

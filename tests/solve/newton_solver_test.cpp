@@ -1,0 +1,210 @@
+#include "tightfit/solve/newton_solver.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+namespace {
+
+/// A flat-space problem defined by callbacks over a vector state q.
+class VectorProblem : public NewtonProblem {
+ public:
+  explicit VectorProblem(VecX q0) : base_(std::move(q0)), q_(base_) {}
+  Eigen::Index num_dofs() const override { return q_.size(); }
+  bool set_step(const VecX& dq, double alpha) override {
+    q_ = base_ + alpha * dq;
+    return true;
+  }
+  void commit() override { base_ = q_; }
+  const VecX& q() const { return q_; }
+
+ protected:
+  VecX base_;
+  VecX q_;
+};
+
+/// Nonlinear chain: U = Σ_i [½ d_i² + ¼ d_i⁴] + Σ_i ¼ q_i⁴ − b·q, d_i = q_{i+1} − q_i.
+/// Strictly convex, unique minimizer; sparse tridiagonal Hessian.
+class ChainProblem : public VectorProblem {
+ public:
+  explicit ChainProblem(int n) : VectorProblem(VecX::Zero(n)), b_(VecX::LinSpaced(n, 1.0, 3.0)) {}
+  double energy() override {
+    double e = 0.25 * q_.array().pow(4).sum() - b_.dot(q_);
+    for (Eigen::Index i = 0; i + 1 < q_.size(); ++i) {
+      const double d = q_[i + 1] - q_[i];
+      e += 0.5 * d * d + 0.25 * d * d * d * d;
+    }
+    return e;
+  }
+  VecX gradient() override {
+    VecX g = q_.array().pow(3).matrix() - b_;
+    for (Eigen::Index i = 0; i + 1 < q_.size(); ++i) {
+      const double d = q_[i + 1] - q_[i];
+      const double f = d + d * d * d;
+      g[i] -= f;
+      g[i + 1] += f;
+    }
+    return g;
+  }
+  SparseMatrix hessian() override {
+    std::vector<Triplet> t;
+    for (Eigen::Index i = 0; i < q_.size(); ++i) t.emplace_back(i, i, 3.0 * q_[i] * q_[i]);
+    for (Eigen::Index i = 0; i + 1 < q_.size(); ++i) {
+      const double d = q_[i + 1] - q_[i];
+      const double k = 1.0 + 3.0 * d * d;
+      const int a = static_cast<int>(i), c = static_cast<int>(i + 1);
+      t.emplace_back(a, a, k);
+      t.emplace_back(c, c, k);
+      t.emplace_back(a, c, -k);
+      t.emplace_back(c, a, -k);
+    }
+    SparseMatrix H(q_.size(), q_.size());
+    H.setFromTriplets(t.begin(), t.end());
+    return H;
+  }
+
+ private:
+  VecX b_;
+};
+
+TEST(NewtonSolver, ConvergesQuadraticallyOnASparseConvexProblem) {
+  ChainProblem problem(200);
+  NewtonSolver solver;
+  const NewtonReport r = solver.solve(problem);
+  ASSERT_TRUE(r.converged);
+  EXPECT_LE(r.final_force_norm, r.tolerance);
+  // Quadratic convergence: once in the basin, r_{k+1} <= C r_k^2.
+  int quadratic_steps = 0;
+  for (size_t k = 1; k + 1 < r.history.size(); ++k) {
+    const double rk = r.history[k].force_norm, rk1 = r.history[k + 1].force_norm;
+    if (rk < 1e-1 && rk1 > 1e-13) {
+      EXPECT_LT(rk1, 10.0 * rk * rk) << "iteration " << k;
+      ++quadratic_steps;
+    }
+  }
+  EXPECT_GE(quadratic_steps, 1);
+  EXPECT_GT(r.factor_nonzeros, 0);
+}
+
+/// Rosenbrock: indefinite Hessian away from the valley, needs regularization.
+class RosenbrockProblem : public VectorProblem {
+ public:
+  RosenbrockProblem() : VectorProblem(Eigen::Vector2d(0.5, 1.0)) {}  // H indefinite here
+  double energy() override {
+    const double x = q_[0], y = q_[1];
+    return (1 - x) * (1 - x) + 100 * (y - x * x) * (y - x * x);
+  }
+  VecX gradient() override {
+    const double x = q_[0], y = q_[1];
+    return Eigen::Vector2d(-2 * (1 - x) - 400 * x * (y - x * x), 200 * (y - x * x));
+  }
+  SparseMatrix hessian() override {
+    const double x = q_[0], y = q_[1];
+    Eigen::Matrix2d H;
+    H << 2 - 400 * (y - 3 * x * x), -400 * x, -400 * x, 200;
+    return H.sparseView();
+  }
+};
+
+TEST(NewtonSolver, RegularizesIndefiniteHessians) {
+  RosenbrockProblem problem;
+  NewtonSolver solver;
+  const NewtonReport r = solver.solve(problem);
+  ASSERT_TRUE(r.converged);
+  EXPECT_NEAR(problem.q()[0], 1.0, 1e-8);
+  EXPECT_NEAR(problem.q()[1], 1.0, 1e-8);
+  bool regularized = false;
+  for (const auto& it : r.history) regularized |= it.regularization > 0.0;
+  EXPECT_TRUE(regularized);
+}
+
+/// A barrier: energy is +inf for q <= 0 (like an inverted element); minimum at q = 1
+/// of U = q − log q. Newton from q = 0.05 overshoots into q < 0 and must back off.
+class BarrierProblem : public VectorProblem {
+ public:
+  BarrierProblem() : VectorProblem(VecX::Constant(1, 0.05)) {}
+  double energy() override {
+    return q_[0] <= 0 ? std::numeric_limits<double>::infinity() : q_[0] - std::log(q_[0]);
+  }
+  VecX gradient() override { return VecX::Constant(1, 1.0 - 1.0 / q_[0]); }
+  SparseMatrix hessian() override {
+    SparseMatrix H(1, 1);
+    H.insert(0, 0) = 1.0 / (q_[0] * q_[0]);
+    return H;
+  }
+};
+
+TEST(NewtonSolver, LineSearchRejectsInadmissibleStates) {
+  BarrierProblem problem;
+  NewtonSolver solver;
+  const NewtonReport r = solver.solve(problem);
+  ASSERT_TRUE(r.converged);
+  EXPECT_NEAR(problem.q()[0], 1.0, 1e-9);
+}
+
+/// A state on the unit circle: the step is an angle; U = −cos(θ − θ*). set_step refuses
+/// steps longer than 0.3 rad, as a garment vertex walk might.
+class CircleProblem : public NewtonProblem {
+ public:
+  Eigen::Index num_dofs() const override { return 1; }
+  double energy() override { return -std::cos(theta_ - target_); }
+  VecX gradient() override { return VecX::Constant(1, std::sin(theta_ - target_)); }
+  SparseMatrix hessian() override {
+    SparseMatrix H(1, 1);
+    H.insert(0, 0) = std::max(std::cos(theta_ - target_), 1e-3);
+    return H;
+  }
+  bool set_step(const VecX& dq, double alpha) override {
+    if (std::abs(alpha * dq[0]) > 0.3) return false;
+    theta_ = base_ + alpha * dq[0];
+    return true;
+  }
+  void commit() override { base_ = theta_; }
+  double theta_ = 0.0, base_ = 0.0, target_ = 1.2;
+};
+
+TEST(NewtonSolver, ShortensStepsTheProblemRefuses) {
+  CircleProblem problem;
+  NewtonSolver solver;
+  const NewtonReport r = solver.solve(problem);
+  ASSERT_TRUE(r.converged);
+  EXPECT_NEAR(problem.theta_, 1.2, 1e-9);
+}
+
+/// Unbounded below: U = −q³ − q has no minimum; Newton must fail loudly.
+class UnboundedProblem : public VectorProblem {
+ public:
+  UnboundedProblem() : VectorProblem(VecX::Constant(1, 1.0)) {}
+  double energy() override { return -q_[0] * q_[0] * q_[0] - q_[0]; }
+  VecX gradient() override { return VecX::Constant(1, -3 * q_[0] * q_[0] - 1); }
+  SparseMatrix hessian() override {
+    SparseMatrix H(1, 1);
+    H.insert(0, 0) = -6 * q_[0];
+    return H;
+  }
+};
+
+TEST(NewtonSolver, ReportsFailureWithTheResidual) {
+  UnboundedProblem problem;
+  NewtonOptions options;
+  options.max_iterations = 20;
+  NewtonSolver solver(options);
+  try {
+    solver.solve(problem);
+    FAIL() << "expected a SolverError";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("force residual"), std::string::npos) << e.what();
+  }
+  options.throw_on_failure = false;
+  UnboundedProblem again;
+  const NewtonReport r = NewtonSolver(options).solve(again);
+  EXPECT_FALSE(r.converged);
+  EXPECT_TRUE(std::isfinite(r.final_force_norm));
+}
+
+}  // namespace
+}  // namespace tightfit
