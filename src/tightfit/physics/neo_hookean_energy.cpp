@@ -1,6 +1,8 @@
 #include "tightfit/physics/neo_hookean_energy.hpp"
 
 #include <cmath>
+
+#include <Eigen/LU>
 #include <limits>
 #include <stdexcept>
 #include <string>

@@ -1,0 +1,286 @@
+#include "tightfit/physics/cloth_energy.hpp"
+
+#include <array>
+#include <cmath>
+
+#include <Eigen/LU>
+#include <stdexcept>
+#include <string>
+
+#include "tightfit/common/error.hpp"
+#include "tightfit/physics/assembly.hpp"
+
+namespace tightfit {
+namespace {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+using Vec9 = Eigen::Matrix<double, 9, 1>;
+using Mat9 = Eigen::Matrix<double, 9, 9>;
+using Mat3x9 = Eigen::Matrix<double, 3, 9>;
+
+const std::string kSource = "cloth pattern";
+
+/// Edge metric (E1·E1, E2·E2, E1·E2) of a triangle, E1 = p1 - p0, E2 = p2 - p0, with its
+/// Jacobian with respect to (p0, p1, p2) (each Dim coordinates).
+template <int Dim>
+struct EdgeMetric {
+  Vec3 value;
+  Eigen::Matrix<double, 3, 3 * Dim> jacobian;
+};
+
+template <int Dim>
+EdgeMetric<Dim> edge_metric(const Eigen::Matrix<double, Dim, 1>& p0,
+                            const Eigen::Matrix<double, Dim, 1>& p1,
+                            const Eigen::Matrix<double, Dim, 1>& p2) {
+  const Eigen::Matrix<double, Dim, 1> e1 = p1 - p0;
+  const Eigen::Matrix<double, Dim, 1> e2 = p2 - p0;
+  EdgeMetric<Dim> m;
+  m.value << e1.squaredNorm(), e2.squaredNorm(), e1.dot(e2);
+  m.jacobian.setZero();
+  m.jacobian.template block<1, Dim>(0, 0) = -2.0 * e1.transpose();
+  m.jacobian.template block<1, Dim>(0, Dim) = 2.0 * e1.transpose();
+  m.jacobian.template block<1, Dim>(1, 0) = -2.0 * e2.transpose();
+  m.jacobian.template block<1, Dim>(1, 2 * Dim) = 2.0 * e2.transpose();
+  m.jacobian.template block<1, Dim>(2, 0) = -(e1 + e2).transpose();
+  m.jacobian.template block<1, Dim>(2, Dim) = e2.transpose();
+  m.jacobian.template block<1, Dim>(2, 2 * Dim) = e1.transpose();
+  return m;
+}
+
+/// Σ_k w_k ∇²(metric_k) with respect to (p0, p1, p2), which is (K ⊗ I_Dim) for the 3×3
+/// vertex stencil K = 2w0 s1s1ᵀ + 2w1 s2s2ᵀ + w2 (s1s2ᵀ + s2s1ᵀ), s1 = (-1,1,0), s2 = (-1,0,1).
+template <int Dim>
+Eigen::Matrix<double, 3 * Dim, 3 * Dim> metric_curvature(const Vec3& w) {
+  const Vec3 s1(-1.0, 1.0, 0.0);
+  const Vec3 s2(-1.0, 0.0, 1.0);
+  const Mat3 k = 2.0 * w[0] * s1 * s1.transpose() + 2.0 * w[1] * s2 * s2.transpose() +
+                 w[2] * (s1 * s2.transpose() + s2 * s1.transpose());
+  Eigen::Matrix<double, 3 * Dim, 3 * Dim> out;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      out.template block<Dim, Dim>(Dim * a, Dim * b) =
+          k(a, b) * Eigen::Matrix<double, Dim, Dim>::Identity();
+  return out;
+}
+
+/// Φ(v) = A f(I1, I2) per unit thickness, v = (G11, G22, G12, M11, M22, M12), with
+/// D = det M, A = sqrt(D)/2, I1 = (G11 M22 + G22 M11 - 2 G12 M12)/D, I2 = det G / D.
+struct Phi {
+  double value = 0.0;
+  Vec6 gradient = Vec6::Zero();
+  Mat6 hessian = Mat6::Zero();
+};
+
+Phi element_phi(const Vec3& g, const Vec3& m, const RelaxedStVK& law, int order) {
+  const double d = m[0] * m[1] - m[2] * m[2];
+  const double sd = std::sqrt(d);
+  const double area = 0.5 * sd;
+  const double n1 = g[0] * m[1] + g[1] * m[0] - 2.0 * g[2] * m[2];
+  const double n2 = g[0] * g[1] - g[2] * g[2];
+  const double i1 = n1 / d;
+  const double i2 = n2 / d;
+  const RelaxedStVK::Derivatives f = law.evaluate(i1, i2, order);
+  Phi phi;
+  phi.value = area * f.value;
+  if (order < 1) return phi;
+
+  Vec6 dd, dn1, dn2;
+  dd << 0, 0, 0, m[1], m[0], -2.0 * m[2];
+  dn1 << m[1], m[0], -2.0 * m[2], g[1], g[0], -2.0 * g[2];
+  dn2 << g[1], g[0], -2.0 * g[2], 0, 0, 0;
+  const Vec6 di1 = dn1 / d - n1 * dd / (d * d);
+  const Vec6 di2 = dn2 / d - n2 * dd / (d * d);
+  const Vec6 da = dd / (4.0 * sd);
+  const Vec6 df = f.gradient[0] * di1 + f.gradient[1] * di2;
+  phi.gradient = f.value * da + area * df;
+  if (order < 2) return phi;
+
+  Mat6 hd = Mat6::Zero(), hn1 = Mat6::Zero(), hn2 = Mat6::Zero();
+  hd(3, 4) = hd(4, 3) = 1.0;
+  hd(5, 5) = -2.0;
+  hn1(0, 4) = hn1(4, 0) = 1.0;
+  hn1(1, 3) = hn1(3, 1) = 1.0;
+  hn1(2, 5) = hn1(5, 2) = -2.0;
+  hn2(0, 1) = hn2(1, 0) = 1.0;
+  hn2(2, 2) = -2.0;
+  const double d2 = d * d;
+  const double d3 = d2 * d;
+  auto quotient_hessian = [&](const Mat6& hn, const Vec6& dn, double n) -> Mat6 {
+    return hn / d - (dn * dd.transpose() + dd * dn.transpose()) / d2 - n * hd / d2 +
+           2.0 * n * dd * dd.transpose() / d3;
+  };
+  Eigen::Matrix<double, 2, 6> ji;
+  ji.row(0) = di1.transpose();
+  ji.row(1) = di2.transpose();
+  const Mat6 hf = ji.transpose() * f.hessian * ji + f.gradient[0] * quotient_hessian(hn1, dn1, n1) +
+                  f.gradient[1] * quotient_hessian(hn2, dn2, n2);
+  const Mat6 ha = hd / (4.0 * sd) - dd * dd.transpose() / (8.0 * d * sd);
+  phi.hessian = f.value * ha + da * df.transpose() + df * da.transpose() + area * hf;
+  return phi;
+}
+
+}  // namespace
+
+ClothEnergy::ClothEnergy(Triangles triangles, Points2 rest, std::vector<int> pattern_to_garment,
+                         int num_garment_vertices, ClothMaterial material)
+    : triangles_(std::move(triangles)),
+      rest_(std::move(rest)),
+      pattern_to_garment_(std::move(pattern_to_garment)),
+      num_garment_(num_garment_vertices),
+      law_(material) {
+  const Eigen::Index np = rest_.rows();
+  if (static_cast<Eigen::Index>(pattern_to_garment_.size()) != np)
+    throw InputError(kSource, "pattern-to-garment map has " +
+                                  std::to_string(pattern_to_garment_.size()) + " entries for " +
+                                  std::to_string(np) + " pattern vertices");
+  for (std::size_t p = 0; p < pattern_to_garment_.size(); ++p)
+    if (pattern_to_garment_[p] < 0 || pattern_to_garment_[p] >= num_garment_)
+      throw InputError(kSource, "pattern vertex " + std::to_string(p) + " maps to garment vertex " +
+                                    std::to_string(pattern_to_garment_[p]) + " outside [0, " +
+                                    std::to_string(num_garment_) + ")");
+  for (Eigen::Index e = 0; e < triangles_.rows(); ++e)
+    for (int k = 0; k < 3; ++k)
+      if (triangles_(e, k) < 0 || triangles_(e, k) >= np)
+        throw InputError(kSource, "triangle " + std::to_string(e) + " has pattern vertex " +
+                                      std::to_string(triangles_(e, k)) + " outside [0, " +
+                                      std::to_string(np) + ")");
+  validate_rest(rest_);
+}
+
+void ClothEnergy::validate_rest(const Points2& rest) const {
+  if (rest.rows() != rest_.rows())
+    throw InputError(kSource, "rest positions have " + std::to_string(rest.rows()) +
+                                  " rows, expected " + std::to_string(rest_.rows()));
+  for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
+    const Vec2 e1 = (rest.row(triangles_(e, 1)) - rest.row(triangles_(e, 0))).transpose();
+    const Vec2 e2 = (rest.row(triangles_(e, 2)) - rest.row(triangles_(e, 0))).transpose();
+    const double cross = e1.x() * e2.y() - e1.y() * e2.x();
+    if (!(std::abs(cross) > 1e-14 * (e1.squaredNorm() + e2.squaredNorm())))
+      throw InputError(kSource, "rest triangle " + std::to_string(e) + " is degenerate (zero area)");
+  }
+}
+
+void ClothEnergy::set_rest(const Points2& rest) {
+  validate_rest(rest);
+  rest_ = rest;
+}
+
+void ClothEnergy::check_x(const VecX& x) const {
+  if (x.size() != 3 * static_cast<Eigen::Index>(num_garment_))
+    throw std::invalid_argument("ClothEnergy: position vector has " + std::to_string(x.size()) +
+                                " entries, expected 3 x " + std::to_string(num_garment_));
+}
+
+Triangles ClothEnergy::garment_triangles() const {
+  Triangles t(triangles_.rows(), 3);
+  for (Eigen::Index e = 0; e < triangles_.rows(); ++e)
+    for (int k = 0; k < 3; ++k) t(e, k) = pattern_to_garment_[triangles_(e, k)];
+  return t;
+}
+
+double ClothEnergy::rest_area(int e) const {
+  const Vec2 e1 = (rest_.row(triangles_(e, 1)) - rest_.row(triangles_(e, 0))).transpose();
+  const Vec2 e2 = (rest_.row(triangles_(e, 2)) - rest_.row(triangles_(e, 0))).transpose();
+  return 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+}
+
+Mat32 ClothEnergy::deformation_gradient(const VecX& x, int e) const {
+  Mat2 dm;
+  Mat32 ds;
+  for (int k = 0; k < 2; ++k) {
+    dm.col(k) = (rest_.row(triangles_(e, k + 1)) - rest_.row(triangles_(e, 0))).transpose();
+    ds.col(k) = x.segment<3>(3 * pattern_to_garment_[triangles_(e, k + 1)]) -
+                x.segment<3>(3 * pattern_to_garment_[triangles_(e, 0)]);
+  }
+  return ds * dm.inverse();
+}
+
+namespace {
+
+/// Per-element data gathered from the global arrays.
+struct ClothElement {
+  std::array<int, 3> garment;  // garment vertex ids
+  std::array<int, 3> pattern;  // pattern vertex ids
+  EdgeMetric<3> deformed;
+  EdgeMetric<2> rest;
+};
+
+template <typename Fn>
+void for_each_element(const Triangles& triangles, const Points2& rest,
+                      const std::vector<int>& to_garment, const VecX& x, Fn&& fn) {
+  for (Eigen::Index e = 0; e < triangles.rows(); ++e) {
+    ClothElement el;
+    for (int k = 0; k < 3; ++k) {
+      el.pattern[k] = triangles(e, k);
+      el.garment[k] = to_garment[el.pattern[k]];
+    }
+    el.deformed = edge_metric<3>(x.segment<3>(3 * el.garment[0]), x.segment<3>(3 * el.garment[1]),
+                                 x.segment<3>(3 * el.garment[2]));
+    el.rest = edge_metric<2>(rest.row(el.pattern[0]).transpose(), rest.row(el.pattern[1]).transpose(),
+                             rest.row(el.pattern[2]).transpose());
+    fn(el);
+  }
+}
+
+}  // namespace
+
+double ClothEnergy::value(const VecX& x) const {
+  check_x(x);
+  double total = 0.0;
+  for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
+    total += element_phi(el.deformed.value, el.rest.value, law_, 0).value;
+  });
+  return material().thickness * total;
+}
+
+void ClothEnergy::add_gradient(const VecX& x, VecX& g) const {
+  check_x(x);
+  check_x(g);
+  const double t = material().thickness;
+  for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
+    const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
+    const Vec9 local = t * el.deformed.jacobian.transpose() * phi.gradient.head<3>();
+    scatter_gradient<3>(el.garment, local, g);
+  });
+}
+
+void ClothEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd) const {
+  check_x(x);
+  H.reserve(H.size() + 81 * static_cast<std::size_t>(triangles_.rows()));
+  const double t = material().thickness;
+  for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
+    const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
+    const Mat3x9& j = el.deformed.jacobian;
+    Mat9 local = t * (j.transpose() * phi.hessian.topLeftCorner<3, 3>() * j +
+                      metric_curvature<3>(phi.gradient.head<3>()));
+    if (project_psd) tightfit::project_psd(local);
+    scatter_hessian<3>(el.garment, local, H);
+  });
+}
+
+void ClothEnergy::add_gradient_rest(const VecX& x, VecX& g_rest) const {
+  check_x(x);
+  if (g_rest.size() != 2 * rest_.rows())
+    throw std::invalid_argument("ClothEnergy::add_gradient_rest: wrong vector size");
+  const double t = material().thickness;
+  for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
+    const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
+    const Vec6 local = t * el.rest.jacobian.transpose() * phi.gradient.tail<3>();
+    scatter_gradient<2>(el.pattern, local, g_rest);
+  });
+}
+
+void ClothEnergy::add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const {
+  check_x(x);
+  H.reserve(H.size() + 54 * static_cast<std::size_t>(triangles_.rows()));
+  const double t = material().thickness;
+  for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
+    const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
+    const Eigen::Matrix<double, 9, 6> local =
+        t * el.deformed.jacobian.transpose() * phi.hessian.topRightCorner<3, 3>() * el.rest.jacobian;
+    scatter_block<3, 3, 2, 3>(el.garment, el.pattern, local, H);
+  });
+}
+
+}  // namespace tightfit
