@@ -117,7 +117,19 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
     problems.push_back(summarize(zero_area, "degenerate face with zero area",
                                  "degenerate faces with zero area", face_text));
 
-  const SurfaceTopology topo(mesh.faces, nv);
+  // Topology of the faces that do not repeat a vertex (those are reported above and
+  // would otherwise add self-loop "holes" and spurious non-manifold edges).
+  std::vector<int> kept;  // original face id of each face in `topo`
+  for (int f = 0, r = 0; f < nf; ++f) {
+    if (r < static_cast<int>(repeated.size()) && repeated[r] == f) {
+      ++r;
+      continue;
+    }
+    kept.push_back(f);
+  }
+  Triangles kept_faces(static_cast<int>(kept.size()), 3);
+  for (int k = 0; k < static_cast<int>(kept.size()); ++k) kept_faces.row(k) = mesh.faces.row(kept[k]);
+  const SurfaceTopology topo(kept_faces, nv);
   auto edge_text = [&](int e) {
     const auto ev = topo.edge_vertices(e);
     return std::to_string(ev[0]) + "-" + std::to_string(ev[1]);
@@ -140,7 +152,15 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
       }));
   }
   bool holes = false;
-  if (req.closed) {
+  if (req.closed && !nm_edges.empty()) {
+    // Boundary loops are not well defined next to non-manifold edges: count edges.
+    const auto boundary = topo.boundary_edges();
+    holes = !boundary.empty();
+    if (holes)
+      problems.push_back(summarize(boundary, "the surface is not closed: it has a boundary edge",
+                                   "boundary edges (the surface must be closed)",
+                                   [&](int e) { return "edge " + edge_text(e); }));
+  } else if (req.closed) {
     const auto loops = topo.boundary_loops();
     holes = !loops.empty();
     if (holes) {
@@ -151,7 +171,7 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
                                      const auto& loop = loops[k];
                                      std::string s = "boundary loop of ";
                                      s += std::to_string(loop.size());
-                                     s += " edges through vertices";
+                                     s += loop.size() == 1 ? " edge through vertices" : " edges through vertices";
                                      for (std::size_t i = 0; i < std::min<std::size_t>(loop.size(), 4); ++i) {
                                        s += ' ';
                                        s += std::to_string(loop[i]);
@@ -166,8 +186,8 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
     problems.push_back(summarize(inconsistent, "inconsistent orientation",
                                  "edges with inconsistent orientation", [&](int e) {
                                    const auto ef = topo.edge_faces(e);
-                                   return "faces " + std::to_string(ef[0]) + " and " +
-                                          std::to_string(ef[1]) + " traverse edge " + edge_text(e) +
+                                   return "faces " + std::to_string(kept[ef[0]]) + " and " +
+                                          std::to_string(kept[ef[1]]) + " traverse edge " + edge_text(e) +
                                           " in the same direction";
                                  }));
 

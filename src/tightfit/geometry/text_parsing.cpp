@@ -35,7 +35,9 @@ std::optional<std::string_view> LineCursor::next() {
 }
 
 namespace {
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+bool is_blank(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
 }  // namespace
 
 void split(std::string_view line, std::vector<std::string_view>& out) {

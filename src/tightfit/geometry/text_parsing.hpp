@@ -31,7 +31,7 @@ class LineCursor {
   int line_ = 0;
 };
 
-/// Splits `line` at blanks (space, tab, \r, \v, \f) into `out` (cleared first).
+/// Splits `line` at white space (space, tab, \n, \r, \v, \f) into `out` (cleared first).
 void split(std::string_view line, std::vector<std::string_view>& out);
 /// `line` without leading and trailing blanks.
 std::string_view trim(std::string_view line);
