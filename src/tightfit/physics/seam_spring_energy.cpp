@@ -1,0 +1,164 @@
+#include "tightfit/physics/seam_spring_energy.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "tightfit/common/error.hpp"
+#include "tightfit/physics/assembly.hpp"
+
+namespace tightfit {
+namespace {
+
+const std::string kSource = "seam springs";
+
+/// One spring evaluated at (x, Xbar).
+struct Spring {
+  std::array<int, 2> garment;
+  std::array<int, 2> pattern;
+  double l = 0.0;   // deformed length
+  double l0 = 0.0;  // rest length
+  Vec3 n = Vec3::Zero();  // unit direction A → B (zero when l = 0)
+  Vec2 u = Vec2::Zero();  // unit rest direction a → b
+};
+
+}  // namespace
+
+std::vector<std::array<int, 2>> polyline_edges(const std::vector<std::vector<int>>& polylines) {
+  std::vector<std::array<int, 2>> edges;
+  for (const auto& line : polylines)
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) edges.push_back({line[i], line[i + 1]});
+  return edges;
+}
+
+SeamSpringEnergy::SeamSpringEnergy(std::vector<std::array<int, 2>> edges, Points2 rest,
+                                   std::vector<int> pattern_to_garment, int num_garment_vertices,
+                                   SeamMaterial material)
+    : edges_(std::move(edges)),
+      rest_(std::move(rest)),
+      pattern_to_garment_(std::move(pattern_to_garment)),
+      num_garment_(num_garment_vertices),
+      material_(material) {
+  if (!(material.width > 0.0) || !(material.depth > 0.0) || !(material.youngs_modulus >= 0.0))
+    throw InputError(kSource, "seam width and depth must be > 0 and Young's modulus >= 0");
+  const Eigen::Index np = rest_.rows();
+  if (static_cast<Eigen::Index>(pattern_to_garment_.size()) != np)
+    throw InputError(kSource, "pattern-to-garment map size differs from the pattern vertex count");
+  for (std::size_t p = 0; p < pattern_to_garment_.size(); ++p)
+    if (pattern_to_garment_[p] < 0 || pattern_to_garment_[p] >= num_garment_)
+      throw InputError(kSource, "pattern vertex " + std::to_string(p) + " maps to garment vertex " +
+                                    std::to_string(pattern_to_garment_[p]) + " outside [0, " +
+                                    std::to_string(num_garment_) + ")");
+  for (std::size_t s = 0; s < edges_.size(); ++s)
+    for (int v : edges_[s])
+      if (v < 0 || v >= np)
+        throw InputError(kSource, "seam edge " + std::to_string(s) + " has pattern vertex " +
+                                      std::to_string(v) + " outside [0, " + std::to_string(np) + ")");
+  validate_rest(rest_);
+}
+
+void SeamSpringEnergy::validate_rest(const Points2& rest) const {
+  if (rest.rows() != rest_.rows())
+    throw InputError(kSource, "rest positions have " + std::to_string(rest.rows()) +
+                                  " rows, expected " + std::to_string(rest_.rows()));
+  for (std::size_t s = 0; s < edges_.size(); ++s)
+    if (!((rest.row(edges_[s][1]) - rest.row(edges_[s][0])).norm() > 0.0))
+      throw InputError(kSource, "seam edge " + std::to_string(s) + " has zero rest length");
+}
+
+void SeamSpringEnergy::set_rest(const Points2& rest) {
+  validate_rest(rest);
+  rest_ = rest;
+}
+
+void SeamSpringEnergy::check_x(const VecX& x) const {
+  if (x.size() != 3 * static_cast<Eigen::Index>(num_garment_))
+    throw std::invalid_argument("SeamSpringEnergy: position vector has " +
+                                std::to_string(x.size()) + " entries, expected 3 x " +
+                                std::to_string(num_garment_));
+}
+
+namespace {
+
+template <typename Fn>
+void for_each_spring(const std::vector<std::array<int, 2>>& edges, const Points2& rest,
+                     const std::vector<int>& to_garment, const VecX& x, Fn&& fn) {
+  for (const auto& e : edges) {
+    Spring s;
+    s.pattern = e;
+    s.garment = {to_garment[e[0]], to_garment[e[1]]};
+    const Vec3 d = x.segment<3>(3 * s.garment[1]) - x.segment<3>(3 * s.garment[0]);
+    const Vec2 d0 = (rest.row(e[1]) - rest.row(e[0])).transpose();
+    s.l = d.norm();
+    s.l0 = d0.norm();
+    if (s.l > 0.0) s.n = d / s.l;
+    s.u = d0 / s.l0;
+    fn(s);
+  }
+}
+
+}  // namespace
+
+double SeamSpringEnergy::value(const VecX& x) const {
+  check_x(x);
+  double total = 0.0;
+  for_each_spring(edges_, rest_, pattern_to_garment_, x,
+                  [&](const Spring& s) { total += (s.l - s.l0) * (s.l - s.l0) / s.l0; });
+  return 0.5 * axial_stiffness() * total;
+}
+
+void SeamSpringEnergy::add_gradient(const VecX& x, VecX& g) const {
+  check_x(x);
+  check_x(g);
+  const double ka = axial_stiffness();
+  for_each_spring(edges_, rest_, pattern_to_garment_, x, [&](const Spring& s) {
+    const Vec3 f = ka * (s.l - s.l0) / s.l0 * s.n;  // dU/dx_B
+    g.segment<3>(3 * s.garment[1]) += f;
+    g.segment<3>(3 * s.garment[0]) -= f;
+  });
+}
+
+void SeamSpringEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd) const {
+  check_x(x);
+  H.reserve(H.size() + 36 * edges_.size());
+  const double ka = axial_stiffness();
+  for_each_spring(edges_, rest_, pattern_to_garment_, x, [&](const Spring& s) {
+    Mat3 k = Mat3::Zero();
+    if (s.l > 0.0) {
+      const Mat3 nn = s.n * s.n.transpose();
+      k = ka / s.l0 * nn + ka * (s.l - s.l0) / (s.l0 * s.l) * (Mat3::Identity() - nn);
+    }
+    Eigen::Matrix<double, 6, 6> local;
+    local << k, -k, -k, k;
+    if (project_psd) tightfit::project_psd(local);
+    scatter_hessian<3>(s.garment, local, H);
+  });
+}
+
+void SeamSpringEnergy::add_gradient_rest(const VecX& x, VecX& g_rest) const {
+  check_x(x);
+  if (g_rest.size() != 2 * rest_.rows())
+    throw std::invalid_argument("SeamSpringEnergy::add_gradient_rest: wrong vector size");
+  const double ka = axial_stiffness();
+  for_each_spring(edges_, rest_, pattern_to_garment_, x, [&](const Spring& s) {
+    const double ratio = s.l / s.l0;
+    const Vec2 f = 0.5 * ka * (1.0 - ratio * ratio) * s.u;  // dU/dXbar_b
+    g_rest.segment<2>(2 * s.pattern[1]) += f;
+    g_rest.segment<2>(2 * s.pattern[0]) -= f;
+  });
+}
+
+void SeamSpringEnergy::add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const {
+  check_x(x);
+  H.reserve(H.size() + 24 * edges_.size());
+  const double ka = axial_stiffness();
+  for_each_spring(edges_, rest_, pattern_to_garment_, x, [&](const Spring& s) {
+    // d²U/dl dl0 = -k_a l / l0², dl/dx_B = n, dl0/dXbar_b = u.
+    const Eigen::Matrix<double, 3, 2> b = -ka * s.l / (s.l0 * s.l0) * s.n * s.u.transpose();
+    Eigen::Matrix<double, 6, 4> local;
+    local << b, -b, -b, b;
+    scatter_block<3, 2, 2, 2>(s.garment, s.pattern, local, H);
+  });
+}
+
+}  // namespace tightfit
