@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "corrupted_file.hpp"
 #include "scratch_dir.hpp"
 #include "test_meshes.hpp"
 #include "tightfit/common/error.hpp"
@@ -168,7 +169,8 @@ TEST(MeshIo, ReaderErrorsNameFileAndProblem) {
       {"bad_index.obj", "line 7: face vertex index 9 is out of range (the file has 4 vertices)"},
       {"negative_index.obj", "relative face index -7 points before the first vertex"},
       {"bad_index.ply", "face 0 refers to vertex 5, the file has 3 vertices"},
-      {"truncated.ply", "the file ends inside the data of vertex 3"},
+      {"truncated.ply", "the element counts in the header are larger than the file can hold"},
+      {"truncated_list.ply", "the file ends inside the data of face 0"},
       {"bad_count.off", "the file ends after 1 of 2 faces"},
       {"no_such_file.obj", "file does not exist"},
   };
@@ -190,6 +192,23 @@ TEST(MeshIo, WritersAreAtomic) {
   int files = 0;
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
   EXPECT_EQ(files, 1);
+}
+
+TEST(MeshIo, CorruptedFilesGiveOnlyInputErrors) {
+  ScratchDir dir;
+  const TriMesh m = awkward_icosahedron();
+  PlyAttributes attr;
+  attr.face_fields.push_back({"pressure", VecX::LinSpaced(20, 0.0, 1.0)});
+  write_ply(dir / "a.ply", m, attr, PlyEncoding::ascii);
+  write_ply(dir / "b.ply", m, attr, PlyEncoding::binary_little_endian);
+  write_obj(dir / "c.obj", m);
+  write_off(dir / "d.off", m);
+  write_stl(dir / "e.stl", m);
+  auto read = [](const std::filesystem::path& p) { read_tri_mesh(p); };
+  for (const char* name : {"a.ply", "b.ply", "c.obj", "d.off", "e.stl"})
+    test::expect_only_input_errors(dir / name, 200, read, std::filesystem::path(name).extension().string());
+  test::expect_only_input_errors(geometry_data("tet_ascii.stl"), 100, read, ".stl");
+  test::expect_only_input_errors(geometry_data("quad_big_endian.ply"), 100, read, ".ply");
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "corrupted_file.hpp"
 #include "scratch_dir.hpp"
 #include "tightfit/common/error.hpp"
 
@@ -136,6 +137,24 @@ TEST(TetMeshIo, ReaderErrorsNameFileAndProblem) {
     EXPECT_NE(msg.find("binary.vtu: line 3: "), std::string::npos) << msg;
     EXPECT_NE(msg.find("only ascii .vtu files are supported"), std::string::npos) << msg;
   }
+}
+
+TEST(TetMeshIo, CorruptedFilesGiveOnlyInputErrors) {
+  ScratchDir dir;
+  const TetMesh m = cube_tets();
+  write_vtu(dir / "c.vtu", m, point_fields(m));
+  write_tetgen(dir / "t", m);
+  test::expect_only_input_errors(dir / "c.vtu", 200, [](const auto& p) { read_vtu(p); }, ".vtu");
+  // Corrupt the .node file; the reader pairs it with the intact .ele of the same base.
+  for (int trial = 0; trial < 100; ++trial) {
+    std::filesystem::copy_file(dir / "t.ele", dir / ("corrupt" + std::to_string(trial) + ".ele"));
+  }
+  test::expect_only_input_errors(dir / "t.node", 100, [](const auto& p) { read_tetgen(p); }, ".node");
+  test::expect_only_input_errors(dir / "t.ele", 100, [&](const auto& p) {
+    std::filesystem::copy_file(dir / "t.node", std::filesystem::path(p).replace_extension(".node"),
+                               std::filesystem::copy_options::overwrite_existing);
+    read_tetgen(p);
+  }, ".ele");
 }
 
 }  // namespace

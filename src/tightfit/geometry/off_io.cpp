@@ -37,8 +37,12 @@ TriMesh read_off(const std::filesystem::path& path) {
   if (counts.size() < 2) throw fail("expected 'VERTICES FACES [EDGES]' counts");
   const auto nv = text::to_int(counts[0]);
   const auto nf = text::to_int(counts[1]);
-  if (!nv || !nf || *nv < 0 || *nf < 0 || *nv > (1 << 30) || *nf > (1 << 30))
-    throw fail("bad vertex or face count");
+  if (!nv || !nf || *nv < 0 || *nf < 0) throw fail("bad vertex or face count");
+  // Every record takes at least two bytes: reject counts the file cannot hold before
+  // allocating for them.
+  const auto max_records = static_cast<std::int64_t>(data.size() / 2);
+  if (*nv > max_records || *nf > max_records)
+    throw fail("vertex or face count larger than the file can hold");
 
   TriMesh mesh;
   mesh.vertices.resize(*nv, 3);

@@ -245,9 +245,22 @@ PlyData read_ply(const std::filesystem::path& path) {
       throw InputError(source, text::at_line(face_el->header_line) +
                                    "the face element has no vertex_indices list");
   }
-  if (vertex_el->count > std::numeric_limits<int>::max() ||
-      (face_el && face_el->count > std::numeric_limits<int>::max()))
-    throw InputError(source, "element count too large");
+  // Reject element counts the file cannot hold before allocating for them: an ascii
+  // instance takes at least two bytes, a binary one the sizes of its scalars and
+  // list counts.
+  {
+    const double available = static_cast<double>(data.size() - cursor.position());
+    double needed = 0.0;
+    for (const auto& el : elements) {
+      std::size_t bytes = 0;
+      for (const auto& p : el.properties) bytes += type_size(p.is_list ? p.count_type : p.type);
+      needed += static_cast<double>(el.count) *
+                static_cast<double>(*format == Format::ascii ? 2 : bytes);
+    }
+    if (needed > available || vertex_el->count > std::numeric_limits<int>::max() ||
+        (face_el && face_el->count > std::numeric_limits<int>::max()))
+      throw InputError(source, "the element counts in the header are larger than the file can hold");
+  }
 
   // Column layout of the attributes: every scalar property except x, y, z (and
   // red/green/blue when all three exist) becomes a field.

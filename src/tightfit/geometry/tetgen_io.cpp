@@ -42,6 +42,8 @@ class TetgenFile {
     throw InputError(source_, "the file ends before " + what_missing);
   }
   const std::vector<std::string_view>& tokens() const { return tokens_; }
+  /// Upper bound on the number of records (each takes at least two bytes).
+  std::int64_t max_records() const { return static_cast<std::int64_t>(data_.size() / 2); }
 
   std::int64_t integer(std::size_t k, const char* what) const {
     const auto value = k < tokens_.size() ? text::to_int(tokens_[k]) : std::nullopt;
@@ -75,7 +77,7 @@ TetMesh read_tetgen(const std::filesystem::path& path) {
     node.next("the header line");
     const auto n = node.integer(0, "point count");
     const auto dim = node.tokens().size() > 1 ? node.integer(1, "dimension") : 3;
-    if (n < 0 || n > (1 << 30)) throw node.error("bad point count");
+    if (n < 0 || n > node.max_records()) throw node.error("bad point count " + std::to_string(n));
     if (dim != 3) throw node.error("dimension " + std::to_string(dim) + ", expected 3");
     mesh.vertices.resize(n, 3);
     for (std::int64_t i = 0; i < n; ++i) {
@@ -95,7 +97,7 @@ TetMesh read_tetgen(const std::filesystem::path& path) {
   ele.next("the header line");
   const auto m = ele.integer(0, "tetrahedron count");
   const auto per = ele.tokens().size() > 1 ? ele.integer(1, "nodes per tetrahedron") : 4;
-  if (m < 0 || m > (1 << 30)) throw ele.error("bad tetrahedron count");
+  if (m < 0 || m > ele.max_records()) throw ele.error("bad tetrahedron count " + std::to_string(m));
   if (per != 4 && per != 10) throw ele.error("nodes per tetrahedron must be 4 or 10");
   mesh.tets.resize(m, 4);
   const auto nv = static_cast<std::int64_t>(mesh.vertices.rows());
