@@ -32,7 +32,8 @@ inline void expect_only_input_errors(const std::filesystem::path& original, int 
       case 0:
       case 1:
         for (int k = 0; k < 1 + trial % 3; ++k)
-          bad[pos()] = trial % 2 ? alphabet[rng() % alphabet.size()] : static_cast<char>(rng() & 0xff);
+          bad[pos()] =
+              trial % 2 ? alphabet[rng() % alphabet.size()] : static_cast<char>(rng() & 0xff);
         break;
       case 2: {
         const std::size_t at = pos();

@@ -190,7 +190,8 @@ TEST(MeshIo, WritersAreAtomic) {
   EXPECT_THROW(write_tri_mesh(dir / "missing/a.obj", test::cube()), InputError);
   write_tri_mesh(dir / "a.obj", test::cube());
   int files = 0;
-  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    ++files;
   EXPECT_EQ(files, 1);
 }
 
@@ -206,7 +207,8 @@ TEST(MeshIo, CorruptedFilesGiveOnlyInputErrors) {
   write_stl(dir / "e.stl", m);
   auto read = [](const std::filesystem::path& p) { read_tri_mesh(p); };
   for (const char* name : {"a.ply", "b.ply", "c.obj", "d.off", "e.stl"})
-    test::expect_only_input_errors(dir / name, 200, read, std::filesystem::path(name).extension().string());
+    test::expect_only_input_errors(dir / name, 200, read,
+                                   std::filesystem::path(name).extension().string());
   test::expect_only_input_errors(geometry_data("tet_ascii.stl"), 100, read, ".stl");
   test::expect_only_input_errors(geometry_data("quad_big_endian.ply"), 100, read, ".ply");
 }

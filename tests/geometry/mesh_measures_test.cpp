@@ -35,7 +35,8 @@ TEST(MeshMeasures, CubeVolumeAreaNormalsBox) {
 TEST(MeshMeasures, IcosahedronVertexNormalsPointOutward) {
   const TriMesh m = test::icosahedron();
   const Points3 n = vertex_normals(m);
-  for (int i = 0; i < m.num_vertices(); ++i) EXPECT_NEAR(n.row(i).dot(m.vertices.row(i)), 1.0, 1e-12);
+  for (int i = 0; i < m.num_vertices(); ++i)
+    EXPECT_NEAR(n.row(i).dot(m.vertices.row(i)), 1.0, 1e-12);
   // Icosahedron with circumradius 1: edge a = 4 / sqrt(10 + 2 sqrt 5).
   const double a = 4.0 / std::sqrt(10.0 + 2.0 * std::sqrt(5.0));
   const EdgeLengthStats s = edge_length_stats(m);
@@ -80,7 +81,8 @@ TEST(MeshMeasures, CornerTetAndMeshSummaries) {
   const auto angles = tet_dihedral_angles(m.vertices.row(0), m.vertices.row(1), m.vertices.row(2),
                                           m.vertices.row(3));
   for (int e = 0; e < 3; ++e) EXPECT_NEAR(angles[e], 90.0, 1e-12);
-  for (int e = 3; e < 6; ++e) EXPECT_NEAR(angles[e], std::acos(1.0 / std::sqrt(3.0)) * 180 / std::numbers::pi, 1e-12);
+  for (int e = 3; e < 6; ++e)
+    EXPECT_NEAR(angles[e], std::acos(1.0 / std::sqrt(3.0)) * 180 / std::numbers::pi, 1e-12);
   const AngleRange range = dihedral_angle_range(m);
   EXPECT_NEAR(range.max_degrees, 90.0, 1e-12);
   EXPECT_LT(range.min_degrees, 54.8);

@@ -73,9 +73,10 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(SurfaceValidation, OnlyTheIntendedProblemIsReported) {
   // Each bad file has exactly one kind of problem (so the messages above are specific).
-  for (const char* file : {"nonfinite_vertex.obj", "degenerate_zero_area.obj", "non_manifold_edge.obj",
-                           "non_manifold_vertex.obj", "hole.obj", "inconsistent_orientation.obj",
-                           "inward.obj", "self_intersection.obj", "unused_vertex.obj"}) {
+  for (const char* file :
+       {"nonfinite_vertex.obj", "degenerate_zero_area.obj", "non_manifold_edge.obj",
+        "non_manifold_vertex.obj", "hole.obj", "inconsistent_orientation.obj", "inward.obj",
+        "self_intersection.obj", "unused_vertex.obj"}) {
     const auto problems = surface_problems(read_tri_mesh(geometry_data(file)));
     EXPECT_EQ(problems.size(), 1u) << file << ": " << ::testing::PrintToString(problems);
   }
@@ -119,6 +120,8 @@ TEST(SurfaceValidation, BodiesAreValid) {
     const std::string path = std::string(TIGHTFIT_DATA_DIR "/bodies/") + body;
     EXPECT_NO_THROW(validate_surface(read_tri_mesh(path), path)) << body;
   }
+  EXPECT_EQ(read_valid_surface(TIGHTFIT_DATA_DIR "/bodies/mh_legs_male.obj").num_faces(), 7672);
+  EXPECT_THROW(read_valid_surface(geometry_data("hole.obj")), InputError);
 }
 
 TEST(TetValidation, BadTetFilesNameFileAndProblem) {
@@ -149,7 +152,8 @@ TEST(TetValidation, InMemoryProblems) {
   problems = tet_mesh_problems(m);
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_EQ(problems[0], "degenerate tet repeating a vertex: tet 1 (0, 1, 1, 3)");
-  EXPECT_EQ(tet_mesh_problems(TetMesh{}), std::vector<std::string>{"the tet mesh has no tetrahedra"});
+  EXPECT_EQ(tet_mesh_problems(TetMesh{}),
+            std::vector<std::string>{"the tet mesh has no tetrahedra"});
 }
 
 }  // namespace

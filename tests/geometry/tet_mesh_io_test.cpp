@@ -90,7 +90,8 @@ TEST(TetMeshIo, ReadsVtuFromMeshio) {
       "m = meshio.Mesh(p, [('tetra', np.array([[0,1,2,3]]))], point_data={'T': np.arange(4.0)})\n"
       "meshio.write(sys.argv[1], m, binary=False)\n";
   std::ofstream(dir / "make.py") << script;
-  const std::string cmd = "/usr/bin/python3 " + (dir / "make.py").string() + " " + (dir / "m.vtu").string();
+  const std::string cmd =
+      "/usr/bin/python3 " + (dir / "make.py").string() + " " + (dir / "m.vtu").string();
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const VtuData r = read_vtu(dir / "m.vtu");
   EXPECT_EQ(r.mesh.num_vertices(), 4);
@@ -144,17 +145,23 @@ TEST(TetMeshIo, CorruptedFilesGiveOnlyInputErrors) {
   const TetMesh m = cube_tets();
   write_vtu(dir / "c.vtu", m, point_fields(m));
   write_tetgen(dir / "t", m);
-  test::expect_only_input_errors(dir / "c.vtu", 200, [](const auto& p) { read_vtu(p); }, ".vtu");
+  test::expect_only_input_errors(
+      dir / "c.vtu", 200, [](const auto& p) { read_vtu(p); }, ".vtu");
   // Corrupt the .node file; the reader pairs it with the intact .ele of the same base.
   for (int trial = 0; trial < 100; ++trial) {
     std::filesystem::copy_file(dir / "t.ele", dir / ("corrupt" + std::to_string(trial) + ".ele"));
   }
-  test::expect_only_input_errors(dir / "t.node", 100, [](const auto& p) { read_tetgen(p); }, ".node");
-  test::expect_only_input_errors(dir / "t.ele", 100, [&](const auto& p) {
-    std::filesystem::copy_file(dir / "t.node", std::filesystem::path(p).replace_extension(".node"),
-                               std::filesystem::copy_options::overwrite_existing);
-    read_tetgen(p);
-  }, ".ele");
+  test::expect_only_input_errors(
+      dir / "t.node", 100, [](const auto& p) { read_tetgen(p); }, ".node");
+  test::expect_only_input_errors(
+      dir / "t.ele", 100,
+      [&](const auto& p) {
+        std::filesystem::copy_file(dir / "t.node",
+                                   std::filesystem::path(p).replace_extension(".node"),
+                                   std::filesystem::copy_options::overwrite_existing);
+        read_tetgen(p);
+      },
+      ".ele");
 }
 
 }  // namespace

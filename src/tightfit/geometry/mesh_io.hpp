@@ -30,8 +30,8 @@ void write_tri_mesh(const std::filesystem::path& path, const TriMesh& mesh);
 /// numbered in order of first use.
 struct ObjGroups {
   TriMesh mesh;
-  std::vector<int> face_group;          ///< one entry per triangle, index into `group_names`
-  std::vector<std::string> group_names; ///< distinct names in order of first use
+  std::vector<int> face_group;           ///< one entry per triangle, index into `group_names`
+  std::vector<std::string> group_names;  ///< distinct names in order of first use
 };
 
 /// Reads `v` and `f` lines (f with `a`, `a/b`, `a//c`, `a/b/c` forms; negative

@@ -133,8 +133,9 @@ double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 VecX tet_volumes(const TetMesh& mesh) {
   VecX vols(mesh.num_tets());
   for (int t = 0; t < mesh.num_tets(); ++t)
-    vols[t] = tet_volume(corner(mesh.vertices, mesh.tets(t, 0)), corner(mesh.vertices, mesh.tets(t, 1)),
-                         corner(mesh.vertices, mesh.tets(t, 2)), corner(mesh.vertices, mesh.tets(t, 3)));
+    vols[t] =
+        tet_volume(corner(mesh.vertices, mesh.tets(t, 0)), corner(mesh.vertices, mesh.tets(t, 1)),
+                   corner(mesh.vertices, mesh.tets(t, 2)), corner(mesh.vertices, mesh.tets(t, 3)));
   return vols;
 }
 
@@ -143,8 +144,8 @@ double total_volume(const TetMesh& mesh) { return tet_volumes(mesh).sum(); }
 std::array<double, 6> tet_dihedral_angles(const Vec3& a, const Vec3& b, const Vec3& c,
                                           const Vec3& d) {
   // n_k is the unit normal of the face opposite corner k, pointing towards corner k
-  // (inward), so the result does not depend on the tet's orientation. The interior dihedral angle at the
-  // edge shared by faces opposite i and j is π − angle(n_i, n_j).
+  // (inward), so the result does not depend on the tet's orientation. The interior dihedral angle
+  // at the edge shared by faces opposite i and j is π − angle(n_i, n_j).
   const std::array<Vec3, 4> p = {a, b, c, d};
   std::array<Vec3, 4> n;
   for (int k = 0; k < 4; ++k) {
@@ -173,11 +174,12 @@ std::array<double, 6> tet_dihedral_angles(const Vec3& a, const Vec3& b, const Ve
 
 AngleRange dihedral_angle_range(const TetMesh& mesh) {
   if (mesh.num_tets() == 0) return {};
-  AngleRange range{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  AngleRange range{std::numeric_limits<double>::infinity(),
+                   -std::numeric_limits<double>::infinity()};
   for (int t = 0; t < mesh.num_tets(); ++t) {
-    const auto angles =
-        tet_dihedral_angles(corner(mesh.vertices, mesh.tets(t, 0)), corner(mesh.vertices, mesh.tets(t, 1)),
-                            corner(mesh.vertices, mesh.tets(t, 2)), corner(mesh.vertices, mesh.tets(t, 3)));
+    const auto angles = tet_dihedral_angles(
+        corner(mesh.vertices, mesh.tets(t, 0)), corner(mesh.vertices, mesh.tets(t, 1)),
+        corner(mesh.vertices, mesh.tets(t, 2)), corner(mesh.vertices, mesh.tets(t, 3)));
     for (double x : angles) {
       range.min_degrees = std::min(range.min_degrees, x);
       range.max_degrees = std::max(range.max_degrees, x);
@@ -190,22 +192,21 @@ double tet_radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const 
   // Circumcentre relative to a: x solves 2 [u v w]^T x = [|u|², |v|², |w|²].
   const Vec3 u = b - a, v = c - a, w = d - a;
   const double det = 2.0 * u.dot(v.cross(w));
-  const double shortest = std::min({u.norm(), v.norm(), w.norm(), (c - b).norm(), (d - b).norm(),
-                                    (d - c).norm()});
+  const double shortest =
+      std::min({u.norm(), v.norm(), w.norm(), (c - b).norm(), (d - b).norm(), (d - c).norm()});
   if (det == 0.0 || shortest == 0.0) return std::numeric_limits<double>::infinity();
-  const Vec3 x = (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) +
-                  w.squaredNorm() * u.cross(v)) /
-                 det;
+  const Vec3 x =
+      (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) /
+      det;
   return x.norm() / shortest;
 }
 
 VecX radius_edge_ratios(const TetMesh& mesh) {
   VecX r(mesh.num_tets());
   for (int t = 0; t < mesh.num_tets(); ++t)
-    r[t] = tet_radius_edge_ratio(corner(mesh.vertices, mesh.tets(t, 0)),
-                                 corner(mesh.vertices, mesh.tets(t, 1)),
-                                 corner(mesh.vertices, mesh.tets(t, 2)),
-                                 corner(mesh.vertices, mesh.tets(t, 3)));
+    r[t] = tet_radius_edge_ratio(
+        corner(mesh.vertices, mesh.tets(t, 0)), corner(mesh.vertices, mesh.tets(t, 1)),
+        corner(mesh.vertices, mesh.tets(t, 2)), corner(mesh.vertices, mesh.tets(t, 3)));
   return r;
 }
 

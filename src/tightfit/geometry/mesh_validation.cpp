@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/self_intersection.hpp"
 #include "tightfit/geometry/surface_topology.hpp"
@@ -72,9 +73,9 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
 
   const std::vector<int> non_finite = non_finite_vertices(mesh.vertices);
   if (!non_finite.empty())
-    problems.push_back(summarize(non_finite, "non-finite vertex coordinates",
-                                 "vertices with non-finite coordinates",
-                                 [&](int i) { return "vertex " + std::to_string(i) + " " + point_text(mesh.vertices, i); }));
+    problems.push_back(summarize(
+        non_finite, "non-finite vertex coordinates", "vertices with non-finite coordinates",
+        [&](int i) { return "vertex " + std::to_string(i) + " " + point_text(mesh.vertices, i); }));
 
   std::vector<int> bad_index;
   for (int f = 0; f < nf; ++f)
@@ -84,11 +85,12 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
         break;
       }
   if (!bad_index.empty()) {
-    problems.push_back(summarize(bad_index, "bad vertex index", "faces with bad vertex indices", [&](int f) {
-      return "face " + std::to_string(f) + " (" + std::to_string(mesh.faces(f, 0)) + ", " +
-             std::to_string(mesh.faces(f, 1)) + ", " + std::to_string(mesh.faces(f, 2)) +
-             ") has an index outside [0, " + std::to_string(nv) + ")";
-    }));
+    problems.push_back(
+        summarize(bad_index, "bad vertex index", "faces with bad vertex indices", [&](int f) {
+          return "face " + std::to_string(f) + " (" + std::to_string(mesh.faces(f, 0)) + ", " +
+                 std::to_string(mesh.faces(f, 1)) + ", " + std::to_string(mesh.faces(f, 2)) +
+                 ") has an index outside [0, " + std::to_string(nv) + ")";
+        }));
     return problems;
   }
 
@@ -128,7 +130,8 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
     kept.push_back(f);
   }
   Triangles kept_faces(static_cast<int>(kept.size()), 3);
-  for (int k = 0; k < static_cast<int>(kept.size()); ++k) kept_faces.row(k) = mesh.faces.row(kept[k]);
+  for (int k = 0; k < static_cast<int>(kept.size()); ++k)
+    kept_faces.row(k) = mesh.faces.row(kept[k]);
   const SurfaceTopology topo(kept_faces, nv);
   auto edge_text = [&](int e) {
     const auto ev = topo.edge_vertices(e);
@@ -141,9 +144,10 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
     }));
   const auto nm_vertices = topo.non_manifold_vertices();
   if (!nm_vertices.empty())
-    problems.push_back(summarize(nm_vertices, "non-manifold vertex", "non-manifold vertices", [&](int v) {
-      return "the faces around vertex " + std::to_string(v) + " form more than one fan";
-    }));
+    problems.push_back(
+        summarize(nm_vertices, "non-manifold vertex", "non-manifold vertices", [&](int v) {
+          return "the faces around vertex " + std::to_string(v) + " form more than one fan";
+        }));
   if (!req.allow_isolated_vertices) {
     const auto isolated = topo.isolated_vertices();
     if (!isolated.empty())
@@ -166,19 +170,20 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
     if (holes) {
       std::vector<int> ids(loops.size());
       for (std::size_t k = 0; k < loops.size(); ++k) ids[k] = static_cast<int>(k);
-      problems.push_back(summarize(ids, "the surface is not closed: it has a hole",
-                                   "holes (the surface must be closed)", [&](int k) {
-                                     const auto& loop = loops[k];
-                                     std::string s = "boundary loop of ";
-                                     s += std::to_string(loop.size());
-                                     s += loop.size() == 1 ? " edge through vertices" : " edges through vertices";
-                                     for (std::size_t i = 0; i < std::min<std::size_t>(loop.size(), 4); ++i) {
-                                       s += ' ';
-                                       s += std::to_string(loop[i]);
-                                     }
-                                     if (loop.size() > 4) s += " ...";
-                                     return s;
-                                   }));
+      problems.push_back(
+          summarize(ids, "the surface is not closed: it has a hole",
+                    "holes (the surface must be closed)", [&](int k) {
+                      const auto& loop = loops[k];
+                      std::string s = "boundary loop of ";
+                      s += std::to_string(loop.size());
+                      s += loop.size() == 1 ? " edge through vertices" : " edges through vertices";
+                      for (std::size_t i = 0; i < std::min<std::size_t>(loop.size(), 4); ++i) {
+                        s += ' ';
+                        s += std::to_string(loop[i]);
+                      }
+                      if (loop.size() > 4) s += " ...";
+                      return s;
+                    }));
     }
   }
   const auto inconsistent = topo.inconsistently_oriented_edges();
@@ -187,8 +192,8 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
                                  "edges with inconsistent orientation", [&](int e) {
                                    const auto ef = topo.edge_faces(e);
                                    return "faces " + std::to_string(kept[ef[0]]) + " and " +
-                                          std::to_string(kept[ef[1]]) + " traverse edge " + edge_text(e) +
-                                          " in the same direction";
+                                          std::to_string(kept[ef[1]]) + " traverse edge " +
+                                          edge_text(e) + " in the same direction";
                                  }));
 
   const bool topology_ok = nm_edges.empty() && nm_vertices.empty() && inconsistent.empty();
@@ -207,18 +212,26 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
     if (!pairs.empty()) {
       std::vector<int> ids(pairs.size());
       for (std::size_t k = 0; k < pairs.size(); ++k) ids[k] = static_cast<int>(k);
-      problems.push_back(summarize(ids, "self-intersection", "self-intersecting face pairs", [&](int k) {
-        return "faces " + std::to_string(pairs[k][0]) + " and " + std::to_string(pairs[k][1]) +
-               " intersect";
-      }));
+      problems.push_back(
+          summarize(ids, "self-intersection", "self-intersecting face pairs", [&](int k) {
+            return "faces " + std::to_string(pairs[k][0]) + " and " + std::to_string(pairs[k][1]) +
+                   " intersect";
+          }));
     }
   }
   return problems;
 }
 
-void validate_surface(const TriMesh& mesh, const std::string& source, const SurfaceRequirements& req) {
+void validate_surface(const TriMesh& mesh, const std::string& source,
+                      const SurfaceRequirements& req) {
   const auto problems = surface_problems(mesh, req);
   if (!problems.empty()) throw InputError(source, join(problems));
+}
+
+TriMesh read_valid_surface(const std::filesystem::path& path, const SurfaceRequirements& req) {
+  TriMesh mesh = read_tri_mesh(path);
+  validate_surface(mesh, path.string(), req);
+  return mesh;
 }
 
 std::vector<std::string> tet_mesh_problems(const TetMesh& mesh, const TetRequirements& req) {
@@ -231,9 +244,9 @@ std::vector<std::string> tet_mesh_problems(const TetMesh& mesh, const TetRequire
   }
   const std::vector<int> non_finite = non_finite_vertices(mesh.vertices);
   if (!non_finite.empty())
-    problems.push_back(summarize(non_finite, "non-finite vertex coordinates",
-                                 "vertices with non-finite coordinates",
-                                 [&](int i) { return "vertex " + std::to_string(i) + " " + point_text(mesh.vertices, i); }));
+    problems.push_back(summarize(
+        non_finite, "non-finite vertex coordinates", "vertices with non-finite coordinates",
+        [&](int i) { return "vertex " + std::to_string(i) + " " + point_text(mesh.vertices, i); }));
   auto tet_text = [&](int t) {
     return "tet " + std::to_string(t) + " (" + std::to_string(mesh.tets(t, 0)) + ", " +
            std::to_string(mesh.tets(t, 1)) + ", " + std::to_string(mesh.tets(t, 2)) + ", " +
@@ -253,9 +266,10 @@ std::vector<std::string> tet_mesh_problems(const TetMesh& mesh, const TetRequire
           repeated.push_back(t);
   }
   if (!bad_index.empty()) {
-    problems.push_back(summarize(bad_index, "bad vertex index", "tets with bad vertex indices", [&](int t) {
-      return tet_text(t) + " has an index outside [0, " + std::to_string(nv) + ")";
-    }));
+    problems.push_back(
+        summarize(bad_index, "bad vertex index", "tets with bad vertex indices", [&](int t) {
+          return tet_text(t) + " has an index outside [0, " + std::to_string(nv) + ")";
+        }));
     return problems;
   }
   if (!repeated.empty())
@@ -270,7 +284,9 @@ std::vector<std::string> tet_mesh_problems(const TetMesh& mesh, const TetRequire
     double longest = 0.0;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
-        longest = std::max(longest, (mesh.vertices.row(mesh.tets(t, i)) - mesh.vertices.row(mesh.tets(t, j))).norm());
+        longest = std::max(
+            longest,
+            (mesh.vertices.row(mesh.tets(t, i)) - mesh.vertices.row(mesh.tets(t, j))).norm());
     if (6.0 * std::abs(volumes[t]) <= req.degenerate_tolerance * longest * longest * longest)
       flat.push_back(t);
     else if (volumes[t] < 0)

@@ -1,6 +1,7 @@
 #pragma once
 /// Checks of user-supplied meshes, with messages that say exactly what is wrong
 /// (which vertex, face, edge or tet; a few examples and the total count).
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,10 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
 /// Throws InputError(source, problems joined by "; ") if surface_problems is not empty.
 void validate_surface(const TriMesh& mesh, const std::string& source,
                       const SurfaceRequirements& req = {});
+
+/// Reads a surface (any format of read_tri_mesh) and validates it, naming the file in
+/// every error.
+TriMesh read_valid_surface(const std::filesystem::path& path, const SurfaceRequirements& req = {});
 
 struct TetRequirements {
   /// A tet is degenerate (zero volume) when 6·|volume| ≤ degenerate_tolerance ·

@@ -29,8 +29,8 @@ int parse_face_index(std::string_view token, std::int64_t num_vertices_so_far,
                                  " points before the first vertex (" +
                                  std::to_string(num_vertices_so_far) + " vertices so far)");
   if (index > std::numeric_limits<int>::max())
-    throw InputError(source, text::at_line(line) + "face index " + std::to_string(*value) +
-                                 " is too large");
+    throw InputError(
+        source, text::at_line(line) + "face index " + std::to_string(*value) + " is too large");
   return static_cast<int>(index);
 }
 
@@ -40,13 +40,13 @@ ObjGroups parse_obj(const std::filesystem::path& path) {
   text::LineCursor cursor(data);
 
   std::vector<double> coords;
-  std::vector<int> corners;      // 3 per triangle
-  std::vector<int> face_lines;   // source line of each triangle (for range errors)
+  std::vector<int> corners;     // 3 per triangle
+  std::vector<int> face_lines;  // source line of each triangle (for range errors)
   std::vector<int> face_group;
   std::vector<std::string> group_names;
   std::unordered_map<std::string, int> group_index;
   std::string current_group = "default";
-  int current_group_id = -1;     // resolved lazily so unused groups are not listed
+  int current_group_id = -1;  // resolved lazily so unused groups are not listed
 
   std::vector<std::string_view> tokens;
   std::vector<int> polygon;
@@ -79,7 +79,8 @@ ObjGroups parse_obj(const std::filesystem::path& path) {
         }
       } else if (key == "f" || key == "fo") {
         if (tokens.size() < 4)
-          throw InputError(source, text::at_line(line_no) + "face needs at least 3 vertices, found " +
+          throw InputError(source, text::at_line(line_no) +
+                                       "face needs at least 3 vertices, found " +
                                        std::to_string(tokens.size() - 1));
         const auto nv = static_cast<std::int64_t>(coords.size() / 3);
         polygon.clear();

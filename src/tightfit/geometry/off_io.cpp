@@ -61,7 +61,8 @@ TriMesh read_off(const std::filesystem::path& path) {
   std::vector<int> polygon;
   for (std::int64_t f = 0; f < *nf; ++f) {
     if (!next_tokens())
-      throw fail("the file ends after " + std::to_string(f) + " of " + std::to_string(*nf) + " faces");
+      throw fail("the file ends after " + std::to_string(f) + " of " + std::to_string(*nf) +
+                 " faces");
     const auto n = text::to_int(tokens[0]);
     if (!n || *n < 3) throw fail("face needs a vertex count of at least 3");
     if (static_cast<std::int64_t>(tokens.size()) < 1 + *n)

@@ -34,13 +34,17 @@ std::optional<Type> parse_type(std::string_view name) {
 std::size_t type_size(Type t) {
   switch (t) {
     case Type::int8:
-    case Type::uint8: return 1;
+    case Type::uint8:
+      return 1;
     case Type::int16:
-    case Type::uint16: return 2;
+    case Type::uint16:
+      return 2;
     case Type::int32:
     case Type::uint32:
-    case Type::float32: return 4;
-    case Type::float64: return 8;
+    case Type::float32:
+      return 4;
+    case Type::float64:
+      return 8;
   }
   return 0;
 }
@@ -67,7 +71,11 @@ class BodyReader {
  public:
   BodyReader(const std::string& source, const std::string& data, std::size_t start, Format format,
              int first_line)
-      : source_(source), data_(data), pos_(start), format_(format), cursor_(data, start),
+      : source_(source),
+        data_(data),
+        pos_(start),
+        format_(format),
+        cursor_(data, start),
         line_base_(first_line) {}
 
   /// Starts element instance `index` of `element` (ascii: reads its line).
@@ -98,16 +106,25 @@ class BodyReader {
     std::memcpy(bytes, data_.data() + pos_, size);
     pos_ += size;
     const bool file_little = format_ == Format::binary_le;
-    if (file_little != (std::endian::native == std::endian::little)) std::reverse(bytes, bytes + size);
+    if (file_little != (std::endian::native == std::endian::little))
+      std::reverse(bytes, bytes + size);
     switch (type) {
-      case Type::int8: return static_cast<double>(static_cast<std::int8_t>(bytes[0]));
-      case Type::uint8: return static_cast<double>(bytes[0]);
-      case Type::int16: return load<std::int16_t>(bytes);
-      case Type::uint16: return load<std::uint16_t>(bytes);
-      case Type::int32: return load<std::int32_t>(bytes);
-      case Type::uint32: return load<std::uint32_t>(bytes);
-      case Type::float32: return load<float>(bytes);
-      case Type::float64: return load<double>(bytes);
+      case Type::int8:
+        return static_cast<double>(static_cast<std::int8_t>(bytes[0]));
+      case Type::uint8:
+        return static_cast<double>(bytes[0]);
+      case Type::int16:
+        return load<std::int16_t>(bytes);
+      case Type::uint16:
+        return load<std::uint16_t>(bytes);
+      case Type::int32:
+        return load<std::int32_t>(bytes);
+      case Type::uint32:
+        return load<std::uint32_t>(bytes);
+      case Type::float32:
+        return load<float>(bytes);
+      case Type::float64:
+        return load<double>(bytes);
     }
     return 0.0;
   }
@@ -179,12 +196,15 @@ PlyData read_ply(const std::filesystem::path& path) {
     if (key == "comment" || key == "obj_info") continue;
     if (key == "format") {
       if (tokens.size() < 2) throw InputError(source, text::at_line(ln) + "format without a name");
-      if (tokens[1] == "ascii") format = Format::ascii;
-      else if (tokens[1] == "binary_little_endian") format = Format::binary_le;
-      else if (tokens[1] == "binary_big_endian") format = Format::binary_be;
+      if (tokens[1] == "ascii")
+        format = Format::ascii;
+      else if (tokens[1] == "binary_little_endian")
+        format = Format::binary_le;
+      else if (tokens[1] == "binary_big_endian")
+        format = Format::binary_be;
       else
-        throw InputError(source, text::at_line(ln) + "unknown PLY format '" +
-                                     std::string(tokens[1]) + "'");
+        throw InputError(source,
+                         text::at_line(ln) + "unknown PLY format '" + std::string(tokens[1]) + "'");
     } else if (key == "element") {
       const auto count = tokens.size() == 3 ? text::to_int(tokens[2]) : std::nullopt;
       if (!count || *count < 0)
@@ -204,15 +224,16 @@ PlyData read_ply(const std::filesystem::path& path) {
       } else if (tokens.size() == 3) {
         const auto t = parse_type(tokens[1]);
         if (!t)
-          throw InputError(source, text::at_line(ln) + "unknown property type '" +
-                                       std::string(tokens[1]) + "'");
+          throw InputError(
+              source, text::at_line(ln) + "unknown property type '" + std::string(tokens[1]) + "'");
         prop = {std::string(tokens[2]), *t, false, Type::uint8};
       } else {
         throw InputError(source, text::at_line(ln) + "malformed property line");
       }
       elements.back().properties.push_back(prop);
     } else {
-      throw InputError(source, text::at_line(ln) + "unknown header keyword '" + std::string(key) + "'");
+      throw InputError(source,
+                       text::at_line(ln) + "unknown header keyword '" + std::string(key) + "'");
     }
   }
   if (!ended) throw InputError(source, "the header has no 'end_header' line");
@@ -254,12 +275,13 @@ PlyData read_ply(const std::filesystem::path& path) {
     for (const auto& el : elements) {
       std::size_t bytes = 0;
       for (const auto& p : el.properties) bytes += type_size(p.is_list ? p.count_type : p.type);
-      needed += static_cast<double>(el.count) *
-                static_cast<double>(*format == Format::ascii ? 2 : bytes);
+      needed +=
+          static_cast<double>(el.count) * static_cast<double>(*format == Format::ascii ? 2 : bytes);
     }
     if (needed > available || vertex_el->count > std::numeric_limits<int>::max() ||
         (face_el && face_el->count > std::numeric_limits<int>::max()))
-      throw InputError(source, "the element counts in the header are larger than the file can hold");
+      throw InputError(source,
+                       "the element counts in the header are larger than the file can hold");
   }
 
   // Column layout of the attributes: every scalar property except x, y, z (and
@@ -327,8 +349,8 @@ PlyData read_ply(const std::filesystem::path& path) {
         for (int d = 0; d < 3; ++d) out.mesh.vertices(i, d) = polygon_values[xyz[d]];
         if (has_colors)
           for (int d = 0; d < 3; ++d)
-            out.attributes.vertex_colors(i, d) =
-                static_cast<std::uint8_t>(std::clamp(std::round(polygon_values[rgb[d]]), 0.0, 255.0));
+            out.attributes.vertex_colors(i, d) = static_cast<std::uint8_t>(
+                std::clamp(std::round(polygon_values[rgb[d]]), 0.0, 255.0));
         for (int k = 0; k < static_cast<int>(el.properties.size()); ++k)
           if (vertex_field_of[k] >= 0)
             out.attributes.vertex_fields[vertex_field_of[k]].values(i, 0) = polygon_values[k];
@@ -339,7 +361,8 @@ PlyData read_ply(const std::filesystem::path& path) {
         for (std::size_t c = 1; c + 1 < polygon.size(); ++c) {
           corners.insert(corners.end(), {polygon[0], polygon[c], polygon[c + 1]});
           for (int k = 0; k < static_cast<int>(el.properties.size()); ++k)
-            if (face_field_of[k] >= 0) face_field_values[face_field_of[k]].push_back(polygon_values[k]);
+            if (face_field_of[k] >= 0)
+              face_field_values[face_field_of[k]].push_back(polygon_values[k]);
         }
       }
     }
@@ -356,7 +379,8 @@ namespace {
 void check_fields(const std::vector<MeshField>& fields, int rows, const char* what) {
   for (const auto& f : fields) {
     if (f.name.empty() || f.name.find_first_of(" \t\r\n") != std::string::npos)
-      throw std::invalid_argument(std::string("write_ply: bad ") + what + " field name '" + f.name + "'");
+      throw std::invalid_argument(std::string("write_ply: bad ") + what + " field name '" + f.name +
+                                  "'");
     if (f.values.rows() != rows || f.values.cols() < 1)
       throw std::invalid_argument(std::string("write_ply: ") + what + " field '" + f.name +
                                   "' has " + std::to_string(f.values.rows()) + " rows, expected " +
@@ -369,7 +393,8 @@ void write_property_names(std::ostream& out, const std::vector<MeshField>& field
     if (f.values.cols() == 1) {
       out << "property double " << f.name << '\n';
     } else {
-      for (int c = 0; c < f.values.cols(); ++c) out << "property double " << f.name << '_' << c << '\n';
+      for (int c = 0; c < f.values.cols(); ++c)
+        out << "property double " << f.name << '_' << c << '\n';
     }
   }
 }
@@ -424,8 +449,10 @@ void write_ply(const std::filesystem::path& path, const TriMesh& mesh,
           if (colors) {
             for (int d = 0; d < 3; ++d) {
               const std::uint8_t value = attributes.vertex_colors(i, d);
-              if (binary) out.put(static_cast<char>(value));
-              else out << ' ' << static_cast<int>(value);
+              if (binary)
+                out.put(static_cast<char>(value));
+              else
+                out << ' ' << static_cast<int>(value);
             }
           }
           if (!binary) out << '\n';

@@ -22,8 +22,8 @@ std::vector<std::array<int, 2>> self_intersecting_face_pairs(const TriMesh& mesh
   std::vector<Mesh::Vertex_index> vertices;
   vertices.reserve(static_cast<std::size_t>(mesh.num_vertices()));
   for (int i = 0; i < mesh.num_vertices(); ++i)
-    vertices.push_back(sm.add_vertex(Kernel::Point_3(mesh.vertices(i, 0), mesh.vertices(i, 1),
-                                                     mesh.vertices(i, 2))));
+    vertices.push_back(sm.add_vertex(
+        Kernel::Point_3(mesh.vertices(i, 0), mesh.vertices(i, 1), mesh.vertices(i, 2))));
   for (int f = 0; f < mesh.num_faces(); ++f) {
     const Face face = sm.add_face(vertices[mesh.faces(f, 0)], vertices[mesh.faces(f, 1)],
                                   vertices[mesh.faces(f, 2)]);

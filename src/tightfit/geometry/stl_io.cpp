@@ -104,7 +104,8 @@ TriMesh read_ascii_stl(const std::string& source, const std::string& data) {
       double xyz[3];
       for (int d = 0; d < 3; ++d) {
         const auto value = text::to_double(tokens[d + 1]);
-        if (!value) throw fail("vertex coordinate '" + std::string(tokens[d + 1]) + "' is not a number");
+        if (!value)
+          throw fail("vertex coordinate '" + std::string(tokens[d + 1]) + "' is not a number");
         xyz[d] = *value;
       }
       corners.push_back(welder.add(xyz[0], xyz[1], xyz[2]));
@@ -133,7 +134,8 @@ TriMesh read_stl(const std::filesystem::path& path) {
   const std::string data = text::read_file(path);
   if (data.size() >= 84) {
     const auto count = load_le<std::uint32_t>(data.data() + 80);
-    if (data.size() == 84 + 50 * static_cast<std::size_t>(count)) return read_binary_stl(data, count);
+    if (data.size() == 84 + 50 * static_cast<std::size_t>(count))
+      return read_binary_stl(data, count);
   }
   const std::string_view head = text::trim(std::string_view(data).substr(0, 80));
   if (head.substr(0, 5) == "solid") return read_ascii_stl(source, data);

@@ -85,7 +85,8 @@ class SurfaceTopology {
   Triangles faces_;
   std::vector<std::array<int, 3>> face_edges_;
   std::vector<std::array<int, 2>> edge_vertices_;
-  // Face edges (encoded as 3*face + i) of each edge: edge_half_[edge_start_[e] .. edge_start_[e+1]).
+  // Face edges (encoded as 3*face + i) of each edge: edge_half_[edge_start_[e] ..
+  // edge_start_[e+1]).
   std::vector<int> edge_start_;
   std::vector<int> edge_half_;
   std::vector<std::vector<int>> vertex_faces_;

@@ -26,8 +26,8 @@ std::string read_file(const std::filesystem::path& path) {
 std::optional<std::string_view> LineCursor::next() {
   if (pos_ >= text_.size()) return std::nullopt;
   const std::size_t end = text_.find('\n', pos_);
-  std::string_view line = (end == std::string_view::npos) ? text_.substr(pos_)
-                                                          : text_.substr(pos_, end - pos_);
+  std::string_view line =
+      (end == std::string_view::npos) ? text_.substr(pos_) : text_.substr(pos_, end - pos_);
   pos_ = (end == std::string_view::npos) ? text_.size() : end + 1;
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   ++line_;

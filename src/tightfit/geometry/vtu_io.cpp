@@ -19,12 +19,23 @@ std::string xml_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -109,7 +120,8 @@ class XmlScanner {
   }
 
   [[noreturn]] void fail(std::size_t offset, const std::string& what) const {
-    const auto line = 1 + std::count(data_.begin(), data_.begin() + static_cast<long>(offset), '\n');
+    const auto line =
+        1 + std::count(data_.begin(), data_.begin() + static_cast<long>(offset), '\n');
     throw InputError(source_, text::at_line(static_cast<int>(line)) + what);
   }
 
@@ -210,7 +222,8 @@ MeshField to_field(XmlScanner& xml, const DataArray& array, std::int64_t rows, c
                                std::to_string(rows * array.components));
   MeshField field{array.name, MatX(rows, array.components)};
   for (std::int64_t r = 0; r < rows; ++r)
-    for (int c = 0; c < array.components; ++c) field.values(r, c) = array.values[r * array.components + c];
+    for (int c = 0; c < array.components; ++c)
+      field.values(r, c) = array.values[r * array.components + c];
   return field;
 }
 
@@ -276,8 +289,8 @@ VtuData read_vtu(const std::filesystem::path& path) {
     }
     if (tag->name == "VTKFile") {
       if (attribute(*tag, "type") != "UnstructuredGrid")
-        xml.fail(tag->begin, "VTKFile type '" + attribute(*tag, "type") +
-                                 "' is not UnstructuredGrid");
+        xml.fail(tag->begin,
+                 "VTKFile type '" + attribute(*tag, "type") + "' is not UnstructuredGrid");
       is_vtk = true;
     } else if (tag->name == "Piece") {
       if (++pieces > 1) xml.fail(tag->begin, "more than one Piece is not supported");
@@ -293,13 +306,19 @@ VtuData read_vtu(const std::filesystem::path& path) {
       if (!tag->self_closing) section = tag->name;
     } else if (tag->name == "DataArray") {
       DataArray array = read_data_array(xml, *tag);
-      if (section == "PointData") point_arrays.push_back(std::move(array));
-      else if (section == "CellData") cell_arrays.push_back(std::move(array));
-      else if (section == "Points") points = std::move(array);
+      if (section == "PointData")
+        point_arrays.push_back(std::move(array));
+      else if (section == "CellData")
+        cell_arrays.push_back(std::move(array));
+      else if (section == "Points")
+        points = std::move(array);
       else if (section == "Cells") {
-        if (array.name == "connectivity") connectivity = std::move(array);
-        else if (array.name == "offsets") offsets = std::move(array);
-        else if (array.name == "types") types = std::move(array);
+        if (array.name == "connectivity")
+          connectivity = std::move(array);
+        else if (array.name == "offsets")
+          offsets = std::move(array);
+        else if (array.name == "types")
+          types = std::move(array);
       }
     } else if (tag->name == "AppendedData") {
       xml.fail(tag->begin, "appended data is not supported; only ascii .vtu files are");
@@ -317,8 +336,8 @@ VtuData read_vtu(const std::filesystem::path& path) {
   out.mesh.vertices = p.values;
   if (static_cast<std::int64_t>(types->values.size()) != num_cells ||
       static_cast<std::int64_t>(offsets->values.size()) != num_cells)
-    xml.fail(types->offset, "types and offsets need one value per cell (" +
-                                std::to_string(num_cells) + ")");
+    xml.fail(types->offset,
+             "types and offsets need one value per cell (" + std::to_string(num_cells) + ")");
   out.mesh.tets.resize(num_cells, 4);
   std::int64_t previous = 0;
   for (std::int64_t c = 0; c < num_cells; ++c) {
@@ -331,7 +350,8 @@ VtuData read_vtu(const std::filesystem::path& path) {
       xml.fail(offsets->offset, "offset of cell " + std::to_string(c) + " is inconsistent");
     for (int k = 0; k < 4; ++k) {
       const double v = connectivity->values[previous + k];
-      if (v < 0 || v >= static_cast<double>(num_points) || v != static_cast<double>(static_cast<std::int64_t>(v)))
+      if (v < 0 || v >= static_cast<double>(num_points) ||
+          v != static_cast<double>(static_cast<std::int64_t>(v)))
         xml.fail(connectivity->offset, "cell " + std::to_string(c) + " refers to point " +
                                            text::format_double(v) + ", the piece has " +
                                            std::to_string(num_points) + " points");
@@ -339,8 +359,10 @@ VtuData read_vtu(const std::filesystem::path& path) {
     }
     previous = end;
   }
-  for (const auto& a : point_arrays) out.point_fields.push_back(to_field(xml, a, num_points, "PointData"));
-  for (const auto& a : cell_arrays) out.cell_fields.push_back(to_field(xml, a, num_cells, "CellData"));
+  for (const auto& a : point_arrays)
+    out.point_fields.push_back(to_field(xml, a, num_points, "PointData"));
+  for (const auto& a : cell_arrays)
+    out.cell_fields.push_back(to_field(xml, a, num_cells, "CellData"));
   return out;
 }
 
