@@ -54,13 +54,16 @@ FdErrors fd_errors(const ClothEnergy& energy_in, const VecX& x, double h) {
   ClothEnergy energy = energy_in;
   FdErrors r{};
   const VecX g = energy_gradient(energy, x);
-  r.gradient = check_gradient([&](const VecX& y) { return energy.value(y); }, g, x, h).relative_error;
+  r.gradient =
+      check_gradient([&](const VecX& y) { return energy.value(y); }, g, x, h).relative_error;
   const MatX H = MatX(energy_hessian(energy, x));
   r.hessian = check_hessian([&](const VecX& y) { return energy_gradient(energy, y); }, H, x, h)
                   .relative_error;
   const Points2 rest0 = energy.rest();
   const VecX xbar = flatten(rest0);
-  auto set = [&](const VecX& v) { energy.set_rest(Eigen::Map<const Points2>(v.data(), rest0.rows(), 2)); };
+  auto set = [&](const VecX& v) {
+    energy.set_rest(Eigen::Map<const Points2>(v.data(), rest0.rows(), 2));
+  };
   VecX gr = VecX::Zero(xbar.size());
   energy.add_gradient_rest(x, gr);
   r.rest_gradient = check_gradient(
@@ -152,7 +155,8 @@ TEST(ClothEnergy, BiaxialStressIsStVK) {
     const double w = la / 2 * std::pow(strain.trace(), 2) + mu * (strain * strain).trace();
     const double k1 = m.youngs_modulus, k2 = la + 2 * mu, nu = m.poisson_ratio;
     const double delta = m.regime_smoothing, eps = delta / 2;
-    const double offset = (k1 + k2) * delta * delta / 6 + (k1 + k2 * (1 - nu) * (1 - nu)) * eps * eps / 2;
+    const double offset =
+        (k1 + k2) * delta * delta / 6 + (k1 + k2 * (1 - nu) * (1 - nu)) * eps * eps / 2;
     EXPECT_NEAR(e.value(t.x) / (m.thickness * e.rest_area(0) * (w + offset)), 1.0, 1e-12);
   }
 }
@@ -203,7 +207,8 @@ TEST(ClothEnergy, DerivativesMatchFiniteDifferencesInEveryRegime) {
     };
     unsigned seed = 20;
     for (const Case& c : cases) {
-      const Triangle t = stretched_triangle(stretch_for_strain(c.e1), stretch_for_strain(c.e2), ++seed);
+      const Triangle t =
+          stretched_triangle(stretch_for_strain(c.e1), stretch_for_strain(c.e2), ++seed);
       const ClothEnergy e = single(t, m);
       ASSERT_TRUE(std::isfinite(e.value(t.x))) << c.what;
       if (c.e1 == 0.0 && c.e2 == 0.0) {
@@ -223,7 +228,8 @@ Vec2 smoothing_variables(double e1, double e2, const ClothMaterial& m) {
 }
 
 /// e1 (with e2 fixed) at which smoothing variable `which` equals `target`, by bisection.
-double strain_at(int which, double target, double e2, double lo, double hi, const ClothMaterial& m) {
+double strain_at(int which, double target, double e2, double lo, double hi,
+                 const ClothMaterial& m) {
   for (int it = 0; it < 200; ++it) {
     const double mid = 0.5 * (lo + hi);
     (smoothing_variables(mid, e2, m)[which] < target ? lo : hi) = mid;
@@ -244,8 +250,10 @@ TEST(ClothEnergy, SecondDerivativeIsContinuousAcrossBandEdges) {
   for (const Edge& edge : {Edge{0, -d, -0.1, -0.1, 0.1}, Edge{0, d, -0.1, -0.1, 0.1},
                            Edge{1, -d, -0.05, 0.0, 0.5}, Edge{1, d, -0.05, 0.0, 0.5}}) {
     const double e1 = strain_at(edge.which, edge.z, edge.e2, edge.lo, edge.hi, m);
-    const Triangle a = stretched_triangle(stretch_for_strain(e1 - 1e-9), stretch_for_strain(edge.e2), 3);
-    const Triangle b = stretched_triangle(stretch_for_strain(e1 + 1e-9), stretch_for_strain(edge.e2), 3);
+    const Triangle a =
+        stretched_triangle(stretch_for_strain(e1 - 1e-9), stretch_for_strain(edge.e2), 3);
+    const Triangle b =
+        stretched_triangle(stretch_for_strain(e1 + 1e-9), stretch_for_strain(edge.e2), 3);
     const ClothEnergy ea = single(a, m);
     const MatX ha = MatX(energy_hessian(ea, a.x));
     const MatX hb = MatX(energy_hessian(single(b, m), b.x));

@@ -34,7 +34,8 @@ TEST(NeoHookeanEnergy, ZeroEnergyAndForceAtRestAndUnderRigidMotion) {
   EXPECT_NEAR(energy.value(x0), 0.0, 1e-10);
   EXPECT_LT(energy_gradient(energy, x0).norm(), 1e-9);
 
-  Points3 moved = (c.rest * random_rotation(3).transpose()).rowwise() + Eigen::RowVector3d(1, -2, 3);
+  Points3 moved =
+      (c.rest * random_rotation(3).transpose()).rowwise() + Eigen::RowVector3d(1, -2, 3);
   const VecX x1 = flatten(moved);
   EXPECT_NEAR(energy.value(x1), 0.0, 1e-9);
   EXPECT_LT(energy_gradient(energy, x1).norm(), 1e-8);
@@ -76,9 +77,9 @@ TEST(NeoHookeanEnergy, DerivativesMatchFiniteDifferences) {
     const VecX x = flatten(c.rest) + 0.2 * random_vector(24, seed);
     ASSERT_TRUE(std::isfinite(energy.value(x)));
     const VecX g = energy_gradient(energy, x);
-    EXPECT_LT(check_gradient([&](const VecX& y) { return energy.value(y); }, g, x, 1e-4)
-                  .relative_error,
-              1e-6);
+    EXPECT_LT(
+        check_gradient([&](const VecX& y) { return energy.value(y); }, g, x, 1e-4).relative_error,
+        1e-6);
     const MatX H = MatX(energy_hessian(energy, x));
     EXPECT_LT(check_hessian([&](const VecX& y) { return energy_gradient(energy, y); }, H, x, 1e-4)
                   .relative_error,

@@ -63,8 +63,9 @@ TEST(SeamSpringEnergy, DerivativesMatchFiniteDifferences) {
   for (unsigned seed = 1; seed <= 3; ++seed) {
     const VecX x = 0.2 * random_vector(12, seed);
     const VecX g = energy_gradient(seams, x);
-    EXPECT_LT(check_gradient([&](const VecX& y) { return seams.value(y); }, g, x, 1e-6).relative_error,
-              1e-6);
+    EXPECT_LT(
+        check_gradient([&](const VecX& y) { return seams.value(y); }, g, x, 1e-6).relative_error,
+        1e-6);
     EXPECT_LT(check_hessian([&](const VecX& y) { return energy_gradient(seams, y); },
                             MatX(energy_hessian(seams, x)), x, 1e-6)
                   .relative_error,
@@ -78,17 +79,19 @@ TEST(SeamSpringEnergy, DerivativesMatchFiniteDifferences) {
     };
     VecX gr = VecX::Zero(14);
     seams.add_gradient_rest(x, gr);
-    EXPECT_LT(check_gradient([&](const VecX& v) { return with_rest(v, [&] { return seams.value(x); }); },
-                             gr, xbar, 1e-6)
-                  .relative_error,
-              1e-6);
+    EXPECT_LT(
+        check_gradient([&](const VecX& v) { return with_rest(v, [&] { return seams.value(x); }); },
+                       gr, xbar, 1e-6)
+            .relative_error,
+        1e-6);
     std::vector<Triplet> t;
     seams.add_mixed_rest(x, t);
-    EXPECT_LT(check_jacobian(
-                  [&](const VecX& v) { return with_rest(v, [&] { return energy_gradient(seams, x); }); },
-                  MatX(sparse_from_triplets(12, 14, t)), xbar, 1e-6)
-                  .relative_error,
-              1e-6);
+    EXPECT_LT(
+        check_jacobian(
+            [&](const VecX& v) { return with_rest(v, [&] { return energy_gradient(seams, x); }); },
+            MatX(sparse_from_triplets(12, 14, t)), xbar, 1e-6)
+            .relative_error,
+        1e-6);
   }
 }
 
@@ -96,7 +99,8 @@ TEST(SeamSpringEnergy, RejectsBadInput) {
   SeamSetup s;
   EXPECT_THROW(SeamSpringEnergy(s.edges, s.rest, s.to_garment, 3, s.material), InputError);
   EXPECT_THROW(SeamSpringEnergy({{0, 9}}, s.rest, s.to_garment, 4, s.material), InputError);
-  EXPECT_THROW(SeamSpringEnergy(s.edges, s.rest, s.to_garment, 4, SeamMaterial{0, 1, 1}), InputError);
+  EXPECT_THROW(SeamSpringEnergy(s.edges, s.rest, s.to_garment, 4, SeamMaterial{0, 1, 1}),
+               InputError);
   Points2 bad = s.rest;
   bad.row(1) = bad.row(0);
   EXPECT_THROW(SeamSpringEnergy(s.edges, bad, s.to_garment, 4, s.material), InputError);
@@ -107,9 +111,8 @@ TEST(PinEnergy, ValueAndDerivatives) {
   targets << 1, 2, 3, -1, 0, 0.5;
   const PinEnergy pins({2, 0}, targets, 1e3);
   const VecX x = random_vector(9, 4);
-  const double expected =
-      0.5e3 * ((x.segment<3>(6) - targets.row(0).transpose()).squaredNorm() +
-               (x.segment<3>(0) - targets.row(1).transpose()).squaredNorm());
+  const double expected = 0.5e3 * ((x.segment<3>(6) - targets.row(0).transpose()).squaredNorm() +
+                                   (x.segment<3>(0) - targets.row(1).transpose()).squaredNorm());
   EXPECT_NEAR(pins.value(x), expected, 1e-12);
   const VecX g = energy_gradient(pins, x);
   EXPECT_LT(check_gradient([&](const VecX& y) { return pins.value(y); }, g, x, 1e-4).relative_error,
@@ -143,7 +146,8 @@ TEST(SumEnergy, WeightedSumOfTerms) {
   EXPECT_NEAR(sum.value(x), seams->value(x) + 2 * cloth->value(x) + 0.5 * pins->value(x),
               1e-12 * sum.value(x));
   const VecX g = energy_gradient(sum, x);
-  EXPECT_LT(check_gradient([&](const VecX& y) { return sum.value(y); }, g, x, 1e-6).relative_error, 1e-6);
+  EXPECT_LT(check_gradient([&](const VecX& y) { return sum.value(y); }, g, x, 1e-6).relative_error,
+            1e-6);
   EXPECT_LT(check_hessian([&](const VecX& y) { return energy_gradient(sum, y); },
                           MatX(energy_hessian(sum, x)), x, 1e-6)
                 .relative_error,

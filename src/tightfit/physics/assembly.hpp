@@ -25,8 +25,7 @@ void project_psd(Eigen::Matrix<double, N, N>& H) {
 /// g[Dim·ids[a] + k] += local[Dim·a + k].
 template <int Dim, std::size_t NV>
 void scatter_gradient(const std::array<int, NV>& ids,
-                      const Eigen::Matrix<double, Dim * static_cast<int>(NV), 1>& local,
-                      VecX& g) {
+                      const Eigen::Matrix<double, Dim* static_cast<int>(NV), 1>& local, VecX& g) {
   for (std::size_t a = 0; a < NV; ++a)
     for (int k = 0; k < Dim; ++k) g[Dim * ids[a] + k] += local[Dim * static_cast<int>(a) + k];
 }
@@ -41,8 +40,9 @@ void scatter_block(const std::array<int, NR>& rows, const std::array<int, NC>& c
     for (int i = 0; i < RowDim; ++i)
       for (std::size_t b = 0; b < NC; ++b)
         for (int j = 0; j < ColDim; ++j) {
-          out.emplace_back(RowDim * rows[a] + i, ColDim * cols[b] + j,
-                           local(RowDim * static_cast<int>(a) + i, ColDim * static_cast<int>(b) + j));
+          out.emplace_back(
+              RowDim * rows[a] + i, ColDim * cols[b] + j,
+              local(RowDim * static_cast<int>(a) + i, ColDim * static_cast<int>(b) + j));
         }
 }
 

@@ -2,10 +2,10 @@
 
 #include <array>
 #include <cmath>
-
-#include <Eigen/LU>
 #include <stdexcept>
 #include <string>
+
+#include <Eigen/LU>
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/physics/assembly.hpp"
@@ -157,7 +157,8 @@ void ClothEnergy::validate_rest(const Points2& rest) const {
     const Vec2 e2 = (rest.row(triangles_(e, 2)) - rest.row(triangles_(e, 0))).transpose();
     const double cross = e1.x() * e2.y() - e1.y() * e2.x();
     if (!(std::abs(cross) > 1e-14 * (e1.squaredNorm() + e2.squaredNorm())))
-      throw InputError(kSource, "rest triangle " + std::to_string(e) + " is degenerate (zero area)");
+      throw InputError(kSource,
+                       "rest triangle " + std::to_string(e) + " is degenerate (zero area)");
   }
 }
 
@@ -217,8 +218,9 @@ void for_each_element(const Triangles& triangles, const Points2& rest,
     }
     el.deformed = edge_metric<3>(x.segment<3>(3 * el.garment[0]), x.segment<3>(3 * el.garment[1]),
                                  x.segment<3>(3 * el.garment[2]));
-    el.rest = edge_metric<2>(rest.row(el.pattern[0]).transpose(), rest.row(el.pattern[1]).transpose(),
-                             rest.row(el.pattern[2]).transpose());
+    el.rest =
+        edge_metric<2>(rest.row(el.pattern[0]).transpose(), rest.row(el.pattern[1]).transpose(),
+                       rest.row(el.pattern[2]).transpose());
     fn(el);
   }
 }
@@ -277,8 +279,8 @@ void ClothEnergy::add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const {
   const double t = material().thickness;
   for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
     const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
-    const Eigen::Matrix<double, 9, 6> local =
-        t * el.deformed.jacobian.transpose() * phi.hessian.topRightCorner<3, 3>() * el.rest.jacobian;
+    const Eigen::Matrix<double, 9, 6> local = t * el.deformed.jacobian.transpose() *
+                                              phi.hessian.topRightCorner<3, 3>() * el.rest.jacobian;
     scatter_block<3, 3, 2, 3>(el.garment, el.pattern, local, H);
   });
 }

@@ -32,8 +32,7 @@ class ClothEnergy : public RestDependentEnergy {
   std::string name() const override { return "cloth"; }
   double value(const VecX& x) const override;
   void add_gradient(const VecX& x, VecX& g) const override;
-  void add_hessian(const VecX& x, std::vector<Triplet>& H,
-                   bool project_psd = false) const override;
+  void add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd = false) const override;
 
   int num_pattern_vertices() const override { return static_cast<int>(rest_.rows()); }
   const Points2& rest() const override { return rest_; }

@@ -1,11 +1,12 @@
 #include "tightfit/physics/neo_hookean_energy.hpp"
 
 #include <cmath>
-
-#include <Eigen/LU>
 #include <limits>
 #include <stdexcept>
 #include <string>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/physics/assembly.hpp"
@@ -93,8 +94,8 @@ NeoHookeanEnergy::NeoHookeanEnergy(const Points3& rest, const Tetrahedra& tets,
     for (int k = 0; k < 3; ++k) dm.col(k) = (rest.row(t[k + 1]) - rest.row(t[0])).transpose();
     const double v = dm.determinant() / 6.0;
     if (!(v > 0.0))
-      throw InputError(kSource, "tet " + std::to_string(e) +
-                                    " has non-positive rest volume (inverted or flat)");
+      throw InputError(
+          kSource, "tet " + std::to_string(e) + " has non-positive rest volume (inverted or flat)");
     tets_.push_back(t);
     rest_inverse_.push_back(dm.inverse());
     volume_.push_back(v);
@@ -146,8 +147,7 @@ void NeoHookeanEnergy::add_gradient(const VecX& x, VecX& g) const {
   }
 }
 
-void NeoHookeanEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H,
-                                   bool project_psd) const {
+void NeoHookeanEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd) const {
   check_size(x);
   H.reserve(H.size() + 144 * tets_.size());
   for (int e = 0; e < num_tets(); ++e) {

@@ -40,8 +40,7 @@ class NeoHookeanEnergy : public Energy {
   std::string name() const override { return "neo-hookean"; }
   double value(const VecX& x) const override;
   void add_gradient(const VecX& x, VecX& g) const override;
-  void add_hessian(const VecX& x, std::vector<Triplet>& H,
-                   bool project_psd = false) const override;
+  void add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd = false) const override;
 
   int num_vertices() const { return num_vertices_; }
   int num_tets() const { return static_cast<int>(tets_.size()); }

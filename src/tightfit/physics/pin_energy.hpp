@@ -17,8 +17,7 @@ class PinEnergy : public Energy {
   std::string name() const override { return "pins"; }
   double value(const VecX& x) const override;
   void add_gradient(const VecX& x, VecX& g) const override;
-  void add_hessian(const VecX& x, std::vector<Triplet>& H,
-                   bool project_psd = false) const override;
+  void add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd = false) const override;
 
   /// Moves the targets (same number of rows).
   void set_targets(const Points3& targets);

@@ -85,7 +85,7 @@ class RelaxedStVK {
   double beta_ = 0.0;   // Lamé μ
   double k1_ = 0.0;
   double k2_ = 0.0;
-  double nu_ = 0.0;     // ν' = α/(α+2β)
+  double nu_ = 0.0;  // ν' = α/(α+2β)
   double delta_ = 0.0;
   double epsilon_ = 0.0;  // ε = δ/2
 };

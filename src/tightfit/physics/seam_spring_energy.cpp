@@ -16,8 +16,8 @@ const std::string kSource = "seam springs";
 struct Spring {
   std::array<int, 2> garment;
   std::array<int, 2> pattern;
-  double l = 0.0;   // deformed length
-  double l0 = 0.0;  // rest length
+  double l = 0.0;         // deformed length
+  double l0 = 0.0;        // rest length
   Vec3 n = Vec3::Zero();  // unit direction A → B (zero when l = 0)
   Vec2 u = Vec2::Zero();  // unit rest direction a → b
 };
@@ -53,7 +53,8 @@ SeamSpringEnergy::SeamSpringEnergy(std::vector<std::array<int, 2>> edges, Points
     for (int v : edges_[s])
       if (v < 0 || v >= np)
         throw InputError(kSource, "seam edge " + std::to_string(s) + " has pattern vertex " +
-                                      std::to_string(v) + " outside [0, " + std::to_string(np) + ")");
+                                      std::to_string(v) + " outside [0, " + std::to_string(np) +
+                                      ")");
   validate_rest(rest_);
 }
 

@@ -36,8 +36,7 @@ class SeamSpringEnergy : public RestDependentEnergy {
   std::string name() const override { return "seam springs"; }
   double value(const VecX& x) const override;
   void add_gradient(const VecX& x, VecX& g) const override;
-  void add_hessian(const VecX& x, std::vector<Triplet>& H,
-                   bool project_psd = false) const override;
+  void add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd = false) const override;
 
   int num_pattern_vertices() const override { return static_cast<int>(rest_.rows()); }
   const Points2& rest() const override { return rest_; }
@@ -49,7 +48,9 @@ class SeamSpringEnergy : public RestDependentEnergy {
   const std::vector<std::array<int, 2>>& edges() const { return edges_; }
   const SeamMaterial& material() const { return material_; }
   /// w t E_seam (N): the spring constant of an edge is this over its rest length.
-  double axial_stiffness() const { return material_.width * material_.depth * material_.youngs_modulus; }
+  double axial_stiffness() const {
+    return material_.width * material_.depth * material_.youngs_modulus;
+  }
 
  private:
   void check_x(const VecX& x) const;

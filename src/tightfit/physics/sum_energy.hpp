@@ -21,8 +21,7 @@ class SumEnergy : public Energy {
   double value(const VecX& x) const override;
   void add_gradient(const VecX& x, VecX& g) const override;
   /// Each term's elements are projected separately when `project_psd` is set.
-  void add_hessian(const VecX& x, std::vector<Triplet>& H,
-                   bool project_psd = false) const override;
+  void add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd = false) const override;
 
  private:
   struct Term {
