@@ -12,7 +12,12 @@
 /// Accuracy: within 2^-L (L = approx_level_smooth) of an extraordinary vertex (EV,
 /// valence ≠ 6) OpenSubdiv uses a Gregory patch, whose position is off the exact limit
 /// by ~3e-4 edge lengths at L = 8 and whose derivatives are not exactly those of its
-/// position. Everywhere else the stencils are exact (box-spline patches).
+/// position. Everywhere else the stencils are exact (box-spline patches): positions
+/// match uniform Loop subdivision with limit masks, derivatives match finite
+/// differences, and the surface is C2 across edges under the affine crossing maps.
+/// Inside Gregory regions the surface is tangent-plane continuous across edges (normals
+/// agree to ~1e-10) but not C1 under the crossing maps: x_u, x_v on the two sides of an
+/// edge can differ by O(1) there, so Eq. 20 only holds approximately within 2^-L of an EV.
 ///
 /// Thread safety: all const member functions may be called concurrently.
 #include <memory>
@@ -114,8 +119,10 @@ class LimitSurface {
   struct Walk {
     SurfacePoint end;
     /// d(uv_end)/d(uv_start) = d(uv_end)/d(delta): the product of the per-edge affine
-    /// crossing maps. It carries tangent vectors (Eq. 20): [x_u x_v](end) · J · Δ equals
-    /// the derivative of x(end) along Δ in the start face's coordinates.
+    /// crossing maps (identity without crossings). It carries tangent vectors (Eq. 20):
+    /// [x_u x_v](end) · J is the derivative of x(end) with respect to delta, and a
+    /// search direction Δs in the start face becomes J·Δs in the end face. Exact
+    /// outside the Gregory regions (see the file comment).
     Mat2 jacobian;
     int crossings = 0;
     /// False only if the line ran into a vertex and could not be continued (then `end`
@@ -123,8 +130,11 @@ class LimitSurface {
     bool complete = true;
   };
   /// Moves from `start` by `delta_uv` (in start's face coordinates) along a straight
-  /// line, crossing edges with the affine maps of Eq. 20; never evaluates or ends
-  /// outside a face.
+  /// line, edge by edge with the affine crossing maps (Eq. 20); never evaluates or ends
+  /// outside a face. Walking back by -jacobian·delta from the end returns to the start
+  /// (to round-off), and splitting a walk along the same line changes nothing. Two
+  /// different broken lines to the same displacement may end at different points when
+  /// they enclose an extraordinary vertex (a cone point of the parameter domain).
   Walk walk(SurfacePoint start, const Vec2& delta_uv) const;
 
   /// Affine map of (u,v) across face edge `edge` of `face` into the neighbour face
