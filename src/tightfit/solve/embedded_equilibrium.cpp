@@ -1,0 +1,217 @@
+#include "tightfit/solve/embedded_equilibrium.hpp"
+
+#include <Eigen/Dense>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+namespace {
+
+VecX flat(const Points3& p) { return Eigen::Map<const VecX>(p.data(), p.size()); }
+
+}  // namespace
+
+EmbeddedEquilibrium::EmbeddedEquilibrium(EmbeddedSystemSetup setup, EmbeddedState initial)
+    : setup_(std::move(setup)), base_(std::move(initial)), state_(base_) {
+  if (!setup_.surface) throw SolverError("EmbeddedEquilibrium: no limit surface");
+  num_control_ = setup_.surface->num_control_vertices();
+  if (state_.body.rows() < num_control_)
+    throw SolverError("EmbeddedEquilibrium: body has fewer vertices than the surface");
+  const int ng = num_garment_vertices();
+  const int nb = static_cast<int>(state_.body.rows());
+  std::vector<char> garment_pinned(ng, 0), body_pinned(nb, 0);
+  for (int i : setup_.pinned_garment) {
+    if (i < 0 || i >= ng) throw SolverError("EmbeddedEquilibrium: pinned garment index out of range");
+    garment_pinned[i] = 1;
+  }
+  for (int k : setup_.pinned_body) {
+    if (k < 0 || k >= nb) throw SolverError("EmbeddedEquilibrium: pinned body index out of range");
+    body_pinned[k] = 1;
+  }
+  garment_dof_.assign(ng, -1);
+  body_dof_.assign(nb, -1);
+  int next = 0;
+  for (int i = 0; i < ng; ++i)
+    if (!garment_pinned[i]) {
+      garment_dof_[i] = next;
+      next += 2;
+    }
+  for (int k = 0; k < nb; ++k)
+    if (!body_pinned[k]) {
+      body_dof_[k] = next;
+      next += 3;
+    }
+  num_dofs_ = next;
+  evaluate_garment();
+}
+
+void EmbeddedEquilibrium::evaluate_garment() {
+  const int ng = num_garment_vertices();
+  weights_.resize(ng);
+  for (Points3* p : {&x_, &xu_, &xv_, &xuu_, &xuv_, &xvv_}) p->setZero(ng, 3);
+  for (int i = 0; i < ng; ++i) {
+    LimitWeights& w = weights_[i];
+    setup_.surface->weights(state_.garment[i], w);
+    for (size_t j = 0; j < w.index.size(); ++j) {
+      const auto y = state_.body.row(w.index[j]);
+      x_.row(i) += w.p[j] * y;
+      xu_.row(i) += w.du[j] * y;
+      xv_.row(i) += w.dv[j] * y;
+      xuu_.row(i) += w.duu[j] * y;
+      xuv_.row(i) += w.duv[j] * y;
+      xvv_.row(i) += w.dvv[j] * y;
+    }
+  }
+}
+
+double EmbeddedEquilibrium::garment_energy(const VecX& x) const {
+  double e = 0.0;
+  for (const Energy* energy : setup_.garment_energies) e += energy->value(x);
+  return e;
+}
+
+double EmbeddedEquilibrium::energy() {
+  double e = garment_energy(flat(x_));
+  const VecX y = flat(state_.body);
+  for (const Energy* energy : setup_.body_energies) e += energy->value(y);
+  return e;
+}
+
+VecX EmbeddedEquilibrium::garment_energy_gradient() const {
+  const VecX x = flat(x_);
+  VecX gx = VecX::Zero(x.size());
+  for (const Energy* energy : setup_.garment_energies) energy->add_gradient(x, gx);
+  return gx;
+}
+
+VecX EmbeddedEquilibrium::gradient() {
+  const VecX gx = garment_energy_gradient();
+  const VecX y = flat(state_.body);
+  VecX gy = VecX::Zero(y.size());
+  for (const Energy* energy : setup_.body_energies) energy->add_gradient(y, gy);
+  VecX g = VecX::Zero(num_dofs_);
+  for (int i = 0; i < num_garment_vertices(); ++i) {
+    const Vec3 gi = gx.segment<3>(3 * i);
+    if (const int d = garment_dof_[i]; d >= 0) {
+      g[d] += xu_.row(i).dot(gi);
+      g[d + 1] += xv_.row(i).dot(gi);
+    }
+    const LimitWeights& w = weights_[i];
+    for (size_t j = 0; j < w.index.size(); ++j) gy.segment<3>(3 * w.index[j]) += w.p[j] * gi;
+  }
+  for (int k = 0; k < static_cast<int>(body_dof_.size()); ++k)
+    if (const int d = body_dof_[k]; d >= 0) g.segment<3>(d) += gy.segment<3>(3 * k);
+  return g;
+}
+
+SparseMatrix EmbeddedEquilibrium::position_jacobian() const {
+  std::vector<Triplet> t;
+  for (int i = 0; i < num_garment_vertices(); ++i) {
+    if (const int d = garment_dof_[i]; d >= 0)
+      for (int c = 0; c < 3; ++c) {
+        t.emplace_back(3 * i + c, d, xu_(i, c));
+        t.emplace_back(3 * i + c, d + 1, xv_(i, c));
+      }
+    const LimitWeights& w = weights_[i];
+    for (size_t j = 0; j < w.index.size(); ++j)
+      if (const int d = body_dof_[w.index[j]]; d >= 0)
+        for (int c = 0; c < 3; ++c) t.emplace_back(3 * i + c, d + c, w.p[j]);
+  }
+  SparseMatrix J(3 * num_garment_vertices(), num_dofs_);
+  J.setFromTriplets(t.begin(), t.end());
+  return J;
+}
+
+SparseMatrix EmbeddedEquilibrium::hessian() {
+  const int ng = num_garment_vertices();
+  const VecX x = flat(x_);
+  std::vector<Triplet> hx;
+  for (const Energy* energy : setup_.garment_energies)
+    energy->add_hessian(x, hx, setup_.project_garment_hessians);
+  SparseMatrix Hxx(3 * ng, 3 * ng);
+  Hxx.setFromTriplets(hx.begin(), hx.end());
+  const SparseMatrix J = position_jacobian();
+  SparseMatrix H = SparseMatrix(J.transpose() * Hxx * J);
+
+  // Second-derivative terms of Eq. 18 contracted with dU/dx, and the body Hessian.
+  const VecX gx = garment_energy_gradient();
+  std::vector<Triplet> t;
+  for (int i = 0; i < ng; ++i) {
+    const Vec3 gi = gx.segment<3>(3 * i);
+    const int d = garment_dof_[i];
+    if (d < 0) continue;
+    const double huu = xuu_.row(i).dot(gi), huv = xuv_.row(i).dot(gi), hvv = xvv_.row(i).dot(gi);
+    t.emplace_back(d, d, huu);
+    t.emplace_back(d, d + 1, huv);
+    t.emplace_back(d + 1, d, huv);
+    t.emplace_back(d + 1, d + 1, hvv);
+    const LimitWeights& w = weights_[i];
+    for (size_t j = 0; j < w.index.size(); ++j) {
+      const int b = body_dof_[w.index[j]];
+      if (b < 0) continue;
+      for (int c = 0; c < 3; ++c) {
+        t.emplace_back(d, b + c, w.du[j] * gi[c]);
+        t.emplace_back(b + c, d, w.du[j] * gi[c]);
+        t.emplace_back(d + 1, b + c, w.dv[j] * gi[c]);
+        t.emplace_back(b + c, d + 1, w.dv[j] * gi[c]);
+      }
+    }
+  }
+  const VecX y = flat(state_.body);
+  std::vector<Triplet> hy;
+  for (const Energy* energy : setup_.body_energies) energy->add_hessian(y, hy, false);
+  for (const Triplet& e : hy) {
+    const int r = body_dof_[e.row() / 3], c = body_dof_[e.col() / 3];
+    if (r >= 0 && c >= 0) t.emplace_back(r + e.row() % 3, c + e.col() % 3, e.value());
+  }
+  SparseMatrix extra(num_dofs_, num_dofs_);
+  extra.setFromTriplets(t.begin(), t.end());
+  H += extra;
+  H.makeCompressed();
+  return H;
+}
+
+bool EmbeddedEquilibrium::set_step(const VecX& dq, double alpha) {
+  for (int i = 0; i < num_garment_vertices(); ++i) {
+    const int d = garment_dof_[i];
+    if (d < 0) {
+      state_.garment[i] = base_.garment[i];
+      continue;
+    }
+    const Vec2 delta = alpha * dq.segment<2>(d);
+    state_.garment[i] = setup_.surface->walk(base_.garment[i], delta).end;
+  }
+  for (int k = 0; k < static_cast<int>(body_dof_.size()); ++k) {
+    const int d = body_dof_[k];
+    state_.body.row(k) = base_.body.row(k);
+    if (d >= 0) state_.body.row(k) += alpha * dq.segment<3>(d).transpose();
+  }
+  evaluate_garment();
+  return true;
+}
+
+void EmbeddedEquilibrium::commit() { base_ = state_; }
+
+double EmbeddedEquilibrium::force_norm(const VecX& g) {
+  double sum = 0.0;
+  for (int i = 0; i < num_garment_vertices(); ++i) {
+    const int d = garment_dof_[i];
+    if (d < 0) continue;
+    // Tangential force f with g_s = J_sᵀ f, f in the tangent plane: |f|² = g_sᵀ (J_sᵀJ_s)⁻¹ g_s.
+    Eigen::Matrix<double, 3, 2> Js;
+    Js.col(0) = xu_.row(i).transpose();
+    Js.col(1) = xv_.row(i).transpose();
+    const Mat2 metric = Js.transpose() * Js;
+    const Vec2 gs = g.segment<2>(d);
+    sum += gs.dot(metric.ldlt().solve(gs));
+  }
+  for (int k = 0; k < static_cast<int>(body_dof_.size()); ++k)
+    if (const int d = body_dof_[k]; d >= 0) sum += g.segment<3>(d).squaredNorm();
+  return std::sqrt(sum);
+}
+
+Vec3 EmbeddedEquilibrium::garment_normal(int i) const {
+  return xu_.row(i).cross(xv_.row(i)).normalized();
+}
+
+}  // namespace tightfit

@@ -1,0 +1,78 @@
+#pragma once
+/// The coupled cloth–body system of paper Sec. 3.3 as a Newton problem.
+/// Garment vertex i lives on the body's Loop limit surface at s_i = (face, u, v);
+/// its position is x_i = Σ_k L_k(s_i) y_k (Eq. 18) over the body's surface vertices
+/// y_k. Degrees of freedom q = (s, y): two parameter-domain coordinates per free
+/// garment vertex, then three coordinates per free body vertex. Energies on x (cloth,
+/// seams) are pulled back by the chain rule (Eq. 19) including the second-derivative
+/// terms of Eq. 18; energies on y (the body) are added directly. Steps move garment
+/// vertices across faces by walking in the parameter domain (Eq. 20).
+#include <vector>
+
+#include "tightfit/physics/energy.hpp"
+#include "tightfit/solve/newton_problem.hpp"
+#include "tightfit/subdiv/limit_surface.hpp"
+
+namespace tightfit {
+
+/// Positions of the coupled system: garment vertices on the surface, body vertices in space.
+struct EmbeddedState {
+  std::vector<SurfacePoint> garment;  ///< n_g surface points
+  Points3 body;                       ///< n_b×3 deformed body positions (m)
+};
+
+struct EmbeddedSystemSetup {
+  const LimitSurface* surface = nullptr;        ///< limit surface of the body's surface mesh
+  std::vector<const Energy*> garment_energies;  ///< functions of x (3·n_g)
+  std::vector<const Energy*> body_energies;     ///< functions of y (3·n_b)
+  std::vector<int> pinned_body;                 ///< body vertices held at their position
+  std::vector<int> pinned_garment;              ///< garment vertices held at their (face,u,v)
+  double force_scale = 1.0;                     ///< characteristic force (N) for tolerances
+  bool project_garment_hessians = true;         ///< per-element PSD projection of cloth terms
+};
+
+class EmbeddedEquilibrium : public NewtonProblem {
+ public:
+  EmbeddedEquilibrium(EmbeddedSystemSetup setup, EmbeddedState initial);
+
+  Eigen::Index num_dofs() const override { return num_dofs_; }
+  double energy() override;
+  VecX gradient() override;
+  SparseMatrix hessian() override;
+  bool set_step(const VecX& dq, double alpha) override;
+  void commit() override;
+  double force_norm(const VecX& gradient) override;
+  double force_scale() override { return setup_.force_scale; }
+
+  const EmbeddedState& state() const { return state_; }
+  /// Garment positions x (n_g×3, m) at the current state.
+  const Points3& garment_positions() const { return x_; }
+  /// dU/dx (3·n_g) at the current state: minus the elastic forces on garment vertices.
+  VecX garment_energy_gradient() const;
+  /// Sparse Jacobian dx/dq (3·n_g × num_dofs) at the current state.
+  SparseMatrix position_jacobian() const;
+  /// Index of the first DOF of garment vertex i (−1 when pinned) / body vertex k.
+  int garment_dof(int i) const { return garment_dof_[i]; }
+  int body_dof(int k) const { return body_dof_[k]; }
+  int num_garment_vertices() const { return static_cast<int>(state_.garment.size()); }
+  /// Unit outward surface normal at garment vertex i.
+  Vec3 garment_normal(int i) const;
+
+ private:
+  void evaluate_garment();  // stencils, x, derivatives at the current state
+  double garment_energy(const VecX& x) const;
+
+  EmbeddedSystemSetup setup_;
+  EmbeddedState base_;
+  EmbeddedState state_;
+  std::vector<int> garment_dof_;
+  std::vector<int> body_dof_;
+  Eigen::Index num_dofs_ = 0;
+  int num_control_ = 0;
+
+  // Evaluated at the current state.
+  std::vector<LimitWeights> weights_;
+  Points3 x_, xu_, xv_, xuu_, xuv_, xvv_;
+};
+
+}  // namespace tightfit
