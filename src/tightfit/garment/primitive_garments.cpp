@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <tuple>
 
 #include <Eigen/Geometry>
 
@@ -74,9 +75,11 @@ Garment make_sleeve(const SleeveParams& p, const LimitSurface& surface, const Po
   Pattern pattern;
   pattern.pieces.push_back(std::move(piece));
   pattern.seams.push_back(std::move(seam));
-  if (p.pin_first_ring) {
-    PinnedBoundary pin{"first ring", 0, {}};
-    for (int i = 0; i <= nx; ++i) pin.vertices.push_back(id(i, 0));
+  for (const auto& [pinned, row, name] :
+       {std::tuple{p.pin_first_ring, 0, "first ring"}, std::tuple{p.pin_last_ring, ny, "last ring"}}) {
+    if (!pinned) continue;
+    PinnedBoundary pin{name, 0, {}};
+    for (int i = 0; i <= nx; ++i) pin.vertices.push_back(id(i, row));
     pattern.pinned.push_back(std::move(pin));
   }
   Garment g = weld_pattern(std::move(pattern));

@@ -27,8 +27,11 @@ struct SleeveParams {
   /// by `rotation` (rad) about the axis plus `twist` (rad/m) times the axial position.
   double rotation = 0.0;
   double twist = 0.0;
-  /// Pin the vertices of the ring at `axial_begin` to the body.
+  /// Pin the vertices of the ring at `axial_begin` (and of the ring at `axial_end`) to
+  /// the body. A sleeve with free ends on a frictionless body has no axial stiffness in
+  /// the wrinkled regime (tension field theory): pinning both rings fixes its length.
   bool pin_first_ring = false;
+  bool pin_last_ring = false;
 };
 
 /// Builds the sleeve piece (name "sleeve"), its seam ("axial seam") and the embedding

@@ -1,0 +1,134 @@
+#include "tightfit/solve/garment_simulation.hpp"
+
+#include <numeric>
+
+#include "tightfit/common/error.hpp"
+#include "tightfit/physics/mid_edge_shape_operator.hpp"
+#include "tightfit/subdiv/limit_projector.hpp"
+
+namespace tightfit {
+namespace {
+
+double mean_rest_edge_length(const Triangles& triangles, const Points2& rest) {
+  double sum = 0.0;
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    for (int c = 0; c < 3; ++c)
+      sum += (rest.row(triangles(t, c)) - rest.row(triangles(t, (c + 1) % 3))).norm();
+  return triangles.rows() > 0 ? sum / (3.0 * static_cast<double>(triangles.rows())) : 1.0;
+}
+
+}  // namespace
+
+GarmentSimulation::GarmentSimulation(const Body& body, const LimitSurface& surface,
+                                     Garment garment, SimulationMaterials materials,
+                                     NewtonOptions newton)
+    : body_(body),
+      surface_(surface),
+      garment_(std::move(garment)),
+      materials_(materials),
+      newton_(newton) {
+  if (static_cast<int>(garment_.embedding.size()) != garment_.num_garment_vertices)
+    throw InputError("garment", "the garment is not embedded on the body");
+  if (surface_.num_control_vertices() != body_.num_surface_vertices())
+    throw InputError("body", "the limit surface does not belong to the body surface");
+  const Points2 rest = garment_.rest_positions();
+  cloth_ = std::make_unique<ClothEnergy>(garment_.pattern_triangles, rest,
+                                         garment_.pattern_to_garment,
+                                         garment_.num_garment_vertices, materials_.fabric);
+  const auto seam_edges = garment_.seam_edges();
+  if (materials_.seam.youngs_modulus > 0.0 && !seam_edges.empty())
+    seams_ = std::make_unique<SeamSpringEnergy>(seam_edges, rest, garment_.pattern_to_garment,
+                                                garment_.num_garment_vertices, materials_.seam);
+  body_energy_ = std::make_unique<NeoHookeanEnergy>(body_.volume.vertices, body_.volume.tets,
+                                                    materials_.body);
+  force_scale_ = materials_.fabric.youngs_modulus * materials_.fabric.thickness *
+                 mean_rest_edge_length(garment_.pattern_triangles, rest);
+  EmbeddedState state;
+  state.garment = garment_.embedding;
+  state.body = body_.volume.vertices;
+  rebuild_problem(state);
+}
+
+GarmentSimulation::~GarmentSimulation() = default;
+
+void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
+  EmbeddedSystemSetup setup;
+  setup.surface = &surface_;
+  setup.garment_energies.push_back(cloth_.get());
+  if (seams_) setup.garment_energies.push_back(seams_.get());
+  setup.body_energies.push_back(body_energy_.get());
+  if (materials_.rigid_body) {
+    setup.pinned_body.resize(body_.num_vertices());
+    std::iota(setup.pinned_body.begin(), setup.pinned_body.end(), 0);
+  } else {
+    setup.pinned_body = body_.pinned;
+  }
+  setup.pinned_garment = garment_.pinned;
+  setup.force_scale = force_scale_;
+  problem_ = std::make_unique<EmbeddedEquilibrium>(std::move(setup), state);
+}
+
+NewtonReport GarmentSimulation::solve() {
+  NewtonReport report = newton_.solve(*problem_);
+  garment_.embedding = problem_->state().garment;
+  return report;
+}
+
+void GarmentSimulation::set_rest_positions(const Points2& rest) {
+  cloth_->set_rest(rest);
+  if (seams_) seams_->set_rest(rest);
+  garment_.set_rest_positions(rest);
+  rebuild_problem(problem_->state());
+}
+
+void GarmentSimulation::set_state(const EmbeddedState& state) {
+  garment_.embedding = state.garment;
+  rebuild_problem(state);
+}
+
+FitAnalysis GarmentSimulation::analyze() const {
+  FitAnalysis fit;
+  const Points3& x = problem_->garment_positions();
+  const VecX xf = Eigen::Map<const VecX>(x.data(), x.size());
+  fit.elements = analyze_cloth(*cloth_, xf);
+  const Triangles faces = garment_.garment_triangles;
+
+  MidEdgeShapeOperator mid_edge(faces, garment_.num_garment_vertices);
+  fit.pressure_mid_edge = young_laplace_pressure(fit.elements, mid_edge.compute(x));
+
+  // Exact curvature of the limit surface at the point closest to each element's
+  // centroid, where its tangent plane is parallel to the element (a chord). The limit
+  // surface reports S = −dn; the pressure uses Λ = dn (positive on convex bodies).
+  const int ng = garment_.num_garment_vertices;
+  const Points3 control = body_positions().topRows(surface_.num_control_vertices());
+  const auto& embedding = problem_->state().garment;
+  std::vector<Mat3> element_lambda(faces.rows());
+  for (Eigen::Index t = 0; t < faces.rows(); ++t) {
+    const Vec3 centroid =
+        (x.row(faces(t, 0)) + x.row(faces(t, 1)) + x.row(faces(t, 2))).transpose() / 3.0;
+    const SurfacePoint at =
+        refine_closest_point(surface_, control, centroid, embedding[faces(t, 0)]);
+    const LimitCurvature k = surface_.curvature(at, control);
+    Eigen::Matrix<double, 3, 2> E;
+    E.col(0) = k.e1;
+    E.col(1) = k.e2;
+    element_lambda[t] = -E * k.shape_operator * E.transpose();
+  }
+  fit.vertex_normal.resize(ng, 3);
+  for (int i = 0; i < ng; ++i) fit.vertex_normal.row(i) = problem_->garment_normal(i).transpose();
+  fit.pressure_limit = young_laplace_pressure(fit.elements, element_lambda);
+
+  // Forces on the body: the cloth pulls its vertices with −dU/dx; at equilibrium the
+  // body supplies the opposite, so the cloth pushes the body with +dU/dx.
+  const VecX gx = problem_->garment_energy_gradient();
+  fit.vertex_pressure = vertex_area_pressure(x, faces, gx);
+  fit.vertex_force.resize(ng, 3);
+  fit.vertex_normal_force.resize(ng);
+  for (int i = 0; i < ng; ++i) {
+    fit.vertex_force.row(i) = gx.segment<3>(3 * i).transpose();
+    fit.vertex_normal_force[i] = gx.segment<3>(3 * i).dot(fit.vertex_normal.row(i).transpose());
+  }
+  return fit;
+}
+
+}  // namespace tightfit

@@ -1,0 +1,98 @@
+#pragma once
+/// Forward simulation of a garment on a body (paper Sec. 3): builds the energies
+/// (relaxed StVK cloth, seam springs, Neo-Hookean body), the embedded equilibrium
+/// problem and Newton's method, and analyses the fit (stretches, regimes, stresses,
+/// pressure by Eq. 31 with two shape operators, and per-vertex forces on the body).
+#include <memory>
+#include <optional>
+
+#include "tightfit/body/body.hpp"
+#include "tightfit/garment/garment.hpp"
+#include "tightfit/physics/cloth_analysis.hpp"
+#include "tightfit/physics/cloth_energy.hpp"
+#include "tightfit/physics/neo_hookean_energy.hpp"
+#include "tightfit/physics/seam_spring_energy.hpp"
+#include "tightfit/solve/embedded_equilibrium.hpp"
+#include "tightfit/solve/newton_solver.hpp"
+
+namespace tightfit {
+
+struct SimulationMaterials {
+  ClothMaterial fabric;
+  /// Seam springs (Eq. 12); none when seam.youngs_modulus is 0.
+  SeamMaterial seam{0.005, 2e-4, 0.0};
+  NeoHookeanMaterial body;
+  /// Hold every body vertex in place (a rigid body): only the garment moves.
+  bool rigid_body = false;
+};
+
+/// Which discrete shape operator the pressure of Eq. 31 uses by default.
+enum class ShapeOperatorKind { kMidEdge, kLimitSurface };
+
+/// The fit at an equilibrium. Per-element arrays follow the garment triangles.
+struct FitAnalysis {
+  std::vector<ClothElementFit> elements;
+  VecX pressure_mid_edge;   ///< Pa per element, Λ from mid-edge normals (Eq. 32-33)
+  VecX pressure_limit;      ///< Pa per element, Λ from the limit surface's exact curvature
+  VecX vertex_pressure;     ///< Pa per garment vertex: normal force / mixed Voronoi area
+  Points3 vertex_force;     ///< N per garment vertex: force the cloth exerts on the body
+  VecX vertex_normal_force; ///< N per garment vertex: its component along the outward normal
+  Points3 vertex_normal;    ///< unit outward limit-surface normal per garment vertex
+};
+
+class GarmentSimulation {
+ public:
+  /// `surface` must be the limit surface of `body.surface` and outlive this object.
+  /// The garment's embedding is the initial state; the body starts at rest.
+  GarmentSimulation(const Body& body, const LimitSurface& surface, Garment garment,
+                    SimulationMaterials materials, NewtonOptions newton = {});
+  ~GarmentSimulation();
+
+  /// Newton from the current state (warm start). Throws SolverError if it fails.
+  NewtonReport solve();
+
+  const Garment& garment() const { return garment_; }
+  const Body& body() const { return body_; }
+  const LimitSurface& surface() const { return surface_; }
+  const SimulationMaterials& materials() const { return materials_; }
+  EmbeddedEquilibrium& problem() { return *problem_; }
+  const EmbeddedEquilibrium& problem() const { return *problem_; }
+  NewtonSolver& newton() { return newton_; }
+  ClothEnergy& cloth() { return *cloth_; }
+  const ClothEnergy& cloth() const { return *cloth_; }
+  /// Seam springs, or null when the seam material is off or the garment has no seams.
+  const SeamSpringEnergy* seams() const { return seams_.get(); }
+  SeamSpringEnergy* seams() { return seams_.get(); }
+  const NeoHookeanEnergy& body_energy() const { return *body_energy_; }
+
+  /// Current garment positions (n_g×3, m) and deformed body (n_b×3, m).
+  const Points3& garment_positions() const { return problem_->garment_positions(); }
+  const Points3& body_positions() const { return problem_->state().body; }
+  /// Replaces the pattern rest positions (stacked, num_pattern_vertices×2, m) in the
+  /// garment and the rest-dependent energies; the state is kept (warm start).
+  void set_rest_positions(const Points2& rest);
+  /// Replaces the state (e.g. to restore a checkpoint).
+  void set_state(const EmbeddedState& state);
+
+  /// Analyses the fit at the current state.
+  FitAnalysis analyze() const;
+
+  /// Characteristic force E·t·(mean rest edge length) (N), used for the tolerance.
+  double force_scale() const { return force_scale_; }
+
+ private:
+  void rebuild_problem(const EmbeddedState& state);
+
+  const Body& body_;
+  const LimitSurface& surface_;
+  Garment garment_;
+  SimulationMaterials materials_;
+  NewtonSolver newton_;
+  std::unique_ptr<ClothEnergy> cloth_;
+  std::unique_ptr<SeamSpringEnergy> seams_;
+  std::unique_ptr<NeoHookeanEnergy> body_energy_;
+  std::unique_ptr<EmbeddedEquilibrium> problem_;
+  double force_scale_ = 1.0;
+};
+
+}  // namespace tightfit
