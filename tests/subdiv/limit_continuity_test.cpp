@@ -55,6 +55,29 @@ TEST(LimitSurface, PositionAndTangentPlaneAreContinuousAcrossEveryEdge) {
   }
 }
 
+TEST(LimitSurface, EveryVertexHasOneLimitPointAndNormal) {
+  // At a control vertex (including extraordinary ones) all incident faces agree.
+  for (const auto& [name, mesh] : irregular_meshes()) {
+    const LimitSurface surface(mesh);
+    const Vec2 corner_uv[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      std::vector<Vec3> x, n;
+      for (int f : surface.topology().vertex_faces(v)) {
+        int c = 0;
+        while (mesh.faces(f, c) != v) ++c;
+        const SurfacePoint s{f, corner_uv[c][0], corner_uv[c][1]};
+        x.push_back(surface.position(s, mesh.vertices));
+        n.push_back(surface.normal(s, mesh.vertices));
+        ASSERT_TRUE(n.back().allFinite()) << name << " vertex " << v;
+      }
+      for (std::size_t k = 1; k < x.size(); ++k) {
+        EXPECT_LT((x[k] - x[0]).norm(), 1e-14) << name << " vertex " << v;
+        EXPECT_LT((n[k] - n[0]).norm(), 1e-9) << name << " vertex " << v;
+      }
+    }
+  }
+}
+
 TEST(LimitSurface, MatchesUniformLoopSubdivisionAtDyadicPoints) {
   for (const auto& [name, mesh] : irregular_meshes()) {
     const LimitSurface surface(mesh);
