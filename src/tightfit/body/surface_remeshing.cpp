@@ -1,0 +1,199 @@
+// The only translation unit of the body layer that uses CGAL's Polygon Mesh Processing
+// (clip, isotropic remeshing, feature detection, self-intersection test).
+#include "tightfit/body/surface_remeshing.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/clip.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+
+Mesh to_cgal(const TriMesh& m, const std::string& source) {
+  Mesh mesh;
+  std::vector<Mesh::Vertex_index> v(static_cast<size_t>(m.num_vertices()));
+  for (int i = 0; i < m.num_vertices(); ++i)
+    v[i] = mesh.add_vertex(Point(m.vertices(i, 0), m.vertices(i, 1), m.vertices(i, 2)));
+  for (int f = 0; f < m.num_faces(); ++f)
+    if (mesh.add_face(v[m.faces(f, 0)], v[m.faces(f, 1)], v[m.faces(f, 2)]) ==
+        Mesh::null_face())
+      throw InputError(source, "face " + std::to_string(f) +
+                                   " makes the surface non-manifold or inconsistently oriented");
+  return mesh;
+}
+
+TriMesh from_cgal(const Mesh& mesh) {
+  TriMesh m;
+  m.vertices.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
+  std::vector<int> index(mesh.num_vertices(), -1);
+  int next = 0;
+  for (Mesh::Vertex_index v : mesh.vertices()) {
+    const Point& p = mesh.point(v);
+    m.vertices.row(next) << p.x(), p.y(), p.z();
+    index[v.idx()] = next++;
+  }
+  m.faces.resize(static_cast<Eigen::Index>(mesh.number_of_faces()), 3);
+  int f = 0;
+  for (Mesh::Face_index face : mesh.faces()) {
+    int c = 0;
+    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(face), mesh))
+      m.faces(f, c++) = index[v.idx()];
+    ++f;
+  }
+  return m;
+}
+
+using EdgeFlags = Mesh::Property_map<Mesh::Edge_index, bool>;
+
+int feature_degree(const Mesh& mesh, const EdgeFlags& flags, Mesh::Vertex_index v) {
+  int count = 0;
+  for (auto h : CGAL::halfedges_around_target(v, mesh)) count += flags[mesh.edge(h)] ? 1 : 0;
+  return count;
+}
+
+/// Keeps only the flagged edges that form simple closed loops (every vertex of the
+/// connected set of flagged edges has two flagged edges) at least `min_length` long:
+/// rims of caps. Open or short creases (toes, skin folds) are unflagged.
+void keep_closed_feature_loops(const Mesh& mesh, EdgeFlags& flags, double min_length) {
+  std::vector<char> visited(mesh.num_edges(), 0);
+  for (Mesh::Edge_index start : mesh.edges()) {
+    if (!flags[start] || visited[start.idx()]) continue;
+    std::vector<Mesh::Edge_index> component{start}, stack{start};
+    visited[start.idx()] = 1;
+    bool loop = true;
+    double length = 0.0;
+    while (!stack.empty()) {
+      const Mesh::Edge_index e = stack.back();
+      stack.pop_back();
+      length += std::sqrt(CGAL::squared_distance(mesh.point(mesh.vertex(e, 0)), mesh.point(mesh.vertex(e, 1))));
+      for (int end = 0; end < 2; ++end) {
+        const Mesh::Vertex_index v = mesh.vertex(e, end);
+        if (feature_degree(mesh, flags, v) != 2) loop = false;
+        for (auto h : CGAL::halfedges_around_target(v, mesh)) {
+          const Mesh::Edge_index next = mesh.edge(h);
+          if (flags[next] && !visited[next.idx()]) {
+            visited[next.idx()] = 1;
+            component.push_back(next);
+            stack.push_back(next);
+          }
+        }
+      }
+    }
+    if (!loop || length < min_length)
+      for (Mesh::Edge_index e : component) flags[e] = false;
+  }
+}
+
+double bbox_diagonal(const Mesh& mesh) {
+  const CGAL::Bbox_3 b = PMP::bbox(mesh);
+  return std::sqrt(std::pow(b.xmax() - b.xmin(), 2) + std::pow(b.ymax() - b.ymin(), 2) +
+                   std::pow(b.zmax() - b.zmin(), 2));
+}
+
+}  // namespace
+
+TriMesh crop_and_cap(const TriMesh& surface, const std::vector<CropPlane>& planes) {
+  Mesh mesh = to_cgal(surface, "crop");
+  for (size_t i = 0; i < planes.size(); ++i) {
+    const std::string source = "crop plane " + std::to_string(i);
+    const Vec3& n = planes[i].normal;
+    if (!(n.norm() > 0.0) || !n.allFinite() || !planes[i].point.allFinite())
+      throw InputError(source, "the normal must be a non-zero finite vector");
+    // Vertices (almost) on the plane would leave near-duplicate cut points and needle
+    // faces: push them off it by ε = 1e-7 of the size of the mesh, keeping their side
+    // (vertices exactly on it go to the kept side).
+    const Vec3 unit = n.normalized();
+    const double epsilon = 1e-7 * bbox_diagonal(mesh);
+    for (Mesh::Vertex_index v : mesh.vertices()) {
+      const Point& p = mesh.point(v);
+      const Vec3 x(p.x(), p.y(), p.z());
+      const double d = unit.dot(x - planes[i].point);
+      if (std::abs(d) < epsilon) {
+        const Vec3 moved = x + ((d < 0.0 ? -epsilon : epsilon) - d) * unit;
+        mesh.point(v) = Point(moved.x(), moved.y(), moved.z());
+      }
+    }
+    // CGAL keeps the negative side of its plane: flip the normal to keep the side it points to.
+    const Kernel::Plane_3 plane(Point(planes[i].point.x(), planes[i].point.y(), planes[i].point.z()),
+                                Kernel::Vector_3(-n.x(), -n.y(), -n.z()));
+    bool manifold = false;
+    try {
+      manifold = PMP::clip(mesh, plane,
+                           CGAL::parameters::clip_volume(true).throw_on_self_intersection(true));
+    } catch (const PMP::Corefinement::Self_intersection_exception&) {
+      throw InputError(source, "the surface intersects itself near the cut");
+    }
+    if (!manifold) throw InputError(source, "the cut could not be closed into a manifold surface");
+    if (mesh.number_of_faces() == 0) throw InputError(source, "the plane removes the whole surface");
+    // Cuts through vertices or along edges leave zero-area faces: collapse them.
+    if (!PMP::remove_degenerate_faces(mesh))
+      throw InputError(source, "the cut left degenerate faces that could not be removed");
+    mesh.collect_garbage();
+    if (!CGAL::is_closed(mesh)) throw InputError(source, "the cut surface is not closed");
+  }
+  return from_cgal(mesh);
+}
+
+RemeshResult remesh_isotropic(const TriMesh& surface, const RemeshOptions& options) {
+  if (!(options.edge_length > 0.0) || !std::isfinite(options.edge_length))
+    throw InputError("remesh", "the edge length must be positive");
+  if (options.iterations < 1) throw InputError("remesh", "at least one iteration is needed");
+  Mesh mesh = to_cgal(surface, "remesh");
+  if (!CGAL::is_closed(mesh)) throw InputError("remesh", "the surface is not closed");
+
+  // Cap faces: all corners on one of the cap planes (up to round-off of the cut points).
+  const double tolerance = 1e-9 * bbox_diagonal(mesh);
+  auto is_cap = mesh.add_property_map<Mesh::Face_index, bool>("f:cap", false).first;
+  for (Mesh::Face_index f : mesh.faces())
+    for (const CropPlane& plane : options.cap_planes) {
+      const Vec3 n = plane.normal.normalized();
+      bool on_plane = true;
+      for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {
+        const Point& p = mesh.point(v);
+        on_plane = on_plane && std::abs(n.dot(Vec3(p.x(), p.y(), p.z()) - plane.point)) <= tolerance;
+      }
+      if (on_plane) is_cap[f] = true;
+    }
+
+  auto constrained = mesh.add_property_map<Mesh::Edge_index, bool>("e:constrained", false).first;
+  if (options.sharp_angle_deg < 180.0) {
+    PMP::detect_sharp_edges(mesh, options.sharp_angle_deg, constrained);
+    keep_closed_feature_loops(mesh, constrained, options.min_feature_loop_length);
+  }
+  for (Mesh::Edge_index e : mesh.edges()) {
+    const auto h = mesh.halfedge(e);
+    if (is_cap[mesh.face(h)] != is_cap[mesh.face(mesh.opposite(h))]) constrained[e] = true;
+  }
+  // Vertices where feature lines meet or end are kept fixed.
+  auto corner = mesh.add_property_map<Mesh::Vertex_index, bool>("v:corner", false).first;
+  int feature_edges = 0;
+  for (Mesh::Vertex_index v : mesh.vertices()) corner[v] = feature_degree(mesh, constrained, v) % 2 == 1 ||
+                                                             feature_degree(mesh, constrained, v) > 2;
+  for (Mesh::Edge_index e : mesh.edges()) feature_edges += constrained[e] ? 1 : 0;
+
+  PMP::isotropic_remeshing(mesh.faces(), options.edge_length, mesh,
+                           CGAL::parameters::number_of_iterations(
+                               static_cast<unsigned int>(options.iterations))
+                               .edge_is_constrained_map(constrained)
+                               .vertex_is_constrained_map(corner)
+                               .protect_constraints(false));
+  mesh.collect_garbage();
+  if (!CGAL::is_closed(mesh)) throw InputError("remesh", "the remeshed surface is not closed");
+  return {from_cgal(mesh), feature_edges};
+}
+
+}  // namespace tightfit

@@ -1,0 +1,60 @@
+#pragma once
+/// Preparing a user's closed body surface for simulation (CGAL, GPL-3): cropping to the
+/// region under the garment with capped cuts, and isotropic remeshing to the simulation
+/// resolution with the cap borders and sharp creases kept as feature lines.
+#include <vector>
+
+#include "tightfit/common/types.hpp"
+#include "tightfit/geometry/mesh.hpp"
+
+namespace tightfit {
+
+/// A cutting plane through `point` (m). The crop keeps the half-space the normal points
+/// into; the normal need not be unit length but must be non-zero.
+struct CropPlane {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitY();
+};
+
+/// Crops the closed, outward-oriented, non-self-intersecting surface to the
+/// intersection of the half-spaces and closes every cut with a flat cap (a triangulated
+/// planar polygon; the caps have long, thin triangles until remeshed). Vertices closer
+/// to a plane than 1e-7 of the mesh's bounding-box diagonal are first pushed to that
+/// distance (on their side), so that no cut point nearly coincides with a vertex. Planes that miss
+/// the surface leave it unchanged. Throws InputError (source "crop") if a plane removes
+/// the whole surface or the cut cannot be closed into a manifold, and when CGAL finds the
+/// surface self-intersecting near a cut.
+TriMesh crop_and_cap(const TriMesh& surface, const std::vector<CropPlane>& planes);
+
+struct RemeshOptions {
+  double edge_length = 0.015;   ///< target edge length (m), > 0
+  int iterations = 5;           ///< CGAL isotropic remeshing iterations (split, collapse, flip, relax)
+  /// Edges whose two faces' normals differ by more than this angle (degrees) are
+  /// crease candidates; those that form closed loops at least `min_feature_loop_length`
+  /// long (the rim of an existing cap) are feature edges. Open or short creases (toes,
+  /// skin folds of a scan) are remeshed over. Use 180 for none.
+  double sharp_angle_deg = 60.0;
+  double min_feature_loop_length = 0.05;  ///< m
+  /// Planes of caps made by `crop_and_cap`: faces with all corners on one of these
+  /// planes are cap faces, and the edges between cap and non-cap faces are feature edges.
+  std::vector<CropPlane> cap_planes;
+};
+
+/// Result of remeshing with the number of feature edges kept.
+struct RemeshResult {
+  TriMesh mesh;
+  int feature_edges = 0;   ///< constrained edges of the input (before splitting)
+};
+
+/// Isotropic remeshing (CGAL::Polygon_mesh_processing::isotropic_remeshing) of a closed
+/// surface to edges of about `edge_length`. Feature edges (see RemeshOptions) are split
+/// and collapsed only along their polylines, and their vertices do not move (CGAL 5.5's
+/// relaxation along constraints shrinks convex rims, so it is not used), so every
+/// feature line stays inscribed in the input's. Other vertices are projected back onto
+/// the input surface, so the volume changes only by the chord error of the new
+/// resolution. Throws InputError (source "remesh") when the result is not closed. The
+/// result may intersect itself where parts of the body are closer than the edge length:
+/// check it (geometry/self_intersection.hpp).
+RemeshResult remesh_isotropic(const TriMesh& surface, const RemeshOptions& options);
+
+}  // namespace tightfit

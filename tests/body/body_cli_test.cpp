@@ -1,0 +1,104 @@
+// Runs the built `tightfit body` command (TIGHTFIT_CLI).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/geometry/tet_mesh_io.hpp"
+
+namespace tightfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+CliRun run_cli(const std::string& args) {
+  const fs::path log = fs::temp_directory_path() / ("tightfit_body_cli_" + std::to_string(::getpid()) + ".log");
+  const std::string command = std::string(TIGHTFIT_CLI) + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  fs::remove(log);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+class BodyCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("tightfit_body_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path write_spec(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  fs::path dir_;
+};
+
+TEST_F(BodyCli, SpecFileWritesSurfaceVolumeAndSummary) {
+  const fs::path spec = write_spec(
+      "sphere.json", R"({"generator": "sphere", "radius": 0.05, "edge_length": 0.01, "core": {"soft_tissue": 0.01}})");
+  const fs::path out = dir_ / "out";
+  const CliRun r = run_cli("body " + spec.string() + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find((out / "volume.vtu").string()), std::string::npos);
+  const TriMesh surface = read_tri_mesh(out / "surface.obj");
+  const VtuData volume = read_vtu(out / "volume.vtu");
+  EXPECT_EQ(volume.mesh.vertices.topRows(surface.num_vertices()), surface.vertices);
+  ASSERT_EQ(volume.point_fields.size(), 2u);
+  EXPECT_EQ(volume.point_fields[0].name, "pinned");
+  ASSERT_EQ(volume.cell_fields.size(), 2u);
+  EXPECT_EQ(volume.cell_fields[0].name, "volume");
+  EXPECT_EQ(volume.cell_fields[1].name, "min_dihedral");
+  std::ifstream in(out / "body.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["counts"]["tets"].get<int>(), volume.mesh.num_tets());
+  EXPECT_EQ(summary["counts"]["pinned_vertices"].get<int>(),
+            static_cast<int>(volume.point_fields[0].values.sum()));
+  EXPECT_GT(summary["tets"]["min_dihedral"].get<double>(), 0.0);
+  EXPECT_TRUE(summary["timings"].contains("tetrahedralize"));
+  // Nothing but the three outputs is left in the folder.
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 3);
+}
+
+TEST_F(BodyCli, FlagsWithoutSpec) {
+  const fs::path out = dir_ / "flags";
+  const CliRun r = run_cli("body --generator cylinder --radius 0.03 --length 0.06 --edge-length 0.01 --soft-tissue 0.01 --out " +
+                    out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "body.json"));
+}
+
+TEST_F(BodyCli, BadSpecExitsWithTwoNamingTheFileAndWritesNothing) {
+  const fs::path spec = write_spec("bad.json", R"({"generator": "cylinder", "radius": "wide", "length": 0.1})");
+  const fs::path out = dir_ / "out";
+  const CliRun r = run_cli("body " + spec.string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(spec.string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("/radius"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+
+  const fs::path thick = write_spec("thick.json", R"({"generator": "sphere", "radius": 0.02, "edge_length": 0.01, "core": {"soft_tissue": 0.03}})");
+  const CliRun r2 = run_cli("body " + thick.string() + " --out " + out.string());
+  EXPECT_EQ(r2.exit_code, 2) << r2.output;
+  EXPECT_NE(r2.output.find(thick.string()), std::string::npos) << r2.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace tightfit
