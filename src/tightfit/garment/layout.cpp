@@ -1,0 +1,558 @@
+#include "tightfit/garment/layout.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <queue>
+#include <sstream>
+#include <unordered_map>
+
+#include "tightfit/common/error.hpp"
+#include "tightfit/garment/plane_cut.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/geometry/surface_topology.hpp"
+
+namespace tightfit {
+namespace {
+
+std::string format_point(const Vec3& p) {
+  std::ostringstream s;
+  s.precision(4);
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ") m";
+  return s.str();
+}
+
+Vec3 face_centroid(const TriMesh& m, int f) {
+  return (m.vertices.row(m.faces(f, 0)) + m.vertices.row(m.faces(f, 1)) +
+          m.vertices.row(m.faces(f, 2))).transpose() / 3.0;
+}
+
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
+/// Everything the shared builder needs besides the surface.
+struct BuildInput {
+  TriMesh surface;                 // may contain faces outside the garment (panel −1)
+  std::vector<int> face_panel;
+  std::vector<int> body_face;      // or empty
+  std::vector<std::string> panel_names;
+  std::vector<std::string> panel_paths;  // JSON path per panel (or the mesh source)
+  /// Region-plane flags per vertex (rules layouts); empty for mesh layouts.
+  std::vector<std::vector<char>> on_region_plane;
+};
+
+/// Compacts the surface to the faces with a panel.
+void compact(BuildInput& in, Layout& out) {
+  const int nf = in.surface.num_faces();
+  std::vector<int> keep;
+  for (int f = 0; f < nf; ++f)
+    if (in.face_panel[f] >= 0) keep.push_back(f);
+  std::vector<int> new_id(in.surface.num_vertices(), -1);
+  int nv = 0;
+  for (int f : keep)
+    for (int c = 0; c < 3; ++c)
+      if (new_id[in.surface.faces(f, c)] < 0) new_id[in.surface.faces(f, c)] = nv++;
+  out.surface.vertices.resize(nv, 3);
+  for (int v = 0; v < in.surface.num_vertices(); ++v)
+    if (new_id[v] >= 0) out.surface.vertices.row(new_id[v]) = in.surface.vertices.row(v);
+  out.surface.faces.resize(static_cast<Eigen::Index>(keep.size()), 3);
+  out.face_panel.clear();
+  out.body_face.clear();
+  for (size_t i = 0; i < keep.size(); ++i) {
+    for (int c = 0; c < 3; ++c)
+      out.surface.faces(static_cast<Eigen::Index>(i), c) = new_id[in.surface.faces(keep[i], c)];
+    out.face_panel.push_back(in.face_panel[keep[i]]);
+    out.body_face.push_back(in.body_face.empty() ? -1 : in.body_face[keep[i]]);
+  }
+  for (auto& flags : in.on_region_plane) {
+    std::vector<char> compacted(nv, 0);
+    for (int v = 0; v < in.surface.num_vertices(); ++v)
+      if (new_id[v] >= 0) compacted[new_id[v]] = flags[v];
+    flags = std::move(compacted);
+  }
+}
+
+/// Directed open boundary edges of the garment (following face orientation) and the
+/// pin claiming each (−1: none).
+struct OpenEdges {
+  std::map<std::pair<int, int>, int> pin;  // (from, to) → pin index or −1
+};
+
+OpenEdges assign_pins(const Layout& layout, const SurfaceTopology& topo,
+                      const BuildInput& in, const LayoutSpec& spec) {
+  OpenEdges open;
+  const TriMesh& m = layout.surface;
+  for (int f = 0; f < m.num_faces(); ++f)
+    for (int i = 0; i < 3; ++i)
+      if (topo.is_boundary_edge(topo.face_edge(f, i)))
+        open.pin[{m.faces(f, i), m.faces(f, (i + 1) % 3)}] = -1;
+  // Chain the open edges into loops (for "nearest").
+  std::multimap<int, int> next;
+  for (const auto& [e, p] : open.pin) next.emplace(e.first, e.second);
+  std::vector<std::vector<std::pair<int, int>>> loops;
+  std::map<std::pair<int, int>, bool> used;
+  for (const auto& [e, p] : open.pin) {
+    if (used[e]) continue;
+    std::vector<std::pair<int, int>> loop;
+    std::pair<int, int> cur = e;
+    while (!used[cur]) {
+      used[cur] = true;
+      loop.push_back(cur);
+      auto range = next.equal_range(cur.second);
+      for (auto it = range.first; it != range.second; ++it)
+        if (!used[{it->first, it->second}]) {
+          cur = {it->first, it->second};
+          break;
+        }
+    }
+    loops.push_back(std::move(loop));
+  }
+  const std::string where = spec.path + "/pinned";
+  for (size_t k = 0; k < spec.pins.size(); ++k) {
+    const PinRule& pin = spec.pins[k];
+    int claimed = 0;
+    auto claim = [&](const std::pair<int, int>& e) {
+      ++claimed;
+      int& slot = open.pin[e];
+      if (slot < 0) slot = static_cast<int>(k);
+    };
+    if (pin.kind == PinRule::Kind::kNearest) {
+      if (loops.empty())
+        throw InputError(spec.source, pin.source_path + ": pinned boundary \"" + pin.name +
+                                          "\" does not exist: the garment has no open boundary");
+      double best = std::numeric_limits<double>::infinity();
+      size_t best_loop = 0;
+      for (size_t l = 0; l < loops.size(); ++l)
+        for (const auto& e : loops[l]) {
+          const double d = point_segment_distance(pin.point, m.vertices.row(e.first).transpose(),
+                                                  m.vertices.row(e.second).transpose());
+          if (d < best) {
+            best = d;
+            best_loop = l;
+          }
+        }
+      if (best > pin.max_distance)
+        throw InputError(spec.source,
+                         pin.source_path + ": pinned boundary \"" + pin.name +
+                             "\" does not exist: the nearest open boundary is " +
+                             std::to_string(best) + " m from " + format_point(pin.point) +
+                             " (max_distance " + std::to_string(pin.max_distance) + " m)");
+      for (const auto& e : loops[best_loop]) claim(e);
+    } else {
+      for (const auto& [e, p] : open.pin) {
+        bool on = false;
+        if (pin.kind == PinRule::Kind::kOnRegionPlane) {
+          const auto& flags = in.on_region_plane[pin.region_plane];
+          on = flags[e.first] && flags[e.second];
+        } else {
+          on = std::abs(pin.plane.distance(m.vertices.row(e.first).transpose())) <= spec.plane_tolerance &&
+               std::abs(pin.plane.distance(m.vertices.row(e.second).transpose())) <= spec.plane_tolerance;
+        }
+        if (on) claim(e);
+      }
+      if (claimed == 0) {
+        const std::string plane_name = pin.kind == PinRule::Kind::kOnRegionPlane
+                                           ? "region plane \"" + spec.region[pin.region_plane].name + "\""
+                                           : "the given plane";
+        throw InputError(spec.source, pin.source_path + ": pinned boundary \"" + pin.name +
+                                          "\" does not exist: no open garment boundary lies on " +
+                                          plane_name);
+      }
+    }
+  }
+  return open;
+}
+
+void check_disc(const LayoutPanel& panel, const std::string& source, const std::string& path) {
+  const std::string what = "panel \"" + panel.name + "\" is not a disc: ";
+  const int nf = panel.mesh.num_faces();
+  const SurfaceTopology topo(panel.mesh.faces, panel.mesh.num_vertices());
+  const Vec3 at = face_centroid(panel.mesh, 0);
+  if (!topo.non_manifold_edges().empty())
+    throw InputError(source, path + ": " + what + "it has non-manifold edges near " + format_point(at));
+  // Connected?
+  std::vector<char> seen(nf, 0);
+  std::queue<int> queue;
+  queue.push(0);
+  seen[0] = 1;
+  int reached = 1;
+  while (!queue.empty()) {
+    const int f = queue.front();
+    queue.pop();
+    for (int i = 0; i < 3; ++i) {
+      const auto a = topo.across(f, i);
+      if (a.face >= 0 && !seen[a.face]) {
+        seen[a.face] = 1;
+        ++reached;
+        queue.push(a.face);
+      }
+    }
+  }
+  if (reached != nf) {
+    int other = 0;
+    while (seen[other]) ++other;
+    throw InputError(source, path + ": " + what + "it falls apart into separate parts (near " +
+                                 format_point(at) + " and " +
+                                 format_point(face_centroid(panel.mesh, other)) + ")");
+  }
+  const auto nm = topo.non_manifold_vertices();
+  if (!nm.empty())
+    throw InputError(source, path + ": " + what + "it touches itself at " +
+                                 format_point(panel.mesh.vertices.row(nm[0]).transpose()));
+  const auto loops = topo.boundary_loops();
+  if (loops.empty())
+    throw InputError(source, path + ": " + what + "it is closed (it has no boundary)");
+  if (loops.size() > 1)
+    throw InputError(source, path + ": " + what + "it has " + std::to_string(loops.size()) +
+                                 " boundary loops (a hole or a band around the body; add a divider)");
+  const int euler = topo.num_vertices() - topo.num_edges() + nf;
+  if (euler != 1)
+    throw InputError(source, path + ": " + what + "it has handles (Euler characteristic " +
+                                 std::to_string(euler) + ")");
+}
+
+Layout build_layout(BuildInput in, const LayoutSpec& spec) {
+  Layout layout;
+  layout.source = spec.source;
+  layout.seam_tolerance = spec.seam_tolerance;
+  layout.pin_names.clear();
+  for (const auto& p : spec.pins) layout.pin_names.push_back(p.name);
+  compact(in, layout);
+  const int np = static_cast<int>(in.panel_names.size());
+  const TriMesh& surf = layout.surface;
+  const SurfaceTopology topo(surf.faces, surf.num_vertices());
+  const auto nm = topo.non_manifold_edges();
+  if (!nm.empty()) {
+    const auto ev = topo.edge_vertices(nm[0]);
+    throw InputError(spec.source, "the layout surface has an edge shared by more than two faces at " +
+                                      format_point(surf.vertices.row(ev[0]).transpose()));
+  }
+  const OpenEdges open = assign_pins(layout, topo, in, spec);
+
+  // Panels.
+  layout.panels.resize(np);
+  for (int p = 0; p < np; ++p) {
+    LayoutPanel& panel = layout.panels[p];
+    panel.name = in.panel_names[p];
+    std::vector<int> local(surf.num_vertices(), -1);
+    for (int f = 0; f < surf.num_faces(); ++f) {
+      if (layout.face_panel[f] != p) continue;
+      panel.surface_face.push_back(f);
+      for (int c = 0; c < 3; ++c) {
+        const int v = surf.faces(f, c);
+        if (local[v] < 0) {
+          local[v] = static_cast<int>(panel.surface_vertex.size());
+          panel.surface_vertex.push_back(v);
+        }
+      }
+    }
+    if (panel.surface_face.empty())
+      throw InputError(spec.source, in.panel_paths[p] + ": panel \"" + panel.name +
+                                        "\" is empty: no part of the surface lies on its sides");
+    panel.mesh.vertices.resize(static_cast<Eigen::Index>(panel.surface_vertex.size()), 3);
+    for (size_t i = 0; i < panel.surface_vertex.size(); ++i)
+      panel.mesh.vertices.row(static_cast<Eigen::Index>(i)) = surf.vertices.row(panel.surface_vertex[i]);
+    panel.mesh.faces.resize(static_cast<Eigen::Index>(panel.surface_face.size()), 3);
+    for (size_t i = 0; i < panel.surface_face.size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        panel.mesh.faces(static_cast<Eigen::Index>(i), c) = local[surf.faces(panel.surface_face[i], c)];
+    check_disc(panel, spec.source, in.panel_paths[p]);
+
+    // Label the boundary edges: (neighbour panel or −1, pin or −1).
+    const SurfaceTopology ptopo(panel.mesh.faces, panel.mesh.num_vertices());
+    std::vector<int> loop = ptopo.boundary_loops()[0];
+    const int n = static_cast<int>(loop.size());
+    std::vector<std::pair<int, int>> label(n);
+    for (int i = 0; i < n; ++i) {
+      const int a = panel.surface_vertex[loop[i]], b = panel.surface_vertex[loop[(i + 1) % n]];
+      const int e = topo.find_edge(a, b);
+      int other = -1;
+      for (int g : topo.edge_all_faces(e))
+        if (layout.face_panel[g] != p) other = layout.face_panel[g];
+      if (other >= 0) {
+        label[i] = {other, -1};
+      } else {
+        auto it = open.pin.find({a, b});
+        label[i] = {-1, it == open.pin.end() ? -1 : it->second};
+      }
+    }
+    int start = -1;
+    for (int i = 0; i < n && start < 0; ++i)
+      if (label[i] != label[(i + n - 1) % n]) start = i;
+    if (start < 0) {
+      if (label[0].first >= 0)
+        throw InputError(spec.source, in.panel_paths[p] + ": the seam between panels \"" + panel.name +
+                                          "\" and \"" + in.panel_names[label[0].first] +
+                                          "\" is a closed loop; split one of them so that the seam has two ends");
+      start = 0;
+    }
+    std::rotate(loop.begin(), loop.begin() + start, loop.end());
+    std::rotate(label.begin(), label.begin() + start, label.end());
+    panel.boundary = loop;
+    for (int i = 0; i < n; ++i) {
+      if (i == 0 || label[i] != label[i - 1]) {
+        BoundarySegment s;
+        s.first = i;
+        s.pin = label[i].second;
+        s.seam = label[i].first >= 0 ? -2 - label[i].first : -1;  // neighbour, resolved below
+        panel.segments.push_back(s);
+      }
+      ++panel.segments.back().count;
+    }
+  }
+
+  // Seams: match each segment of panel p with neighbour q (p < q) to q's segment.
+  auto seg_vertices = [&](int p, const BoundarySegment& s) {
+    const LayoutPanel& panel = layout.panels[p];
+    const int n = static_cast<int>(panel.boundary.size());
+    std::vector<int> v;
+    for (int i = 0; i <= s.count; ++i) v.push_back(panel.surface_vertex[panel.boundary[(s.first + i) % n]]);
+    return v;
+  };
+  std::map<std::pair<int, int>, int> pair_count;
+  for (int p = 0; p < np; ++p) {
+    for (size_t si = 0; si < layout.panels[p].segments.size(); ++si) {
+      BoundarySegment& s = layout.panels[p].segments[si];
+      if (s.seam > -2) continue;
+      const int q = -2 - s.seam;
+      if (q < p) continue;
+      const std::vector<int> va = seg_vertices(p, s);
+      int match = -1;
+      for (size_t sj = 0; sj < layout.panels[q].segments.size(); ++sj) {
+        const BoundarySegment& t = layout.panels[q].segments[sj];
+        if (t.seam != -2 - p) continue;
+        std::vector<int> vb = seg_vertices(q, t);
+        std::reverse(vb.begin(), vb.end());
+        if (vb == va) match = static_cast<int>(sj);
+      }
+      if (match < 0)
+        throw InputError(spec.source, "panels \"" + layout.panels[p].name + "\" and \"" +
+                                          layout.panels[q].name + "\" meet along an edge chain that is not one seam on both sides (panels touching at a single vertex near " +
+                                          format_point(surf.vertices.row(va[0]).transpose()) + "?)");
+      LayoutSeam seam;
+      const int k = ++pair_count[{p, q}];
+      seam.name = layout.panels[p].name;
+      seam.name += '/';
+      seam.name += layout.panels[q].name;
+      if (k > 1) seam.name += '#' + std::to_string(k);
+      seam.panel_a = p;
+      seam.segment_a = static_cast<int>(si);
+      seam.panel_b = q;
+      seam.segment_b = match;
+      seam.vertices = va;
+      const int id = static_cast<int>(layout.seams.size());
+      s.seam = id;
+      s.side_a = true;
+      BoundarySegment& t = layout.panels[q].segments[match];
+      t.seam = id;
+      t.side_a = false;
+      layout.seams.push_back(std::move(seam));
+    }
+  }
+  for (const auto& panel : layout.panels)
+    for (const auto& s : panel.segments)
+      if (s.seam < -1)
+        throw InputError(spec.source, "panel \"" + panel.name + "\": a seam has no matching side");
+  return layout;
+}
+
+/// Welds vertices closer than `tol` (grid hashing); returns the new index per vertex.
+std::vector<int> weld_vertices(const Points3& x, double tol, Points3& welded) {
+  const int n = static_cast<int>(x.rows());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  const double cell = std::max(tol, 1e-12);
+  auto key = [&](const Eigen::Vector3i& c) {
+    return (static_cast<long long>(c.x()) * 73856093LL) ^ (static_cast<long long>(c.y()) * 19349663LL) ^
+           (static_cast<long long>(c.z()) * 83492791LL);
+  };
+  std::unordered_multimap<long long, int> grid;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 p = x.row(i).transpose();
+    const Eigen::Vector3i c = (p / cell).array().floor().cast<int>();
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          auto range = grid.equal_range(key(c + Eigen::Vector3i(dx, dy, dz)));
+          for (auto it = range.first; it != range.second; ++it)
+            if ((x.row(it->second) - x.row(i)).norm() <= tol) {
+              const int a = root(i), b = root(it->second);
+              if (a != b) parent[std::max(a, b)] = std::min(a, b);
+            }
+        }
+    grid.emplace(key(c), i);
+  }
+  std::vector<int> id(n, -1), out(n);
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    const int r = root(i);
+    if (id[r] < 0) id[r] = m++;
+    out[i] = id[r];
+  }
+  welded.resize(m, 3);
+  for (int i = 0; i < n; ++i) welded.row(out[i]) = x.row(root(i));
+  return out;
+}
+
+}  // namespace
+
+Layout layout_from_rules(const TriMesh& body_surface, const LayoutSpec& spec) {
+  if (spec.is_mesh_layout())
+    throw std::invalid_argument("layout_from_rules: the spec is a mesh layout");
+  std::vector<LayoutPlane> planes = spec.region;
+  planes.insert(planes.end(), spec.dividers.begin(), spec.dividers.end());
+  CutMesh cut = cut_by_planes(body_surface, planes);
+  const int nr = static_cast<int>(spec.region.size());
+  const int nf = cut.mesh.num_faces();
+
+  BuildInput in;
+  in.face_panel.assign(nf, -1);
+  bool any_region = false;
+  for (int f = 0; f < nf; ++f) {
+    bool inside = true;
+    for (int k = 0; k < nr; ++k) inside = inside && cut.side[k][f] > 0;
+    if (!inside) continue;
+    any_region = true;
+    std::vector<int> matches;
+    for (size_t p = 0; p < spec.panels.size(); ++p) {
+      bool ok = true;
+      for (const auto& [d, sign] : spec.panels[p].sides) ok = ok && cut.side[nr + d][f] == sign;
+      if (ok) matches.push_back(static_cast<int>(p));
+    }
+    const Vec3 at = face_centroid(cut.mesh, f);
+    if (matches.empty()) {
+      std::string sides;
+      for (size_t d = 0; d < spec.dividers.size(); ++d)
+        sides += std::string(sides.empty() ? "" : ", ") + (cut.side[nr + d][f] > 0 ? "+" : "-") +
+                 spec.dividers[d].name;
+      throw InputError(spec.source, spec.path + "/panels: a gap: the surface near " + format_point(at) +
+                                        " (sides " + sides + ") is in no panel");
+    }
+    if (matches.size() > 1)
+      throw InputError(spec.source, spec.path + "/panels: an overlap: the surface near " + format_point(at) +
+                                        " is in panels \"" + spec.panels[matches[0]].name + "\" and \"" +
+                                        spec.panels[matches[1]].name + "\"");
+    in.face_panel[f] = matches[0];
+  }
+  if (!any_region)
+    throw InputError(spec.source, spec.path + "/region: no part of the body surface is on the kept side of every region plane");
+  in.surface = std::move(cut.mesh);
+  in.body_face = std::move(cut.parent_face);
+  for (const auto& rule : spec.panels) {
+    in.panel_names.push_back(rule.name);
+    in.panel_paths.push_back(rule.source_path);
+  }
+  in.on_region_plane.assign(cut.on_plane.begin(), cut.on_plane.begin() + nr);
+  return build_layout(std::move(in), spec);
+}
+
+Layout layout_from_groups(const TriMesh& mesh, const std::vector<int>& face_group,
+                          const std::vector<std::string>& group_names, const LayoutSpec& spec,
+                          const std::string& mesh_source) {
+  if (face_group.size() != static_cast<size_t>(mesh.num_faces()))
+    throw std::invalid_argument("layout_from_groups: one group per face needed");
+  BuildInput in;
+  const std::vector<int> id = weld_vertices(mesh.vertices, spec.weld_tolerance, in.surface.vertices);
+  in.surface.faces.resize(mesh.num_faces(), 3);
+  std::map<std::array<int, 3>, int> seen;
+  int no_panel = 0;
+  Vec3 no_panel_at = Vec3::Zero();
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    std::array<int, 3> key;
+    for (int c = 0; c < 3; ++c) key[c] = in.surface.faces(f, c) = id[mesh.faces(f, c)];
+    const Vec3 at = face_centroid(mesh, f);
+    if (key[0] == key[1] || key[1] == key[2] || key[0] == key[2])
+      throw InputError(mesh_source, "face " + std::to_string(f + 1) + " near " + format_point(at) +
+                                        " is degenerate (two corners coincide)");
+    std::sort(key.begin(), key.end());
+    const int g = face_group[f];
+    if (g < 0) {
+      if (no_panel++ == 0) no_panel_at = at;
+      continue;
+    }
+    auto [it, inserted] = seen.emplace(key, g);
+    if (!inserted) {
+      if (it->second == g)
+        throw InputError(mesh_source, "face " + std::to_string(f + 1) + " near " + format_point(at) +
+                                          " appears twice in group \"" + group_names[g] + "\"");
+      throw InputError(mesh_source, "an overlap: the face near " + format_point(at) + " is in panels \"" +
+                                        group_names[it->second] + "\" and \"" + group_names[g] + "\"");
+    }
+  }
+  if (no_panel > 0)
+    throw InputError(mesh_source, "a gap: " + std::to_string(no_panel) +
+                                      " faces belong to no panel (no group), e.g. near " +
+                                      format_point(no_panel_at));
+  // Map the used groups to panels, in order of first use.
+  std::vector<int> panel_of_group(group_names.size(), -1);
+  in.face_panel.resize(mesh.num_faces());
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    int& p = panel_of_group[face_group[f]];
+    if (p < 0) {
+      p = static_cast<int>(in.panel_names.size());
+      in.panel_names.push_back(group_names[face_group[f]]);
+      in.panel_paths.push_back(mesh_source + ": group \"" + group_names[face_group[f]] + "\"");
+    }
+    in.face_panel[f] = p;
+  }
+  // Panels whose boundaries run side by side without sharing vertices: a gap.
+  {
+    const SurfaceTopology topo(in.surface.faces, in.surface.num_vertices());
+    double mean_edge = 0.0;
+    for (int e = 0; e < topo.num_edges(); ++e) {
+      const auto ev = topo.edge_vertices(e);
+      mean_edge += (in.surface.vertices.row(ev[0]) - in.surface.vertices.row(ev[1])).norm();
+    }
+    mean_edge /= std::max(1, topo.num_edges());
+    std::vector<std::pair<int, int>> boundary;  // (vertex, panel)
+    for (int e : topo.boundary_edges()) {
+      const int f = topo.edge_faces(e)[0];
+      for (int v : topo.edge_vertices(e)) boundary.emplace_back(v, in.face_panel[f]);
+    }
+    const double gap = 0.25 * mean_edge;
+    for (size_t i = 0; i < boundary.size(); ++i)
+      for (size_t j = i + 1; j < boundary.size(); ++j) {
+        if (boundary[i].second == boundary[j].second || boundary[i].first == boundary[j].first) continue;
+        const double d = (in.surface.vertices.row(boundary[i].first) - in.surface.vertices.row(boundary[j].first)).norm();
+        if (d < gap)
+          throw InputError(mesh_source, "a gap between panels \"" + in.panel_names[boundary[i].second] +
+                                            "\" and \"" + in.panel_names[boundary[j].second] + "\" near " +
+                                            format_point(in.surface.vertices.row(boundary[i].first).transpose()) +
+                                            ": their boundaries are " + std::to_string(d) +
+                                            " m apart but not shared (weld_tolerance " +
+                                            std::to_string(spec.weld_tolerance) + " m)");
+      }
+  }
+  return build_layout(std::move(in), spec);
+}
+
+Layout layout_from_obj(const LayoutSpec& spec) {
+  if (!spec.is_mesh_layout()) throw std::invalid_argument("layout_from_obj: not a mesh layout");
+  const ObjGroups obj = read_obj_with_groups(spec.mesh_file);
+  std::vector<int> groups = obj.face_group;
+  // Faces before any g/o line are in the reader's "default" group: no panel.
+  for (int& g : groups)
+    if (obj.group_names[g] == "default") g = -1;
+  return layout_from_groups(obj.mesh, groups, obj.group_names, spec, spec.mesh_file);
+}
+
+void write_layout_obj(const std::string& file, const Layout& layout) {
+  ObjGroups obj;
+  obj.mesh = layout.surface;
+  obj.face_group = layout.face_panel;
+  for (const auto& p : layout.panels) obj.group_names.push_back(p.name);
+  write_obj_with_groups(file, obj);
+}
+
+}  // namespace tightfit

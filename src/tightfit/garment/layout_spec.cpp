@@ -1,0 +1,146 @@
+#include "tightfit/garment/layout_spec.hpp"
+
+#include <filesystem>
+#include <set>
+
+namespace tightfit {
+namespace {
+
+LayoutPlane parse_plane(JsonFields& f, bool named) {
+  LayoutPlane plane;
+  plane.source_path = f.path();
+  if (named) plane.name = f.string("name");
+  plane.point = f.vec3("point");
+  const Vec3 n = f.vec3("normal");
+  if (n.norm() < 1e-12) f.fail("the normal must not be zero", "normal");
+  plane.normal = n.normalized();
+  f.finish();
+  return plane;
+}
+
+std::vector<LayoutPlane> parse_planes(JsonFields& f, const std::string& key) {
+  std::vector<LayoutPlane> planes;
+  std::set<std::string> names;
+  for (auto& pf : f.objects(key)) {
+    planes.push_back(parse_plane(pf, true));
+    if (planes.back().name.empty()) pf.fail("empty name", "name");
+    if (!names.insert(planes.back().name).second)
+      pf.fail("duplicate plane name \"" + planes.back().name + "\"", "name");
+  }
+  return planes;
+}
+
+int find_plane(const std::vector<LayoutPlane>& planes, const std::string& name) {
+  for (size_t i = 0; i < planes.size(); ++i)
+    if (planes[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+PanelRule parse_panel(JsonFields& f, const std::vector<LayoutPlane>& dividers) {
+  PanelRule rule;
+  rule.source_path = f.path();
+  rule.name = f.string("name");
+  if (rule.name.empty()) f.fail("empty name", "name");
+  const auto& sides = f.raw("sides");
+  if (!sides.is_null()) {
+    if (!sides.is_array()) f.fail("expected an array of strings like \"+divider\"", "sides");
+    std::set<int> used;
+    for (size_t i = 0; i < sides.size(); ++i) {
+      const std::string where = "sides/" + std::to_string(i);
+      if (!sides[i].is_string()) f.fail("expected a string like \"+divider\"", where);
+      const std::string s = sides[i].get<std::string>();
+      if (s.size() < 2 || (s[0] != '+' && s[0] != '-'))
+        f.fail("expected \"+name\" or \"-name\", got \"" + s + "\"", where);
+      const int d = find_plane(dividers, s.substr(1));
+      if (d < 0) f.fail("unknown divider \"" + s.substr(1) + "\"", where);
+      if (!used.insert(d).second) f.fail("divider \"" + s.substr(1) + "\" listed twice", where);
+      rule.sides.emplace_back(d, s[0] == '+' ? 1 : -1);
+    }
+  }
+  f.finish();
+  return rule;
+}
+
+PinRule parse_pin(JsonFields& f, const LayoutSpec& spec) {
+  PinRule pin;
+  pin.source_path = f.path();
+  pin.name = f.string("name");
+  const bool on_plane = f.has("on_plane");
+  const bool nearest = f.has("nearest");
+  if (on_plane == nearest) f.fail("give exactly one of \"on_plane\" and \"nearest\"");
+  if (nearest) {
+    pin.kind = PinRule::Kind::kNearest;
+    pin.point = f.vec3("nearest");
+    pin.max_distance = f.positive("max_distance", std::numeric_limits<double>::infinity());
+  } else {
+    const auto& j = f.raw("on_plane");
+    if (j.is_string()) {
+      pin.kind = PinRule::Kind::kOnRegionPlane;
+      const std::string name = j.get<std::string>();
+      if (spec.is_mesh_layout())
+        f.fail("a mesh layout has no region planes; give the plane as {\"point\", \"normal\"}",
+               "on_plane");
+      pin.region_plane = find_plane(spec.region, name);
+      if (pin.region_plane < 0) f.fail("unknown region plane \"" + name + "\"", "on_plane");
+    } else if (j.is_object()) {
+      pin.kind = PinRule::Kind::kOnPlane;
+      JsonFields pf(j, f.source(), f.child_path("on_plane"));
+      pin.plane = parse_plane(pf, false);
+      pin.plane.name = pin.name;
+    } else {
+      f.fail("expected a region plane name or {\"point\", \"normal\"}", "on_plane");
+    }
+  }
+  f.finish();
+  return pin;
+}
+
+}  // namespace
+
+LayoutSpec parse_layout_spec(JsonFields& f, const std::string& base_dir) {
+  LayoutSpec spec;
+  spec.source = f.source();
+  spec.path = f.path();
+  if (f.has("mesh")) {
+    const std::string mesh = f.string("mesh");
+    if (mesh.empty()) f.fail("empty file name", "mesh");
+    std::filesystem::path p(mesh);
+    if (p.is_relative() && !base_dir.empty()) p = std::filesystem::path(base_dir) / p;
+    spec.mesh_file = p.string();
+    for (const char* key : {"region", "dividers", "panels"})
+      if (f.has(key)) f.fail("not allowed together with \"mesh\"", key);
+    spec.weld_tolerance = f.positive("weld_tolerance", spec.weld_tolerance, true);
+  } else {
+    spec.region = parse_planes(f, "region");
+    spec.dividers = parse_planes(f, "dividers");
+    for (const auto& d : spec.dividers)
+      if (find_plane(spec.region, d.name) >= 0)
+        throw InputError(spec.source, d.source_path + ": name \"" + d.name +
+                                          "\" is also a region plane");
+    std::set<std::string> names;
+    for (auto& pf : f.objects("panels", true)) {
+      spec.panels.push_back(parse_panel(pf, spec.dividers));
+      if (!names.insert(spec.panels.back().name).second)
+        pf.fail("duplicate panel name \"" + spec.panels.back().name + "\"", "name");
+    }
+    if (spec.panels.empty()) f.fail("at least one panel is needed", "panels");
+  }
+  std::set<std::string> pin_names;
+  for (auto& pf : f.objects("pinned")) {
+    spec.pins.push_back(parse_pin(pf, spec));
+    if (!pin_names.insert(spec.pins.back().name).second)
+      pf.fail("duplicate pin name \"" + spec.pins.back().name + "\"", "name");
+  }
+  spec.seam_tolerance = f.positive("seam_tolerance", spec.seam_tolerance);
+  spec.plane_tolerance = f.positive("plane_tolerance", spec.plane_tolerance);
+  f.finish();
+  return spec;
+}
+
+LayoutSpec read_layout_spec(const std::string& file) {
+  const nlohmann::json j = read_json_file(file);
+  JsonFields f(j, file, "");
+  return parse_layout_spec(f, std::filesystem::path(file).parent_path().string());
+}
+
+}  // namespace tightfit

@@ -1,0 +1,362 @@
+#include "tightfit/garment/pattern_builder.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "tightfit/common/error.hpp"
+#include "tightfit/garment/piece_mesher.hpp"
+#include "tightfit/garment/triangle_geometry.hpp"
+#include "tightfit/geometry/surface_topology.hpp"
+
+namespace tightfit {
+namespace {
+
+std::string percent(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << 100.0 * x << " %";
+  return s.str();
+}
+
+int loop_vertex(const LayoutPanel& panel, int i) {
+  const int n = static_cast<int>(panel.boundary.size());
+  return panel.boundary[((i % n) + n) % n];
+}
+
+double flat_length(const LayoutPanel& panel, const BoundarySegment& s, const Points2& flat, const Mat2& linear) {
+  double len = 0.0;
+  for (int e = 0; e < s.count; ++e)
+    len += (linear * (flat.row(loop_vertex(panel, s.first + e + 1)) - flat.row(loop_vertex(panel, s.first + e))).transpose()).norm();
+  return len;
+}
+
+double length_3d(const LayoutPanel& panel, const BoundarySegment& s) {
+  double len = 0.0;
+  for (int e = 0; e < s.count; ++e)
+    len += (panel.mesh.vertices.row(loop_vertex(panel, s.first + e + 1)) -
+            panel.mesh.vertices.row(loop_vertex(panel, s.first + e))).norm();
+  return len;
+}
+
+/// Grain direction of a flattened panel in flat coordinates (unit).
+Vec2 grain_direction(const LayoutPanel& panel, const Points2& flat, const PatternOptions& options) {
+  const TriMesh& m = panel.mesh;
+  if (options.grain) {
+    Vec2 sum = Vec2::Zero();
+    for (int f = 0; f < m.num_faces(); ++f) {
+      const Vec3 p0 = m.vertices.row(m.faces(f, 0)), p1 = m.vertices.row(m.faces(f, 1)),
+                 p2 = m.vertices.row(m.faces(f, 2));
+      Eigen::Matrix<double, 3, 2> E;
+      E << p1 - p0, p2 - p0;
+      const double area2 = (p1 - p0).cross(p2 - p0).norm();
+      if (area2 <= 0) continue;
+      // Tangential part of the grain in edge coordinates, mapped to the flat triangle.
+      const Vec2 ab = (E.transpose() * E).ldlt().solve(E.transpose() * *options.grain);
+      const Vec2 q0 = flat.row(m.faces(f, 0)), q1 = flat.row(m.faces(f, 1)), q2 = flat.row(m.faces(f, 2));
+      sum += 0.5 * area2 * (ab.x() * (q1 - q0) + ab.y() * (q2 - q0));
+    }
+    if (sum.norm() > 0) return sum.normalized();
+    // The grain is normal to the whole panel: fall back to the principal axis.
+  }
+  // Longest principal axis of the flat triangles (area-weighted centroid second moments).
+  double area = 0.0;
+  Vec2 c = Vec2::Zero();
+  Mat2 second = Mat2::Zero();
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const Vec2 q0 = flat.row(m.faces(f, 0)), q1 = flat.row(m.faces(f, 1)), q2 = flat.row(m.faces(f, 2));
+    const double a = 0.5 * std::abs((q1 - q0).x() * (q2 - q0).y() - (q1 - q0).y() * (q2 - q0).x());
+    for (const Vec2& q : {q0, q1, q2}) {
+      c += a / 3.0 * q;
+      second += a / 3.0 * q * q.transpose();
+    }
+    area += a;
+  }
+  c /= area;
+  const Mat2 cov = second / area - c * c.transpose();
+  Eigen::SelfAdjointEigenSolver<Mat2> eig(cov);
+  Vec2 d = eig.eigenvectors().col(1);
+  if (d.y() < 0 || (d.y() == 0 && d.x() < 0)) d = -d;
+  return d;
+}
+
+/// Point location in the flattened panel.
+class FlatLocator {
+ public:
+  FlatLocator(const TriMesh& mesh, const Points2& flat) : mesh_(mesh), flat_(flat) {
+    box_.setEmpty();
+    for (Eigen::Index i = 0; i < flat.rows(); ++i) box_.extend(flat.row(i).transpose());
+    const int nf = mesh.num_faces();
+    cells_ = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(nf))));
+    grid_.assign(static_cast<size_t>(cells_ * cells_), {});
+    for (int f = 0; f < nf; ++f) {
+      Eigen::AlignedBox2d b;
+      for (int c = 0; c < 3; ++c) b.extend(flat.row(mesh.faces(f, c)).transpose());
+      const auto lo = cell(b.min()), hi = cell(b.max());
+      for (int i = lo.first; i <= hi.first; ++i)
+        for (int j = lo.second; j <= hi.second; ++j) grid_[static_cast<size_t>(i * cells_ + j)].push_back(f);
+    }
+  }
+
+  PanelPoint locate(const Vec2& q) const {
+    if (box_.contains(q)) {
+      const auto c = cell(q);
+      for (int f : grid_[static_cast<size_t>(c.first * cells_ + c.second)]) {
+        const Vec3 w = weights(f, q);
+        if (w.minCoeff() >= -1e-12) return {f, w};
+      }
+    }
+    // Outside the flat panel: the nearest face, weights extrapolated linearly.
+    int best = 0;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (int f = 0; f < mesh_.num_faces(); ++f) {
+      const Vec2 a = flat_.row(mesh_.faces(f, 0)), b = flat_.row(mesh_.faces(f, 1)), c = flat_.row(mesh_.faces(f, 2));
+      const Vec3 w = closest_point_weights_2d(q, a, b, c);
+      const double d = (w[0] * a + w[1] * b + w[2] * c - q).squaredNorm();
+      if (d < best_d) {
+        best_d = d;
+        best = f;
+      }
+    }
+    return {best, weights(best, q)};
+  }
+
+ private:
+  std::pair<int, int> cell(const Vec2& q) const {
+    const Vec2 s = (q - box_.min()).cwiseQuotient((box_.max() - box_.min()).cwiseMax(1e-300)) * cells_;
+    return {std::clamp(static_cast<int>(s.x()), 0, cells_ - 1), std::clamp(static_cast<int>(s.y()), 0, cells_ - 1)};
+  }
+  Vec3 weights(int f, const Vec2& q) const {
+    return barycentric_2d(q, flat_.row(mesh_.faces(f, 0)), flat_.row(mesh_.faces(f, 1)), flat_.row(mesh_.faces(f, 2)));
+  }
+
+  const TriMesh& mesh_;
+  const Points2& flat_;
+  Eigen::AlignedBox2d box_;
+  int cells_ = 1;
+  std::vector<std::vector<int>> grid_;
+};
+
+/// One boundary sample of a panel: on boundary edge `edge` of the loop at parameter t.
+struct BoundarySample {
+  int edge = 0;
+  double t = 0.0;
+};
+
+/// Samples at 3D arc-length fractions k/n, k = 0..n−1, of a segment.
+std::vector<BoundarySample> sample_segment(const LayoutPanel& panel, const BoundarySegment& s, int n) {
+  std::vector<double> cum(1, 0.0);
+  for (int e = 0; e < s.count; ++e)
+    cum.push_back(cum.back() + (panel.mesh.vertices.row(loop_vertex(panel, s.first + e + 1)) -
+                                panel.mesh.vertices.row(loop_vertex(panel, s.first + e))).norm());
+  std::vector<BoundarySample> out;
+  int e = 0;
+  for (int k = 0; k < n; ++k) {
+    const double target = cum.back() * k / n;
+    while (e + 1 < s.count && cum[e + 1] <= target) ++e;
+    const double len = cum[e + 1] - cum[e];
+    out.push_back({s.first + e, len > 0 ? std::clamp((target - cum[e]) / len, 0.0, 1.0) : 0.0});
+  }
+  return out;
+}
+
+}  // namespace
+
+PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) {
+  const int np = static_cast<int>(layout.panels.size());
+  const double h = options.edge_length;
+  if (!(h > 0)) throw std::invalid_argument("build_pattern: edge_length must be positive");
+  PatternBuild out;
+  out.maps.resize(np);
+
+  // Flatten and check each panel.
+  for (int p = 0; p < np; ++p) {
+    const LayoutPanel& panel = layout.panels[p];
+    Flattening flat = flatten_disc(panel.mesh, panel.boundary, options.flatten);
+    const std::string why = find_overlap(panel.mesh, panel.boundary, flat.uv);
+    if (!why.empty())
+      throw InputError(layout.source, "panel \"" + panel.name + "\" overlaps itself when flattened (" + why +
+                                          "); split it with a divider into less curved panels");
+    PieceMap& map = out.maps[p];
+    map.panel = p;
+    map.flat = std::move(flat.uv);
+    map.distortion = flat.report;
+    map.arap_iterations = flat.iterations;
+  }
+
+  // Seam sides after flattening, before scaling.
+  for (const LayoutSeam& seam : layout.seams) {
+    const LayoutPanel& pa = layout.panels[seam.panel_a];
+    const LayoutPanel& pb = layout.panels[seam.panel_b];
+    SeamReport r;
+    r.name = seam.name;
+    r.length_3d = length_3d(pa, pa.segments[seam.segment_a]);
+    r.length_a = flat_length(pa, pa.segments[seam.segment_a], out.maps[seam.panel_a].flat, Mat2::Identity());
+    r.length_b = flat_length(pb, pb.segments[seam.segment_b], out.maps[seam.panel_b].flat, Mat2::Identity());
+    r.relative_difference = std::abs(r.length_a - r.length_b) / std::max(r.length_a, r.length_b);
+    if (r.relative_difference > layout.seam_tolerance)
+      throw InputError(layout.source, "seam \"" + seam.name + "\": its sides are " + std::to_string(r.length_a) +
+                                          " m and " + std::to_string(r.length_b) +
+                                          " m long after flattening, a difference of " + percent(r.relative_difference) +
+                                          " (seam_tolerance " + percent(layout.seam_tolerance) +
+                                          "); the panels are too curved for this seam: add dividers");
+    out.seams.push_back(r);
+  }
+
+  // Grain frame and scale.
+  for (int p = 0; p < np; ++p) {
+    PieceMap& map = out.maps[p];
+    const Vec2 d = grain_direction(layout.panels[p], map.flat, options);
+    Mat2 rot;
+    rot << d.y(), -d.x(), d.x(), d.y();  // maps d to +y
+    const PieceScale& s = options.scale_of(layout.panels[p].name);
+    map.linear = Eigen::DiagonalMatrix<double, 2>(s.across, s.along) * rot;
+    const Points2 moved = map.flat * map.linear.transpose();
+    map.offset = -moved.colwise().minCoeff().transpose();
+  }
+
+  // Vertex counts per segment: seams shared by both sides.
+  std::vector<std::vector<int>> count(np);
+  auto min_count = [&](int p) {
+    const size_t k = layout.panels[p].segments.size();
+    return k == 1 ? 3 : (k == 2 ? 2 : 1);
+  };
+  for (int p = 0; p < np; ++p) {
+    const LayoutPanel& panel = layout.panels[p];
+    for (const BoundarySegment& s : panel.segments) {
+      const double len = flat_length(panel, s, out.maps[p].flat, out.maps[p].linear);
+      count[p].push_back(std::max(min_count(p), static_cast<int>(std::lround(len / h))));
+    }
+  }
+  for (size_t k = 0; k < layout.seams.size(); ++k) {
+    const LayoutSeam& seam = layout.seams[k];
+    int& na = count[seam.panel_a][seam.segment_a];
+    int& nb = count[seam.panel_b][seam.segment_b];
+    const double la = flat_length(layout.panels[seam.panel_a], layout.panels[seam.panel_a].segments[seam.segment_a],
+                                  out.maps[seam.panel_a].flat, out.maps[seam.panel_a].linear);
+    const double lb = flat_length(layout.panels[seam.panel_b], layout.panels[seam.panel_b].segments[seam.segment_b],
+                                  out.maps[seam.panel_b].flat, out.maps[seam.panel_b].linear);
+    na = nb = std::max({min_count(seam.panel_a), min_count(seam.panel_b),
+                        static_cast<int>(std::lround(0.5 * (la + lb) / h))});
+    out.seams[k].vertices = na + 1;
+  }
+
+  // Resample the boundaries and mesh the pieces.
+  std::vector<std::vector<int>> segment_start(np);
+  for (int p = 0; p < np; ++p) {
+    const LayoutPanel& panel = layout.panels[p];
+    PieceMap& map = out.maps[p];
+    const SurfaceTopology topo(panel.mesh.faces, panel.mesh.num_vertices());
+    std::vector<PanelPoint> boundary_location;
+    std::vector<Vec2> boundary_points;
+    for (size_t si = 0; si < panel.segments.size(); ++si) {
+      segment_start[p].push_back(static_cast<int>(boundary_points.size()));
+      for (const BoundarySample& b : sample_segment(panel, panel.segments[si], count[p][si])) {
+        const int i = loop_vertex(panel, b.edge), j = loop_vertex(panel, b.edge + 1);
+        const int f = topo.edge_faces(topo.find_edge(i, j))[0];
+        PanelPoint loc{f, Vec3::Zero()};
+        for (int c = 0; c < 3; ++c) {
+          if (panel.mesh.faces(f, c) == i) loc.weights[c] = 1.0 - b.t;
+          if (panel.mesh.faces(f, c) == j) loc.weights[c] = b.t;
+        }
+        boundary_location.push_back(loc);
+        const Vec2 q = (1.0 - b.t) * map.flat.row(i).transpose() + b.t * map.flat.row(j).transpose();
+        boundary_points.push_back(map.linear * q + map.offset);
+      }
+    }
+    Points2 polygon(static_cast<Eigen::Index>(boundary_points.size()), 2);
+    for (size_t i = 0; i < boundary_points.size(); ++i) polygon.row(static_cast<Eigen::Index>(i)) = boundary_points[i].transpose();
+    PieceMesh mesh;
+    try {
+      mesh = mesh_piece(polygon, h, options.lloyd_iterations);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(layout.source, "piece \"" + panel.name + "\" cannot be meshed (" + e.what() +
+                                          "); try a smaller edge_length");
+    }
+    PatternPiece piece;
+    piece.name = panel.name;
+    piece.rest = std::move(mesh.vertices);
+    piece.triangles = std::move(mesh.triangles);
+    const int nb = static_cast<int>(polygon.rows());
+    for (int i = 0; i < nb; ++i) piece.boundary.push_back(i);
+    if (panel.segments.size() > 1 || panel.segments[0].seam >= 0) piece.corners = segment_start[p];
+    piece.grain = Vec2::UnitY();
+    map.location = boundary_location;
+    const FlatLocator locator(panel.mesh, map.flat);
+    const Mat2 inverse = map.linear.inverse();
+    for (Eigen::Index v = nb; v < piece.rest.rows(); ++v)
+      map.location.push_back(locator.locate(inverse * (piece.rest.row(v).transpose() - map.offset)));
+    out.pattern.pieces.push_back(std::move(piece));
+  }
+
+  // Seams and pinned boundaries in piece vertex indices.
+  auto segment_vertices = [&](int p, int si) {
+    const int n = count[p][si];
+    const int nb = static_cast<int>(out.pattern.pieces[p].boundary.size());
+    std::vector<int> v;
+    for (int k = 0; k <= n; ++k) v.push_back((segment_start[p][si] + k) % nb);
+    return v;
+  };
+  for (const LayoutSeam& seam : layout.seams) {
+    Seam s;
+    s.name = seam.name;
+    s.a = {seam.panel_a, segment_vertices(seam.panel_a, seam.segment_a)};
+    s.b = {seam.panel_b, segment_vertices(seam.panel_b, seam.segment_b)};
+    std::reverse(s.b.vertices.begin(), s.b.vertices.end());
+    out.pattern.seams.push_back(std::move(s));
+  }
+  for (int p = 0; p < np; ++p)
+    for (size_t si = 0; si < layout.panels[p].segments.size(); ++si) {
+      const BoundarySegment& s = layout.panels[p].segments[si];
+      if (s.seam >= 0 || s.pin < 0) continue;
+      std::vector<int> v = segment_vertices(p, static_cast<int>(si));
+      if (layout.panels[p].segments.size() == 1) v.pop_back();  // whole loop: no repeat
+      out.pattern.pinned.push_back({layout.pin_names[s.pin], p, std::move(v)});
+    }
+  return out;
+}
+
+Vec3 panel_position(const Layout& layout, const PieceMap& map, const PanelPoint& point) {
+  const TriMesh& m = layout.panels[map.panel].mesh;
+  Vec3 x = Vec3::Zero();
+  for (int c = 0; c < 3; ++c) x += point.weights[c] * m.vertices.row(m.faces(point.face, c)).transpose();
+  return x;
+}
+
+PanelPoint locate_in_panel(const Layout& layout, const PieceMap& map, const Vec2& piece_point) {
+  const FlatLocator locator(layout.panels[map.panel].mesh, map.flat);
+  return locator.locate(map.linear.inverse() * (piece_point - map.offset));
+}
+
+Vec3 piece_to_panel(const Layout& layout, const PieceMap& map, const Vec2& piece_point) {
+  return panel_position(layout, map, locate_in_panel(layout, map, piece_point));
+}
+
+Vec2 panel_to_piece(const Layout& layout, const PieceMap& map, const Vec3& p) {
+  const TriMesh& m = layout.panels[map.panel].mesh;
+  double best = std::numeric_limits<double>::infinity();
+  Vec2 result = Vec2::Zero();
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const Vec3 w = closest_point_weights(p, m.vertices.row(m.faces(f, 0)), m.vertices.row(m.faces(f, 1)),
+                                         m.vertices.row(m.faces(f, 2)));
+    Vec3 x = Vec3::Zero();
+    Vec2 q = Vec2::Zero();
+    for (int c = 0; c < 3; ++c) {
+      x += w[c] * m.vertices.row(m.faces(f, c)).transpose();
+      q += w[c] * map.flat.row(m.faces(f, c)).transpose();
+    }
+    const double d = (x - p).squaredNorm();
+    if (d < best) {
+      best = d;
+      result = map.linear * q + map.offset;
+    }
+  }
+  return result;
+}
+
+}  // namespace tightfit

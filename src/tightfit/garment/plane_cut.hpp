@@ -1,0 +1,31 @@
+#pragma once
+/// Cutting a triangle surface by planes so that every plane crossing becomes a polyline
+/// of mesh edges: new vertices are inserted exactly on the planes and the crossed
+/// triangles are split. Used to cut garment panels out of the body surface.
+#include <vector>
+
+#include "tightfit/garment/layout_spec.hpp"
+#include "tightfit/geometry/mesh.hpp"
+
+namespace tightfit {
+
+/// The cut surface and what each of its elements comes from.
+struct CutMesh {
+  TriMesh mesh;                    ///< the cut surface (m), same orientation as the input
+  std::vector<int> parent_face;    ///< per face: the input face it lies in
+  /// on_plane[k][v]: vertex v lies on plane k (inserted there, snapped there, or within
+  /// a tiny distance of it). One vector per plane, `mesh.num_vertices()` entries each.
+  std::vector<std::vector<char>> on_plane;
+  /// side[k][f]: +1 or −1, the side of plane k that face f lies on (a face lying in the
+  /// plane counts as +1).
+  std::vector<std::vector<signed char>> side;
+};
+
+/// Cuts `mesh` by each plane in turn. A vertex whose distance to a plane is below
+/// `snap_fraction` times the length of a crossing edge is moved onto the plane along
+/// its tangent plane instead of creating a sliver triangle (only vertices not already
+/// placed on an earlier plane, and only when the plane is not nearly tangent there).
+CutMesh cut_by_planes(const TriMesh& mesh, const std::vector<LayoutPlane>& planes,
+                      double snap_fraction = 0.1);
+
+}  // namespace tightfit

@@ -1,0 +1,196 @@
+#include "tightfit/garment/layout.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "garment/garment_test_meshes.hpp"
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+namespace {
+
+LayoutSpec spec_from(const std::string& text) {
+  const auto j = nlohmann::json::parse(text);
+  JsonFields f(j, "layout.json", "");
+  return parse_layout_spec(f, "");
+}
+
+/// A closed cylinder of radius 0.05 m, y in [0, 0.4], with the sleeve region y ∈ [0.05, 0.35].
+const char* kSleeve = R"({
+  "region": [{"name": "bottom", "point": [0, 0.05, 0], "normal": [0, 1, 0]},
+             {"name": "top", "point": [0, 0.35, 0], "normal": [0, -1, 0]}],
+  "dividers": [{"name": "side", "point": [0, 0, 0], "normal": [1, 0, 0.1]}],
+  "panels": [{"name": "front", "sides": ["+side"]}, {"name": "back", "sides": ["-side"]}],
+  "pinned": [{"name": "cuff", "on_plane": "bottom"}, {"name": "top", "nearest": [0.05, 0.36, 0]}]
+})";
+
+std::string expect_input_error(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError";
+  return "";
+}
+
+TEST(Layout, SleeveOnCylinderHasTwoDiscPanelsTwoSeamsAndPinnedCuffs) {
+  const TriMesh body = test::closed_cylinder(0.05, 0.4, 32, 17);
+  const Layout layout = layout_from_rules(body, spec_from(kSleeve));
+  ASSERT_EQ(layout.panels.size(), 2u);
+  ASSERT_EQ(layout.seams.size(), 2u);
+  for (const auto& panel : layout.panels) {
+    // seam, open, seam, open around each panel.
+    ASSERT_EQ(panel.segments.size(), 4u);
+    int seams = 0, pinned = 0;
+    for (const auto& s : panel.segments) {
+      seams += s.seam >= 0;
+      pinned += s.pin >= 0;
+    }
+    EXPECT_EQ(seams, 2);
+    EXPECT_EQ(pinned, 2);
+  }
+  // Cut vertices lie exactly on the planes; seams run along the divider.
+  for (const auto& seam : layout.seams) {
+    EXPECT_EQ(seam.vertices.front() != seam.vertices.back(), true);
+    for (int v : seam.vertices) {
+      const Vec3 x = layout.surface.vertices.row(v);
+      EXPECT_NEAR(Vec3(1, 0, 0.1).normalized().dot(x), 0.0, 1e-12);
+      EXPECT_GE(x.y(), 0.05 - 1e-12);
+      EXPECT_LE(x.y(), 0.35 + 1e-12);
+    }
+    const Vec3 a = layout.surface.vertices.row(seam.vertices.front());
+    const Vec3 b = layout.surface.vertices.row(seam.vertices.back());
+    EXPECT_NEAR(std::abs(a.y() - b.y()), 0.3, 1e-12);
+  }
+  // Total area: the side of the 32-gon prism between the planes.
+  double area = 0;
+  for (int f = 0; f < layout.surface.num_faces(); ++f) {
+    const Vec3 a = layout.surface.vertices.row(layout.surface.faces(f, 0));
+    const Vec3 b = layout.surface.vertices.row(layout.surface.faces(f, 1));
+    const Vec3 c = layout.surface.vertices.row(layout.surface.faces(f, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  EXPECT_NEAR(area, 32 * 2 * 0.05 * std::sin(test::kPi / 32) * 0.3, 1e-12);
+}
+
+TEST(Layout, ReportsGapsAndOverlapsBetweenRulePanels) {
+  const TriMesh body = test::closed_cylinder(0.05, 0.4, 32, 17);
+  auto j = nlohmann::json::parse(kSleeve);
+  j["panels"] = nlohmann::json::parse(R"([{"name": "front", "sides": ["+side"]}])");
+  JsonFields f1(j, "gap.json", "");
+  const std::string gap = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f1, "")); });
+  EXPECT_NE(gap.find("gap.json: /panels: a gap"), std::string::npos) << gap;
+  j["panels"] = nlohmann::json::parse(R"([{"name": "all", "sides": []}, {"name": "front", "sides": ["+side"]}])");
+  JsonFields f2(j, "overlap.json", "");
+  const std::string overlap = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f2, "")); });
+  EXPECT_NE(overlap.find("overlap"), std::string::npos) << overlap;
+  EXPECT_NE(overlap.find("\"all\" and \"front\""), std::string::npos) << overlap;
+}
+
+TEST(Layout, RejectsPanelsThatAreNotDiscs) {
+  const TriMesh body = test::closed_cylinder(0.05, 0.4, 32, 17);
+  // One panel all around the cylinder: a band with two boundary loops.
+  auto j = nlohmann::json::parse(kSleeve);
+  j["panels"] = nlohmann::json::parse(R"([{"name": "tube"}])");
+  JsonFields f(j, "tube.json", "");
+  const std::string tube = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f, "")); });
+  EXPECT_NE(tube.find("tube.json: /panels/0: panel \"tube\" is not a disc: it has 2 boundary loops"),
+            std::string::npos) << tube;
+  // A divider that cuts the front panel into two separate parts.
+  j = nlohmann::json::parse(kSleeve);
+  j["dividers"].push_back(nlohmann::json::parse(R"({"name": "waist", "point": [0, 0.2, 0], "normal": [0, 1, 0]})"));
+  j["panels"] = nlohmann::json::parse(
+      R"([{"name": "front", "sides": ["+side"]}, {"name": "back_low", "sides": ["-side", "-waist"]},
+          {"name": "back_high", "sides": ["-side", "+waist"]}, {"name": "nothing", "sides": ["+side", "-waist"]}])");
+  JsonFields g(j, "parts.json", "");
+  const std::string parts = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(g, "")); });
+  EXPECT_NE(parts.find("overlap"), std::string::npos) << parts;
+}
+
+TEST(Layout, RejectsClosedSeamsAndEmptyPanels) {
+  const TriMesh sphere = test::geodesic_sphere(0.1, 6);
+  const std::string closed = expect_input_error([&] {
+    layout_from_rules(sphere, spec_from(R"({
+      "dividers": [{"name": "equator", "point": [0, 0.01, 0], "normal": [0, 1, 0]}],
+      "panels": [{"name": "top", "sides": ["+equator"]}, {"name": "bottom", "sides": ["-equator"]}]})"));
+  });
+  EXPECT_NE(closed.find("closed loop"), std::string::npos) << closed;
+  const std::string empty = expect_input_error([&] {
+    layout_from_rules(sphere, spec_from(R"({
+      "dividers": [{"name": "far", "point": [0, 1, 0], "normal": [0, 1, 0]}],
+      "panels": [{"name": "ghost", "sides": ["+far"]}, {"name": "all", "sides": ["-far"]}]})"));
+  });
+  EXPECT_NE(empty.find("panel \"ghost\" is empty"), std::string::npos) << empty;
+}
+
+TEST(Layout, RejectsPinnedBoundariesThatDoNotExist) {
+  const TriMesh body = test::closed_cylinder(0.05, 0.4, 32, 17);
+  auto j = nlohmann::json::parse(kSleeve);
+  j["region"].push_back(nlohmann::json::parse(R"({"name": "far", "point": [0, 2, 0], "normal": [0, -1, 0]})"));
+  j["pinned"] = nlohmann::json::parse(R"([{"name": "hem", "on_plane": "far"}])");
+  JsonFields f(j, "pin.json", "");
+  const std::string missing = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f, "")); });
+  EXPECT_NE(missing.find("pin.json: /pinned/0: pinned boundary \"hem\" does not exist"), std::string::npos)
+      << missing;
+  j = nlohmann::json::parse(kSleeve);
+  j["pinned"] = nlohmann::json::parse(R"([{"name": "hem", "nearest": [0, 1, 0], "max_distance": 0.1}])");
+  JsonFields g(j, "pin.json", "");
+  const std::string far = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(g, "")); });
+  EXPECT_NE(far.find("does not exist: the nearest open boundary is"), std::string::npos) << far;
+  // A closed garment has no open boundary to pin.
+  const TriMesh sphere = test::geodesic_sphere(0.1, 4);
+  const std::string closed = expect_input_error([&] {
+    layout_from_rules(sphere, spec_from(R"({
+      "dividers": [{"name": "a", "point": [0, 0, 0], "normal": [1, 0, 0]},
+                   {"name": "b", "point": [0, 0, 0], "normal": [0, 1, 0]}],
+      "panels": [{"name": "p", "sides": ["+a"]}, {"name": "q", "sides": ["-a", "+b"]}, {"name": "r", "sides": ["-a", "-b"]}],
+      "pinned": [{"name": "hem", "nearest": [0, 0, 0]}]})"));
+  });
+  EXPECT_NE(closed.find("the garment has no open boundary"), std::string::npos) << closed;
+}
+
+TEST(Layout, GroupLayoutMatchesRuleLayoutAndReportsGapsAndOverlaps) {
+  const TriMesh body = test::closed_cylinder(0.05, 0.4, 32, 17);
+  const Layout rules = layout_from_rules(body, spec_from(kSleeve));
+  auto j = nlohmann::json::parse(kSleeve);
+  j.erase("region");
+  j.erase("dividers");
+  j.erase("panels");
+  j["mesh"] = "unused.obj";
+  j["pinned"] = nlohmann::json::parse(
+      R"([{"name": "cuff", "on_plane": {"point": [0, 0.05, 0], "normal": [0, 1, 0]}},
+          {"name": "top", "nearest": [0.05, 0.36, 0]}])");
+  JsonFields f(j, "mesh.json", "");
+  const LayoutSpec spec = parse_layout_spec(f, "");
+  std::vector<std::string> names;
+  for (const auto& p : rules.panels) names.push_back(p.name);
+  const Layout groups = layout_from_groups(rules.surface, rules.face_panel, names, spec, "sleeve.obj");
+  ASSERT_EQ(groups.panels.size(), rules.panels.size());
+  ASSERT_EQ(groups.seams.size(), rules.seams.size());
+  for (size_t p = 0; p < rules.panels.size(); ++p) {
+    EXPECT_EQ(groups.panels[p].name, rules.panels[p].name);
+    EXPECT_EQ(groups.panels[p].mesh.num_faces(), rules.panels[p].mesh.num_faces());
+    ASSERT_EQ(groups.panels[p].segments.size(), rules.panels[p].segments.size());
+    for (size_t s = 0; s < rules.panels[p].segments.size(); ++s) {
+      EXPECT_EQ(groups.panels[p].segments[s].count, rules.panels[p].segments[s].count);
+      EXPECT_EQ(groups.panels[p].segments[s].pin, rules.panels[p].segments[s].pin);
+    }
+  }
+  // Faces in no group, the same face in two groups.
+  std::vector<int> gaps = rules.face_panel;
+  gaps[5] = -1;
+  const std::string gap = expect_input_error([&] { layout_from_groups(rules.surface, gaps, names, spec, "g.obj"); });
+  EXPECT_NE(gap.find("g.obj: a gap: 1 faces belong to no panel"), std::string::npos) << gap;
+  TriMesh doubled = rules.surface;
+  doubled.faces.conservativeResize(doubled.faces.rows() + 1, 3);
+  doubled.faces.row(doubled.faces.rows() - 1) = doubled.faces.row(0);
+  std::vector<int> doubled_groups = rules.face_panel;
+  doubled_groups.push_back(1 - rules.face_panel[0]);
+  const std::string overlap =
+      expect_input_error([&] { layout_from_groups(doubled, doubled_groups, names, spec, "o.obj"); });
+  EXPECT_NE(overlap.find("o.obj: an overlap"), std::string::npos) << overlap;
+}
+
+}  // namespace
+}  // namespace tightfit

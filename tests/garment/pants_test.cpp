@@ -1,0 +1,141 @@
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "tightfit/garment/garment_builder.hpp"
+#include "tightfit/garment/pattern_svg.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
+
+namespace tightfit {
+namespace {
+
+/// Pants on the legs body (y up, front +z, left leg +x): waist at 1.0 m, cuffs at 0.15 m,
+/// left/right by the sagittal plane, front/back by a coronal plane.
+const char* kPants4 = R"({
+  "region": [{"name": "waist", "point": [0, 1.0, 0], "normal": [0, -1, 0]},
+             {"name": "ankle", "point": [0, 0.15, 0], "normal": [0, 1, 0]}],
+  "dividers": [{"name": "sagittal", "point": [0, 0, 0], "normal": [1, 0, 0]},
+               {"name": "coronal", "point": [0, 0, 0.01], "normal": [0, 0, 1]}],
+  "panels": [{"name": "left_front", "sides": ["+sagittal", "+coronal"]},
+             {"name": "left_back", "sides": ["+sagittal", "-coronal"]},
+             {"name": "right_front", "sides": ["-sagittal", "+coronal"]},
+             {"name": "right_back", "sides": ["-sagittal", "-coronal"]}],
+  "pinned": [{"name": "waistband", "on_plane": "waist"}, {"name": "cuffs", "on_plane": "ankle"}]
+})";
+
+/// The same with a knee divider: 8 panels.
+const char* kPants8 = R"({
+  "region": [{"name": "waist", "point": [0, 1.0, 0], "normal": [0, -1, 0]},
+             {"name": "ankle", "point": [0, 0.15, 0], "normal": [0, 1, 0]}],
+  "dividers": [{"name": "sagittal", "point": [0, 0, 0], "normal": [1, 0, 0]},
+               {"name": "coronal", "point": [0, 0, 0.01], "normal": [0, 0, 1]},
+               {"name": "knee", "point": [0, 0.5, 0], "normal": [0, 1, 0]}],
+  "panels": [{"name": "left_front_upper", "sides": ["+sagittal", "+coronal", "+knee"]},
+             {"name": "left_back_upper", "sides": ["+sagittal", "-coronal", "+knee"]},
+             {"name": "right_front_upper", "sides": ["-sagittal", "+coronal", "+knee"]},
+             {"name": "right_back_upper", "sides": ["-sagittal", "-coronal", "+knee"]},
+             {"name": "left_front_lower", "sides": ["+sagittal", "+coronal", "-knee"]},
+             {"name": "left_back_lower", "sides": ["+sagittal", "-coronal", "-knee"]},
+             {"name": "right_front_lower", "sides": ["-sagittal", "+coronal", "-knee"]},
+             {"name": "right_back_lower", "sides": ["-sagittal", "-coronal", "-knee"]}],
+  "pinned": [{"name": "waistband", "on_plane": "waist"}, {"name": "cuffs", "on_plane": "ankle"}]
+})";
+
+class Pants : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    body_ = new TriMesh(read_tri_mesh(std::string(TIGHTFIT_DATA_DIR) + "/bodies/mh_legs_male.obj"));
+    limit_ = new LimitSurface(*body_);
+  }
+  static void TearDownTestSuite() {
+    delete limit_;
+    delete body_;
+  }
+
+  static GarmentBuild build(const char* text) {
+    const auto j = nlohmann::json::parse(text);
+    JsonFields f(j, "pants.json", "");
+    PatternOptions options;
+    options.edge_length = 0.02;
+    options.grain = Vec3::UnitY();
+    options.scale = {0.95, 0.77};  // ~30 % stretch around the legs
+    return build_garment(*body_, *limit_, parse_layout_spec(f, ""), options);
+  }
+
+  static void report(const GarmentBuild& b) {
+    for (const auto& p : b.pieces)
+      std::printf("  %-18s area error %.2e, |det J - 1| mean %.2e max %.2e, angle error mean %.2f max %.1f deg, "
+                  "%d vertices, min angle %.1f deg\n",
+                  p.name.c_str(), p.distortion.area_error, p.distortion.mean_area_distortion,
+                  p.distortion.max_area_distortion, p.distortion.mean_angle_error_deg,
+                  p.distortion.max_angle_error_deg, p.vertices, p.min_angle_deg);
+    for (const auto& s : b.seams)
+      std::printf("  seam %-36s 3D %.4f m, sides %.4f / %.4f m (%.2f %%), %d vertices\n", s.name.c_str(),
+                  s.length_3d, s.length_a, s.length_b, 100 * s.relative_difference, s.vertices);
+  }
+
+  static void check(const GarmentBuild& b, double max_seam_difference) {
+    const Garment& g = b.garment;
+    for (const Seam& seam : g.pattern.seams) {
+      ASSERT_EQ(seam.a.vertices.size(), seam.b.vertices.size());
+      for (size_t i = 0; i < seam.a.vertices.size(); ++i)
+        EXPECT_EQ(g.pattern_to_garment[g.piece_offset[seam.a.piece] + seam.a.vertices[i]],
+                  g.pattern_to_garment[g.piece_offset[seam.b.piece] + seam.b.vertices[i]]);
+    }
+    for (const auto& p : b.pieces) {
+      EXPECT_EQ(p.distortion.flipped, 0);
+      EXPECT_LT(p.distortion.mean_area_distortion, 0.05) << p.name;
+      EXPECT_LT(p.distortion.mean_angle_error_deg, 2.0) << p.name;
+      EXPECT_GT(p.min_angle_deg, 20.0) << p.name;
+    }
+    for (const auto& s : b.seams) EXPECT_LT(s.relative_difference, max_seam_difference) << s.name;
+    // Garment vertices on the limit surface, at most the chord sag of 2 cm edges away
+    // from the piecewise-flat panels (2-3 cm body edges at 5 cm radius: ~2 mm).
+    EXPECT_LT(*std::max_element(b.projection_distance.begin(), b.projection_distance.end()), 5e-3);
+    // Both cuffs and the waistband are pinned, on every piece that reaches them.
+    EXPECT_FALSE(g.pinned.empty());
+    // Piece → 3D panel → piece.
+    double worst = 0.0;
+    for (size_t k = 0; k < g.pattern.pieces.size(); ++k)
+      for (Eigen::Index v = 0; v < g.pattern.pieces[k].rest.rows(); v += 5) {
+        const Vec2 q = g.pattern.pieces[k].rest.row(v);
+        worst = std::max(worst, (panel_to_piece(b.layout, b.maps[k], piece_to_panel(b.layout, b.maps[k], q)) - q).norm());
+      }
+    EXPECT_LT(worst, 1e-6);
+  }
+
+  static TriMesh* body_;
+  static LimitSurface* limit_;
+};
+
+TriMesh* Pants::body_ = nullptr;
+LimitSurface* Pants::limit_ = nullptr;
+
+TEST_F(Pants, FourPiecesOnTheLegsBody) {
+  const GarmentBuild b = build(kPants4);
+  std::printf("4-piece pants on mh_legs_male:\n");
+  report(b);
+  ASSERT_EQ(b.garment.pattern.pieces.size(), 4u);
+  // Centre front, centre back, and per leg the inseam and the outseam.
+  EXPECT_EQ(b.garment.pattern.seams.size(), 6u);
+  // Waistband and cuff on every piece.
+  EXPECT_EQ(b.garment.pattern.pinned.size(), 8u);
+  check(b, 0.005);
+  // The four pieces meet at the crotch: one garment vertex shared by four pattern vertices.
+  std::vector<int> uses(b.garment.num_garment_vertices, 0);
+  for (int v : b.garment.pattern_to_garment) ++uses[v];
+  EXPECT_EQ(*std::max_element(uses.begin(), uses.end()), 4);
+}
+
+TEST_F(Pants, EightPiecesWithAKneeDivider) {
+  const GarmentBuild b = build(kPants8);
+  std::printf("8-piece pants on mh_legs_male:\n");
+  report(b);
+  ASSERT_EQ(b.garment.pattern.pieces.size(), 8u);
+  // 6 seams of the 4-piece pants, each leg seam split at the knee (+4), and 4 knee seams.
+  EXPECT_EQ(b.garment.pattern.seams.size(), 14u);
+  check(b, 0.05);  // the knee seams at the back (hollow of the knee) differ by ~4 %
+}
+
+}  // namespace
+}  // namespace tightfit
