@@ -1,0 +1,94 @@
+#include "tightfit/design/regularizer_edge_lengths.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace tightfit {
+namespace {
+
+double edge_length(const Points2& rest, const std::array<int, 2>& e) {
+  return (rest.row(e[1]) - rest.row(e[0])).norm();
+}
+
+/// d_rest += c · ∂‖e‖/∂Xbar.
+void add_edge_length_gradient(const Points2& rest, const std::array<int, 2>& e, double c,
+                              VecX& d_rest) {
+  const Vec2 d = (rest.row(e[1]) - rest.row(e[0])).transpose();
+  const Vec2 g = c * d / d.norm();
+  d_rest.segment<2>(2 * e[1]) += g;
+  d_rest.segment<2>(2 * e[0]) -= g;
+}
+
+}  // namespace
+
+EdgeLengthDifferenceTerm::EdgeLengthDifferenceTerm(std::string name, std::vector<EdgePair> pairs,
+                                                   int num_pattern_vertices)
+    : name_(std::move(name)), pairs_(std::move(pairs)), num_pattern_(num_pattern_vertices) {
+  for (const EdgePair& p : pairs_)
+    for (int v : {p.first[0], p.first[1], p.second[0], p.second[1]})
+      if (v < 0 || v >= num_pattern_)
+        throw std::invalid_argument(name_ + ": pattern vertex " + std::to_string(v) +
+                                    " outside [0, " + std::to_string(num_pattern_) + ")");
+}
+
+void EdgeLengthDifferenceTerm::check(const DesignState& state) const {
+  if (state.rest.rows() != num_pattern_)
+    throw std::invalid_argument(name_ + ": expected " + std::to_string(num_pattern_) +
+                                " rest positions, got " + std::to_string(state.rest.rows()));
+}
+
+double EdgeLengthDifferenceTerm::value(const DesignState& state) const {
+  check(state);
+  double total = 0.0;
+  for (const EdgePair& p : pairs_) {
+    const double diff = edge_length(state.rest, p.first) - edge_length(state.rest, p.second);
+    total += diff * diff;
+  }
+  return total;
+}
+
+void EdgeLengthDifferenceTerm::add_gradient(const DesignState& state, VecX& /*d_x*/,
+                                            VecX& d_rest) const {
+  check(state);
+  if (d_rest.size() != 2 * num_pattern_)
+    throw std::invalid_argument(name_ + ": rest gradient has the wrong size");
+  for (const EdgePair& p : pairs_) {
+    const double diff = edge_length(state.rest, p.first) - edge_length(state.rest, p.second);
+    add_edge_length_gradient(state.rest, p.first, 2.0 * diff, d_rest);
+    add_edge_length_gradient(state.rest, p.second, -2.0 * diff, d_rest);
+  }
+}
+
+EdgeLengthDifferenceTerm seam_length_regularizer(const Garment& garment) {
+  std::vector<EdgeLengthDifferenceTerm::EdgePair> pairs;
+  for (const Seam& seam : garment.pattern.seams) {
+    const int oa = garment.piece_offset.at(seam.a.piece);
+    const int ob = garment.piece_offset.at(seam.b.piece);
+    const std::size_t k = std::min(seam.a.vertices.size(), seam.b.vertices.size());
+    for (std::size_t i = 0; i + 1 < k; ++i)
+      pairs.push_back({{oa + seam.a.vertices[i], oa + seam.a.vertices[i + 1]},
+                       {ob + seam.b.vertices[i], ob + seam.b.vertices[i + 1]}});
+  }
+  return EdgeLengthDifferenceTerm("seam length", std::move(pairs),
+                                  garment.num_pattern_vertices());
+}
+
+EdgeLengthDifferenceTerm even_spacing_regularizer(const Garment& garment) {
+  std::vector<EdgeLengthDifferenceTerm::EdgePair> pairs;
+  for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k) {
+    const std::vector<int>& loop = garment.pattern.pieces[k].boundary;
+    const int o = garment.piece_offset[k];
+    const std::size_t n = loop.size();
+    if (n < 3) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      const int prev = o + loop[(i + n - 1) % n], v = o + loop[i], next = o + loop[(i + 1) % n];
+      pairs.push_back({{prev, v}, {v, next}});
+    }
+  }
+  return EdgeLengthDifferenceTerm("boundary spacing", std::move(pairs),
+                                  garment.num_pattern_vertices());
+}
+
+}  // namespace tightfit
