@@ -7,6 +7,7 @@
 #include "tightfit/body/generators.hpp"
 #include "tightfit/body/surface_distance.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/mesh_validation.hpp"
 
@@ -105,6 +106,20 @@ TEST(RemeshIsotropic, ClosedCreaseLoopsAreKept) {
   }
   EXPECT_GT(on_rim, 2 * 16);
   EXPECT_NEAR(signed_volume(r.mesh) / signed_volume(cyl), 1.0, 0.01);
+}
+
+TEST(RemeshIsotropic, RefinesWhereTheUniformResultIntersectsItself) {
+  // At 5 mm the closed lips of the head come out intersecting; local refinement fixes it.
+  const TriMesh head = read_tri_mesh(TIGHTFIT_DATA_DIR "/bodies/mh_head_neutral.obj");
+  RemeshOptions o;
+  o.edge_length = 0.005;
+  o.max_refinements = 0;
+  EXPECT_THROW(remesh_isotropic(head, o), InputError);
+  o.max_refinements = 3;
+  const RemeshResult r = remesh_isotropic(head, o);
+  EXPECT_GE(r.refinements, 1);
+  EXPECT_TRUE(surface_problems(r.mesh).empty());  // includes the self-intersection test
+  EXPECT_NEAR(signed_volume(r.mesh) / signed_volume(head), 1.0, 0.01);
 }
 
 TEST(RemeshIsotropic, RejectsBadOptions) {

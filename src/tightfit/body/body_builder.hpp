@@ -36,6 +36,7 @@ struct BuildReport {
   double input_volume = 0.0;    ///< m³, enclosed by the input surface (after scaling)
   double input_area = 0.0;      ///< m²
   int feature_edges = 0;        ///< constrained edges kept by the remeshing
+  int remesh_refinements = 0;   ///< local refinement rounds against self-intersections
   bool limit_fitted = false;    ///< whether control points were fitted to the limit surface
   LimitFitResult limit_fit;
   int bone_points = 0;          ///< bone samples inserted as volume vertices

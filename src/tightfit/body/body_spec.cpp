@@ -10,7 +10,6 @@
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/mesh_validation.hpp"
-#include "tightfit/geometry/self_intersection.hpp"
 
 namespace tightfit {
 namespace {
@@ -199,14 +198,10 @@ TriMesh prepare_mesh(const BodySpec& spec, BuildReport* report) {
     } catch (const InputError& e) {
       throw InputError(spec_location(spec, "/edge_length"), message_of(e));
     }
-    if (!self_intersecting_face_pairs(remeshed.mesh).empty())
-      throw InputError(spec_location(spec, "/edge_length"),
-                       "the surface remeshed at this edge length intersects itself (parts of "
-                       "the body are closer than the edge length): use a smaller edge length "
-                       "or crop that region");
     surface = std::move(remeshed.mesh);
     if (report) {
       report->feature_edges = remeshed.feature_edges;
+      report->remesh_refinements = remeshed.refinements;
       report->add_stage("remesh", clock.lap());
     }
   }

@@ -83,7 +83,8 @@ nlohmann::json body_summary_json(const BodyStats& s, const BuildReport& report) 
                 {"faces", report.input_faces},
                 {"volume", report.input_volume},
                 {"area", report.input_area},
-                {"feature_edges", report.feature_edges}};
+                {"feature_edges", report.feature_edges},
+                {"remesh_refinements", report.remesh_refinements}};
   if (report.limit_fitted)
     j["limit_fit"] = {{"iterations", report.limit_fit.iterations},
                       {"max_residual", report.limit_fit.max_residual},

@@ -2,6 +2,9 @@
 // (clip, isotropic remeshing, feature detection, self-intersection test).
 #include "tightfit/body/surface_remeshing.hpp"
 
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/clip.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
@@ -9,11 +12,15 @@
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <array>
 #include <cmath>
+#include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/geometry/self_intersection.hpp"
 
 namespace tightfit {
 namespace {
@@ -22,6 +29,14 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Mesh = CGAL::Surface_mesh<Point>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
+
+/// Projection of remeshed vertices onto the original input surface.
+struct ProjectOntoInput {
+  const Mesh* mesh;
+  const Tree* tree;
+  Point operator()(Mesh::Vertex_index v) const { return tree->closest_point(mesh->point(v)); }
+};
 
 Mesh to_cgal(const TriMesh& m, const std::string& source) {
   Mesh mesh;
@@ -96,6 +111,29 @@ void keep_closed_feature_loops(const Mesh& mesh, EdgeFlags& flags, double min_le
     if (!loop || length < min_length)
       for (Mesh::Edge_index e : component) flags[e] = false;
   }
+}
+
+/// Faces of intersecting pairs of `mesh` (garbage-free, so face i is Face_index(i)),
+/// grown by `rings` rings of vertex-adjacent faces.
+std::vector<Mesh::Face_index> intersecting_region(const Mesh& mesh, int rings) {
+  std::vector<std::array<int, 2>> pairs;
+  try {
+    pairs = self_intersecting_face_pairs(from_cgal(mesh));
+  } catch (const std::invalid_argument& e) {
+    throw InputError("remesh", std::string("the remeshed surface is invalid: ") + e.what());
+  }
+  std::set<Mesh::Face_index> region;
+  for (const auto& pair : pairs)
+    for (int f : pair) region.insert(Mesh::Face_index(static_cast<Mesh::size_type>(f)));
+  for (int ring = 0; ring < rings && !region.empty(); ++ring) {
+    std::set<Mesh::Face_index> grown = region;
+    for (Mesh::Face_index f : region)
+      for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+        for (Mesh::Face_index g : CGAL::faces_around_target(mesh.halfedge(v), mesh))
+          if (g != Mesh::null_face()) grown.insert(g);
+    region.swap(grown);
+  }
+  return {region.begin(), region.end()};
 }
 
 double bbox_diagonal(const Mesh& mesh) {
@@ -185,15 +223,35 @@ RemeshResult remesh_isotropic(const TriMesh& surface, const RemeshOptions& optio
                                                              feature_degree(mesh, constrained, v) > 2;
   for (Mesh::Edge_index e : mesh.edges()) feature_edges += constrained[e] ? 1 : 0;
 
-  PMP::isotropic_remeshing(mesh.faces(), options.edge_length, mesh,
-                           CGAL::parameters::number_of_iterations(
-                               static_cast<unsigned int>(options.iterations))
-                               .edge_is_constrained_map(constrained)
-                               .vertex_is_constrained_map(corner)
-                               .protect_constraints(false));
+  const Mesh input = mesh;
+  const auto params = CGAL::parameters::number_of_iterations(static_cast<unsigned int>(options.iterations))
+                          .edge_is_constrained_map(constrained)
+                          .vertex_is_constrained_map(corner)
+                          .protect_constraints(false);
+  PMP::isotropic_remeshing(mesh.faces(), options.edge_length, mesh, params);
   mesh.collect_garbage();
+
+  // Where parts of the input are closer than the edge length (lips, toes), the result can
+  // intersect itself: remesh around the intersections with half the edge length, with
+  // vertices projected onto the original input, up to `max_refinements` times.
+  int rounds = 0;
+  std::vector<Mesh::Face_index> region = intersecting_region(mesh, 2);
+  if (!region.empty()) {
+    Tree tree(CGAL::faces(input).first, CGAL::faces(input).second, input);
+    tree.accelerate_distance_queries();
+    for (; !region.empty() && rounds < options.max_refinements; ++rounds) {
+      PMP::isotropic_remeshing(region, options.edge_length / std::pow(2.0, rounds + 1), mesh,
+                               params.projection_functor(ProjectOntoInput{&mesh, &tree}));
+      mesh.collect_garbage();
+      region = intersecting_region(mesh, 2);
+    }
+  }
   if (!CGAL::is_closed(mesh)) throw InputError("remesh", "the remeshed surface is not closed");
-  return {from_cgal(mesh), feature_edges};
+  if (!region.empty())
+    throw InputError("remesh", "the surface remeshed at this edge length intersects itself (parts "
+                               "of the body are closer than the edge length): use a smaller edge "
+                               "length or crop that region");
+  return {from_cgal(mesh), feature_edges, rounds};
 }
 
 }  // namespace tightfit

@@ -38,12 +38,15 @@ struct RemeshOptions {
   /// Planes of caps made by `crop_and_cap`: faces with all corners on one of these
   /// planes are cap faces, and the edges between cap and non-cap faces are feature edges.
   std::vector<CropPlane> cap_planes;
+  /// Local refinements of self-intersecting regions (see remesh_isotropic).
+  int max_refinements = 3;
 };
 
 /// Result of remeshing with the number of feature edges kept.
 struct RemeshResult {
   TriMesh mesh;
   int feature_edges = 0;   ///< constrained edges of the input (before splitting)
+  int refinements = 0;     ///< local refinement rounds needed against self-intersections
 };
 
 /// Isotropic remeshing (CGAL::Polygon_mesh_processing::isotropic_remeshing) of a closed
@@ -52,9 +55,14 @@ struct RemeshResult {
 /// relaxation along constraints shrinks convex rims, so it is not used), so every
 /// feature line stays inscribed in the input's. Other vertices are projected back onto
 /// the input surface, so the volume changes only by the chord error of the new
-/// resolution. Throws InputError (source "remesh") when the result is not closed. The
-/// result may intersect itself where parts of the body are closer than the edge length:
-/// check it (geometry/self_intersection.hpp).
+/// resolution.
+///
+/// Where parts of the input are closer than about the edge length (closed lips, toes)
+/// the uniform result can intersect itself. Then the faces around the intersections
+/// (plus two rings) are remeshed again with half the edge length, their vertices
+/// projected onto the original input, repeated with a quarter, an eighth ... up to
+/// `max_refinements` times. Throws InputError (source "remesh") when the result is not
+/// closed or still intersects itself.
 RemeshResult remesh_isotropic(const TriMesh& surface, const RemeshOptions& options);
 
 }  // namespace tightfit
