@@ -23,9 +23,11 @@ struct CliRun {
   std::string output;  // stdout and stderr
 };
 
-CliRun run_cli(const std::string& args) {
+/// Runs the CLI with `args` in folder `cwd` (the test's current folder if empty).
+CliRun run_cli(const std::string& args, const std::string& cwd = "") {
   const fs::path log = fs::temp_directory_path() / ("tightfit_body_cli_" + std::to_string(::getpid()) + ".log");
-  const std::string command = std::string(TIGHTFIT_CLI) + " " + args + " > " + log.string() + " 2>&1";
+  const std::string command = (cwd.empty() ? "" : "cd '" + cwd + "' && ") + std::string(TIGHTFIT_CLI) + " " +
+                              args + " > " + log.string() + " 2>&1";
   const int status = std::system(command.c_str());
   std::ifstream in(log);
   std::stringstream text;
@@ -82,6 +84,18 @@ TEST_F(BodyCli, FlagsWithoutSpec) {
                     out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "body.json"));
+}
+
+TEST_F(BodyCli, MeshFlagIsRelativeToTheCurrentFolder) {
+  const fs::path out = dir_ / "head";
+  const CliRun r = run_cli("body --mesh bodies/mh_head_neutral.obj --edge-length 0.02 --soft-tissue 0.02 --out " +
+                           out.string(),
+                           TIGHTFIT_DATA_DIR);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(out / "body.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["input"]["vertices"].get<int>(), 4426);
+  EXPECT_GT(summary["counts"]["pinned_vertices"].get<int>(), 0);
 }
 
 TEST_F(BodyCli, BadSpecExitsWithTwoNamingTheFileAndWritesNothing) {

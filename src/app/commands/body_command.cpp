@@ -43,7 +43,8 @@ nlohmann::json spec_json(const BodyOptions& o, const CLI::App& cmd) {
     if (cmd.count(flag) > 0) j[key] = value;
   };
   set("--generator", "generator", o.generator);
-  set("--mesh", "mesh", o.mesh);
+  // A mesh named on the command line is relative to the current folder.
+  set("--mesh", "mesh", o.mesh.empty() ? o.mesh : fs::absolute(o.mesh).string());
   set("--caps", "caps", o.caps);
   set("--radius", "radius", o.radius);
   set("--length", "length", o.length);
