@@ -1,0 +1,76 @@
+#pragma once
+/// Forward-mode automatic differentiation for the per-element objectives (pressure,
+/// seam traction): Eigen's AutoDiffScalar with a fixed number of derivative directions,
+/// plus the chain rule through the cloth law (whose derivatives are known in closed form).
+/// Internal to the objectives layer.
+#include <cmath>
+
+#include <unsupported/Eigen/AutoDiff>
+
+#include "tightfit/common/types.hpp"
+#include "tightfit/physics/relaxed_stvk.hpp"
+
+namespace tightfit::autodiff {
+
+/// A scalar carrying N partial derivatives.
+template <int N>
+using Scalar = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
+
+template <typename S>
+using Vec3T = Eigen::Matrix<S, 3, 1>;
+template <typename S>
+using Vec2T = Eigen::Matrix<S, 2, 1>;
+template <typename S>
+using Mat2T = Eigen::Matrix<S, 2, 2>;
+template <typename S>
+using Mat3T = Eigen::Matrix<S, 3, 3>;
+template <typename S>
+using Mat32T = Eigen::Matrix<S, 3, 2>;
+
+inline double value_of(double v) { return v; }
+template <int N>
+double value_of(const Scalar<N>& v) {
+  return v.value();
+}
+
+/// The independent variable number `index` with value `v`.
+template <int N>
+Scalar<N> variable(double v, int index) {
+  return Scalar<N>(v, N, index);
+}
+
+/// A scalar g(I1, I2) known by its value and partials (a, b) at the value of (i1, i2),
+/// chained to i1, i2's own derivatives.
+inline double chain(double v, double /*a*/, double /*b*/, double /*i1*/, double /*i2*/) { return v; }
+template <int N>
+Scalar<N> chain(double v, double a, double b, const Scalar<N>& i1, const Scalar<N>& i2) {
+  return Scalar<N>(v, a * i1.derivatives() + b * i2.derivatives());
+}
+
+/// Inverse of a 2×2 matrix (closed form).
+template <typename S>
+Mat2T<S> inverse2(const Mat2T<S>& m) {
+  const S det = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0);
+  Mat2T<S> inv;
+  inv << m(1, 1) / det, -m(0, 1) / det, -m(1, 0) / det, m(0, 0) / det;
+  return inv;
+}
+
+/// Second Piola-Kirchhoff stress S = 2 ∂W/∂C = 2 (W_1 I + W_2 adj C) of the relaxed StVK
+/// law (same formula as RelaxedStVK::second_piola), differentiable in C.
+template <typename S>
+Mat2T<S> second_piola(const RelaxedStVK& law, const Mat2T<S>& c) {
+  const S i1 = c(0, 0) + c(1, 1);
+  const S i2 = c(0, 0) * c(1, 1) - c(0, 1) * c(1, 0);
+  const RelaxedStVK::Derivatives d = law.evaluate(value_of(i1), value_of(i2), 2);
+  const S w1 = chain(d.gradient[0], d.hessian(0, 0), d.hessian(0, 1), i1, i2);
+  const S w2 = chain(d.gradient[1], d.hessian(1, 0), d.hessian(1, 1), i1, i2);
+  Mat2T<S> s;
+  s(0, 0) = 2.0 * (w1 + w2 * c(1, 1));
+  s(1, 1) = 2.0 * (w1 + w2 * c(0, 0));
+  s(0, 1) = -2.0 * w2 * c(1, 0);
+  s(1, 0) = -2.0 * w2 * c(0, 1);
+  return s;
+}
+
+}  // namespace tightfit::autodiff

@@ -1,0 +1,122 @@
+#include "tightfit/objectives/imls_surface.hpp"
+
+#include <nanoflann.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+namespace {
+
+const std::string kSource = "shape target";
+
+/// nanoflann dataset adaptor over the rows of a Points3.
+struct Cloud {
+  const Points3* points = nullptr;
+  std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points->rows()); }
+  double kdtree_get_pt(std::size_t i, std::size_t d) const {
+    return (*points)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
+  }
+  template <class Box>
+  bool kdtree_get_bbox(Box& /*box*/) const {
+    return false;
+  }
+};
+
+using KdTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3,
+                                        std::size_t>;
+
+}  // namespace
+
+struct ImlsSurface::Index {
+  Points3 points;  // own copy: the tree refers to it
+  Cloud cloud;
+  std::unique_ptr<KdTree> tree;
+
+  explicit Index(const Points3& p) : points(p) {
+    cloud.points = &points;
+    tree = std::make_unique<KdTree>(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  }
+};
+
+ImlsSurface::ImlsSurface(Points3 points, Points3 normals, double radius)
+    : points_(std::move(points)), normals_(std::move(normals)), radius_(radius) {
+  if (points_.rows() == 0) throw InputError(kSource, "has no points");
+  if (normals_.rows() != points_.rows())
+    throw InputError(kSource, "has " + std::to_string(points_.rows()) + " points but " +
+                                  std::to_string(normals_.rows()) + " normals");
+  if (!(radius_ > 0.0) || !std::isfinite(radius_))
+    throw InputError(kSource, "IMLS radius must be positive and finite");
+  if (!points_.allFinite()) throw InputError(kSource, "has non-finite point coordinates");
+  for (Eigen::Index k = 0; k < normals_.rows(); ++k) {
+    const double len = normals_.row(k).norm();
+    if (!(len > 0.0) || !std::isfinite(len))
+      throw InputError(kSource, "normal " + std::to_string(k) + " is zero or not finite");
+    normals_.row(k) /= len;
+  }
+  index_ = std::make_shared<const Index>(points_);
+}
+
+ImlsSurface::Evaluation ImlsSurface::evaluate(const Vec3& x) const {
+  Evaluation ev;
+  const double h2 = radius_ * radius_;
+  std::vector<std::pair<std::size_t, double>> found;
+  index_->tree->radiusSearch(x.data(), h2, found, nanoflann::SearchParams(32, 0.0f, false));
+
+  struct Neighbour {
+    Eigen::Index k;
+    double u;  // 1 − r²/h² > 0
+  };
+  std::vector<Neighbour> near;
+  near.reserve(found.size());
+  double u_max = 0.0;
+  for (const auto& [k, d2_tree] : found) {
+    const auto kk = static_cast<Eigen::Index>(k);
+    const double u = 1.0 - (x - points_.row(kk).transpose()).squaredNorm() / h2;
+    if (u <= 0.0) continue;
+    near.push_back({kk, u});
+    u_max = std::max(u_max, u);
+  }
+
+  if (near.empty()) {
+    std::size_t nearest = 0;
+    double d2 = 0.0;
+    index_->tree->knnSearch(x.data(), 1, &nearest, &d2);
+    const auto k = static_cast<Eigen::Index>(nearest);
+    ev.gradient = normals_.row(k).transpose();
+    ev.value = ev.gradient.dot(x - points_.row(k).transpose());
+    ev.fallback = true;
+    return ev;
+  }
+
+  // Relative weights w_k = (u_k/u_max)⁴ = φ_k/φ_max; ψ_k = w_k / Σ w.
+  double sum_w = 0.0, sum_wa = 0.0;
+  std::vector<double> w(near.size()), a(near.size());
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    const double q = near[i].u / u_max;
+    const double q2 = q * q;
+    w[i] = q2 * q2;
+    a[i] = normals_.row(near[i].k).dot(x.transpose() - points_.row(near[i].k));
+    sum_w += w[i];
+    sum_wa += w[i] * a[i];
+  }
+  ev.value = sum_wa / sum_w;
+  // ∇f = Σ ψ_k n_k + Σ (a_k − f) ψ_k ∇φ_k/φ_k,  ∇φ_k/φ_k = −8 (x − c_k) / (h² u_k).
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    const double psi = w[i] / sum_w;
+    if (psi == 0.0) continue;
+    const Vec3 d = x - points_.row(near[i].k).transpose();
+    ev.gradient += psi * normals_.row(near[i].k).transpose() +
+                   (a[i] - ev.value) * psi * (-8.0 / (h2 * near[i].u)) * d;
+  }
+  return ev;
+}
+
+}  // namespace tightfit

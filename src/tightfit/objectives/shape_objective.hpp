@@ -1,0 +1,38 @@
+#pragma once
+/// Shape objective (paper Sec. 5.1, Eq. 28 as corrected in DESIGN.md §4): how far the
+/// garment is from a target surface, measured with the IMLS signed distance f of
+/// imls_surface.hpp (with its documented fallback far from the target):
+///   T_shape = Σ_{i ∈ V} f(x_i)²        (m²)
+/// over a set V of garment vertices (all by default). Depends on x only.
+#include <vector>
+
+#include "tightfit/design/design_term.hpp"
+#include "tightfit/objectives/imls_surface.hpp"
+
+namespace tightfit {
+
+class ShapeObjective : public DesignTerm {
+ public:
+  /// `vertices`: garment vertices in [0, num_garment_vertices) that should lie on the
+  /// target; empty means all. Throws std::invalid_argument on an index out of range.
+  ShapeObjective(ImlsSurface target, int num_garment_vertices, std::vector<int> vertices = {});
+
+  std::string name() const override { return "shape"; }
+  double value(const DesignState& state) const override;
+  void add_gradient(const DesignState& state, VecX& d_x, VecX& d_rest) const override;
+  bool depends_on_positions() const override { return true; }
+
+  /// f(x_i) (m) for every vertex of V, in the order of vertices().
+  VecX distances(const VecX& x) const;
+  const std::vector<int>& vertices() const { return vertices_; }
+  const ImlsSurface& target() const { return target_; }
+
+ private:
+  void check(const VecX& x) const;
+
+  ImlsSurface target_;
+  int num_garment_ = 0;
+  std::vector<int> vertices_;
+};
+
+}  // namespace tightfit

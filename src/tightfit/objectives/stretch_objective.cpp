@@ -1,0 +1,154 @@
+#include "tightfit/objectives/stretch_objective.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/LU>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+namespace {
+
+/// The element's F, its rest-edge inverse B = Dm⁻¹, rest area and C = FᵀF.
+struct ElementKinematics {
+  Mat32 f;
+  Mat2 b;
+  double area = 0.0;
+  Mat2 c;
+};
+
+ElementKinematics kinematics(const DesignState& s, const Triangles& tri,
+                             const std::vector<int>& to_garment, Eigen::Index e) {
+  Mat2 dm;
+  Mat32 ds;
+  for (int k = 0; k < 2; ++k) {
+    dm.col(k) = (s.rest.row(tri(e, k + 1)) - s.rest.row(tri(e, 0))).transpose();
+    ds.col(k) = s.x.segment<3>(3 * to_garment[tri(e, k + 1)]) -
+                s.x.segment<3>(3 * to_garment[tri(e, 0)]);
+  }
+  const double det = dm.determinant();
+  if (!(std::abs(det) > 1e-14 * dm.squaredNorm()))
+    throw SolverError("stretch objective: rest triangle " + std::to_string(e) + " is degenerate");
+  ElementKinematics k;
+  k.b = dm.inverse();
+  k.f = ds * k.b;
+  k.area = 0.5 * std::abs(det);
+  k.c = k.f.transpose() * k.f;
+  return k;
+}
+
+/// Eigenvalues λ1 >= λ2 of a symmetric 2×2 matrix, with m = mean and r = half gap.
+struct Eigen2 {
+  double m = 0.0;
+  double r = 0.0;
+  double l1() const { return m + r; }
+  double l2() const { return m - r; }
+};
+
+Eigen2 eigen2(const Mat2& c) {
+  const double half = 0.5 * (c(0, 0) - c(1, 1));
+  const double off = 0.5 * (c(0, 1) + c(1, 0));
+  return {0.5 * (c(0, 0) + c(1, 1)), std::hypot(half, off)};
+}
+
+}  // namespace
+
+StretchObjective::StretchObjective(const Garment& garment, StretchBounds bounds)
+    : triangles_(garment.pattern_triangles),
+      pattern_to_garment_(garment.pattern_to_garment),
+      num_garment_(garment.num_garment_vertices),
+      num_pattern_(garment.num_pattern_vertices()) {
+  if (!(bounds.min_stretch > 0.0) || !(bounds.max_stretch >= bounds.min_stretch) ||
+      !std::isfinite(bounds.min_stretch))
+    throw InputError("stretch objective", "stretch bounds must satisfy 0 < min <= max (got " +
+                                              std::to_string(bounds.min_stretch) + ", " +
+                                              std::to_string(bounds.max_stretch) + ")");
+  lambda_min_ = bounds.min_stretch * bounds.min_stretch;
+  lambda_max_ = bounds.max_stretch * bounds.max_stretch;  // +inf stays +inf
+}
+
+void StretchObjective::check(const DesignState& state) const {
+  if (state.x.size() != 3 * static_cast<Eigen::Index>(num_garment_) ||
+      state.rest.rows() != num_pattern_)
+    throw std::invalid_argument("stretch objective: state has " + std::to_string(state.x.size()) +
+                                " position entries and " + std::to_string(state.rest.rows()) +
+                                " rest positions, expected 3 x " + std::to_string(num_garment_) +
+                                " and " + std::to_string(num_pattern_));
+}
+
+std::vector<Vec2> StretchObjective::cauchy_green_eigenvalues(const DesignState& state) const {
+  check(state);
+  std::vector<Vec2> out(triangles_.rows());
+  for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
+    const Eigen2 ev = eigen2(kinematics(state, triangles_, pattern_to_garment_, e).c);
+    out[e] = Vec2(ev.l1(), ev.l2());
+  }
+  return out;
+}
+
+double StretchObjective::value(const DesignState& state) const {
+  check(state);
+  auto pen = [&](double l) {
+    if (l < lambda_min_) return (l - lambda_min_) * (l - lambda_min_);
+    if (l > lambda_max_) return (l - lambda_max_) * (l - lambda_max_);
+    return 0.0;
+  };
+  double total = 0.0;
+  for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
+    const ElementKinematics k = kinematics(state, triangles_, pattern_to_garment_, e);
+    const Eigen2 ev = eigen2(k.c);
+    total += k.area * (pen(ev.l1()) + pen(ev.l2()));
+  }
+  return total;
+}
+
+void StretchObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& d_rest) const {
+  check(state);
+  if (d_x.size() != state.x.size() || d_rest.size() != 2 * state.rest.rows())
+    throw std::invalid_argument("stretch objective: gradient vectors have the wrong size");
+  auto pen = [&](double l) {
+    if (l < lambda_min_) return (l - lambda_min_) * (l - lambda_min_);
+    if (l > lambda_max_) return (l - lambda_max_) * (l - lambda_max_);
+    return 0.0;
+  };
+  auto dpen = [&](double l) {
+    if (l < lambda_min_) return 2.0 * (l - lambda_min_);
+    if (l > lambda_max_) return 2.0 * (l - lambda_max_);
+    return 0.0;
+  };
+  auto ddpen = [&](double l) { return (l < lambda_min_ || l > lambda_max_) ? 2.0 : 0.0; };
+  for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
+    const ElementKinematics k = kinematics(state, triangles_, pattern_to_garment_, e);
+    const Eigen2 ev = eigen2(k.c);
+    const double l1 = ev.l1(), l2 = ev.l2();
+    const double s = pen(l1) + pen(l2);
+    if (s == 0.0 && dpen(l1) == 0.0 && dpen(l2) == 0.0) continue;
+    const double gap = l1 - l2;
+    const double divided = gap > 1e-12 * std::max(1.0, std::abs(ev.m))
+                               ? (dpen(l1) - dpen(l2)) / gap
+                               : ddpen(ev.m);
+    const Mat2 ds_dc = 0.5 * (dpen(l1) + dpen(l2)) * Mat2::Identity() +
+                       divided * (k.c - ev.m * Mat2::Identity());
+    // T_e = A s(C): ∂T_e/∂F = 2 A F ∂s/∂C.
+    const Mat32 p = 2.0 * k.area * k.f * ds_dc;
+    // F = Ds B: ∂/∂Ds = P Bᵀ; ∂/∂Dm = −Fᵀ P Bᵀ (through F) + s A Bᵀ (through A).
+    const Mat32 g_ds = p * k.b.transpose();
+    const Mat2 g_dm = -k.f.transpose() * p * k.b.transpose() + s * k.area * k.b.transpose();
+    const int g0 = pattern_to_garment_[triangles_(e, 0)];
+    const int p0 = triangles_(e, 0);
+    for (int j = 0; j < 2; ++j) {
+      const int gj = pattern_to_garment_[triangles_(e, j + 1)];
+      const int pj = triangles_(e, j + 1);
+      d_x.segment<3>(3 * gj) += g_ds.col(j);
+      d_x.segment<3>(3 * g0) -= g_ds.col(j);
+      d_rest.segment<2>(2 * pj) += g_dm.col(j);
+      d_rest.segment<2>(2 * p0) -= g_dm.col(j);
+    }
+  }
+}
+
+}  // namespace tightfit

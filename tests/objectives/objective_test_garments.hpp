@@ -1,0 +1,122 @@
+#pragma once
+/// Small garments with 3D states for the objective tests.
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "support/finite_difference.hpp"
+#include "tightfit/design/design_term.hpp"
+#include "tightfit/garment/garment.hpp"
+
+namespace tightfit::test {
+
+/// A garment and a 3D state of it.
+struct GarmentState {
+  Garment garment;
+  VecX x;  // 3·n_g (m)
+};
+
+/// An nx × ny grid piece over [0,w]×[0,h], interior vertices jittered by up to `jitter`
+/// of the spacing, random diagonals; boundary counter-clockwise, corners marked.
+inline PatternPiece grid_piece(int nx, int ny, double w, double h, double jitter, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-jitter, jitter);
+  PatternPiece piece;
+  piece.name = "grid";
+  auto id = [&](int i, int j) { return j * nx + i; };
+  piece.rest.resize(nx * ny, 2);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const bool inner = i > 0 && j > 0 && i < nx - 1 && j < ny - 1;
+      piece.rest.row(id(i, j)) << w * (i + (inner ? u(rng) : 0.0)) / (nx - 1),
+          h * (j + (inner ? u(rng) : 0.0)) / (ny - 1);
+    }
+  piece.triangles.resize(2 * (nx - 1) * (ny - 1), 3);
+  int t = 0;
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if (jitter > 0.0 && rng() % 2) {
+        piece.triangles.row(t++) << a, b, d;
+        piece.triangles.row(t++) << b, c, d;
+      } else {
+        piece.triangles.row(t++) << a, b, c;
+        piece.triangles.row(t++) << a, c, d;
+      }
+    }
+  for (int i = 0; i < nx - 1; ++i) piece.boundary.push_back(id(i, 0));
+  for (int j = 0; j < ny - 1; ++j) piece.boundary.push_back(id(nx - 1, j));
+  for (int i = nx - 1; i > 0; --i) piece.boundary.push_back(id(i, ny - 1));
+  for (int j = ny - 1; j > 0; --j) piece.boundary.push_back(id(0, j));
+  piece.corners = {id(0, 0), id(nx - 1, 0), id(nx - 1, ny - 1), id(0, ny - 1)};
+  return piece;
+}
+
+/// A sleeve: a grid piece of rest size (w, h) wrapped around the z axis at radius r, its
+/// left and right sides sewn by one seam (a.vertices = right side, b = left side, both
+/// bottom to top). The piece's x runs around the axis counter-clockwise, y along +z, so
+/// the garment faces point outward. Pattern vertex (i, j) of the regular grid sits at
+/// angle 2π i/(nx−1), height h j/(ny−1) (jittered interior vertices keep their grid slot).
+inline GarmentState sleeve(int nx, int ny, double r, double w, double h, double jitter,
+                           unsigned seed) {
+  Pattern pattern;
+  pattern.pieces.push_back(grid_piece(nx, ny, w, h, jitter, seed));
+  Seam seam;
+  seam.name = "axial seam";
+  seam.a.piece = seam.b.piece = 0;
+  for (int j = 0; j < ny; ++j) {
+    seam.a.vertices.push_back(j * nx + nx - 1);
+    seam.b.vertices.push_back(j * nx);
+  }
+  pattern.seams.push_back(seam);
+  GarmentState s{weld_pattern(pattern), VecX()};
+  s.x.resize(3 * s.garment.num_garment_vertices);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double a = 2.0 * std::numbers::pi * i / (nx - 1);
+      s.x.segment<3>(3 * s.garment.pattern_to_garment[j * nx + i]) =
+          Vec3(r * std::cos(a), r * std::sin(a), h * j / (ny - 1));
+    }
+  return s;
+}
+
+/// x moved by up to `amount` (m) per coordinate, reproducibly.
+inline VecX perturb(const VecX& x, double amount, unsigned seed) {
+  return x + amount * random_vector(x.size(), seed);
+}
+
+/// Rest positions moved by up to `amount` (m) per coordinate, reproducibly.
+inline Points2 perturb(const Points2& rest, double amount, unsigned seed) {
+  const VecX d = random_vector(rest.size(), seed);
+  return rest + amount * Eigen::Map<const Points2>(d.data(), rest.rows(), 2);
+}
+
+/// Relative errors of ∂T/∂x and ∂T/∂Xbar against fourth-order finite differences.
+struct GradientErrors {
+  double x = 0.0;
+  double rest = 0.0;
+  double norm_x = 0.0;
+  double norm_rest = 0.0;
+};
+
+inline GradientErrors gradient_errors(const DesignTerm& term, const VecX& x, const Points2& rest,
+                                      double hx, double hr) {
+  VecX dx = VecX::Zero(x.size());
+  VecX dr = VecX::Zero(rest.size());
+  term.add_gradient(DesignState{x, rest}, dx, dr);
+  GradientErrors e;
+  e.norm_x = dx.norm();
+  e.norm_rest = dr.norm();
+  auto fx = [&](const VecX& y) { return term.value(DesignState{y, rest}); };
+  e.x = check_gradient(fx, dx, x, hx).relative_error;
+  auto fr = [&](const VecX& r) {
+    const Points2 p = Eigen::Map<const Points2>(r.data(), rest.rows(), 2);
+    return term.value(DesignState{x, p});
+  };
+  const VecX r0 = Eigen::Map<const VecX>(rest.data(), rest.size());
+  e.rest = check_gradient(fr, dr, r0, hr).relative_error;
+  return e;
+}
+
+}  // namespace tightfit::test
