@@ -90,6 +90,10 @@ TEST(BodySpec, ErrorsNameTheFileAndJsonPath) {
   EXPECT_NE(error_of(json::parse(R"({"generator":"sphere","radius":0.1,"core":{"bones":["root"]}})")).find("go together"),
             std::string::npos);
   EXPECT_EQ(error_of(json::parse("[1, 2]")), "spec.json: /: expected an object, got array");
+  EXPECT_EQ(error_of(json::parse(R"({"mesh":"x.obj","core":{"radius":0.02}})")),
+            "spec.json: /core/radius: an embedded core radius needs a generator body");
+  EXPECT_EQ(error_of(json::parse(R"({"generator":"sphere","radius":0.1,"core":{"radius":0.1}})")),
+            "spec.json: /core/radius: the core radius must be positive and smaller than the body's");
 }
 
 TEST(BodySpec, BuildErrorsNameTheSpecOrTheMeshFile) {

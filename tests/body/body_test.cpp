@@ -49,6 +49,40 @@ TEST(BodyAcceptance, DefaultSphereVolumeWithinOnePercent) {
   EXPECT_NEAR(total_volume(body.volume) / sphere_volume(params), 1.0, 0.01);
 }
 
+TEST(BodyAcceptance, CylinderWithAnExactCoreForTheLameCheck) {
+  const BodySpec spec = parse_body_spec(nlohmann::json::parse(R"({
+      "generator": "cylinder", "radius": 0.05, "length": 0.2, "edge_length": 0.01,
+      "core": {"radius": 0.03}})"),
+                                        "", ".", "test");
+  ASSERT_FALSE(spec.volume.core.soft_tissue.has_value());
+  const TriMesh& core = spec.volume.core.embedded_core;
+  ASSERT_GT(core.num_vertices(), 0);
+  const Body body = build_body(spec);
+  expect_valid_body(body);
+  const int n = body.num_surface_vertices();
+  // The core's vertices follow the surface's, and exactly the core is pinned.
+  EXPECT_EQ(body.volume.vertices.middleRows(n, core.num_vertices()), core.vertices);
+  const CylinderParams core_params = cylinder_core(spec.cylinder, 0.03);
+  std::vector<char> pinned(body.num_vertices(), 0);
+  for (int v : body.pinned) pinned[v] = 1;
+  double pinned_volume = 0.0;
+  for (int t = 0; t < body.volume.num_tets(); ++t) {
+    bool all = true;
+    for (int c = 0; c < 4; ++c) all = all && pinned[body.volume.tets(t, c)];
+    if (all) pinned_volume += tet_volume(body.volume.vertices.row(body.volume.tets(t, 0)),
+                                         body.volume.vertices.row(body.volume.tets(t, 1)),
+                                         body.volume.vertices.row(body.volume.tets(t, 2)),
+                                         body.volume.vertices.row(body.volume.tets(t, 3)));
+  }
+  EXPECT_NEAR(pinned_volume, signed_volume(core), 1e-12);
+  EXPECT_NEAR(signed_volume(core) / cylinder_volume(core_params), 1.0, 0.01);
+  const SurfaceDistance core_distance(core);
+  for (int v = n; v < body.num_vertices(); ++v) {
+    const bool on_or_in = v < n + core.num_vertices() || core_distance.contains(body.volume.vertices.row(v));
+    EXPECT_EQ(pinned[v] != 0, on_or_in) << v;
+  }
+}
+
 /// The male legs, remeshed at 15 mm and tetrahedralized with the default bounds. Sliver
 /// threshold: every dihedral angle ≥ 7° (TetGen's target is 12°; the fixed boundary
 /// keeps it from reaching that everywhere: 9.3° measured).

@@ -70,6 +70,39 @@ TEST(Tetrahedralize, InteriorPointsFollowTheSurfaceVertices) {
   EXPECT_EQ(mesh.vertices.middleRows(surface.num_vertices(), 3), interior);
 }
 
+TEST(Tetrahedralize, InternalSurfaceBecomesInteriorFaces) {
+  const TriMesh surface = small_sphere();
+  SphereParams inner;
+  inner.radius = 0.025;
+  inner.edge_length = 0.01;
+  inner.fit_limit = false;
+  const TriMesh core = sphere_surface(inner);
+  Points3 interior(1, 3);
+  interior << 0.0, 0.0, 0.04;  // between the two surfaces
+  const TetMesh mesh = tetrahedralize_surface(surface, TetQuality(), interior, core);
+  const int n = surface.num_vertices();
+  EXPECT_EQ(mesh.vertices.topRows(n), surface.vertices);
+  EXPECT_EQ(mesh.vertices.middleRows(n, core.num_vertices()), core.vertices);
+  EXPECT_EQ(mesh.vertices.row(n + core.num_vertices()), interior.row(0));
+  EXPECT_TRUE(tet_mesh_problems(mesh).empty());
+  // Every core triangle is a face of two tets: one inside the core, one outside.
+  std::map<std::array<int, 3>, int> count;
+  for (int t = 0; t < mesh.num_tets(); ++t)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<int, 3> f;
+      int k = 0;
+      for (int c = 0; c < 4; ++c)
+        if (c != skip) f[k++] = mesh.tets(t, c);
+      std::sort(f.begin(), f.end());
+      ++count[f];
+    }
+  for (int f = 0; f < core.num_faces(); ++f) {
+    std::array<int, 3> face{core.faces(f, 0) + n, core.faces(f, 1) + n, core.faces(f, 2) + n};
+    std::sort(face.begin(), face.end());
+    EXPECT_EQ(count[face], 2) << f;
+  }
+}
+
 TEST(Tetrahedralize, QualityBoundsAreChecked) {
   TetQuality q;
   q.max_radius_edge = 0.9;

@@ -38,14 +38,14 @@ Body body_from_surface(const TriMesh& surface, const VolumeOptions& options, Bui
   const Points3 bone_points = bone_sample_points(options.core, distance);
   Body body;
   body.surface = surface;
-  body.volume = tetrahedralize_surface(surface, options.quality, bone_points);
+  body.volume = tetrahedralize_surface(surface, options.quality, bone_points, options.core.embedded_core);
   if (report) {
     report->bone_points = static_cast<int>(bone_points.rows());
     report->tetgen_switches = tetgen_switches(options.quality);
     report->add_stage("tetrahedralize", clock.lap());
   }
   body.pinned = pinned_core(body.volume, surface.num_vertices(), distance, options.core,
-                            static_cast<int>(bone_points.rows()));
+                            options.core.embedded_core.num_vertices() + static_cast<int>(bone_points.rows()));
   if (report) report->add_stage("core", clock.lap());
   return body;
 }

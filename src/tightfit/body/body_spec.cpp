@@ -1,6 +1,7 @@
 #include "tightfit/body/body_spec.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "tightfit/body/loop_limit.hpp"
 #include "tightfit/body/skeleton.hpp"
@@ -91,7 +92,20 @@ void parse_core(JsonFields& f, BodySpec& spec, const std::filesystem::path& base
   JsonFields& c = *object;
   const bool has_skeleton = c.has("skeleton"), has_bones = c.has("bones");
   if (has_skeleton != has_bones) c.fail("\"skeleton\" and \"bones\" go together");
-  if (c.has("soft_tissue") || !has_bones) core.soft_tissue = c.positive("soft_tissue", kDefaultSoftTissue);
+  const bool has_radius = c.has("radius");
+  if (c.has("soft_tissue") || (!has_bones && !has_radius))
+    core.soft_tissue = c.positive("soft_tissue", kDefaultSoftTissue);
+  if (has_radius) {
+    if (spec.source == BodySource::Mesh) c.fail("an embedded core radius needs a generator body", "radius");
+    const double radius = c.positive("radius");
+    try {
+      core.embedded_core = spec.source == BodySource::Cylinder
+                               ? cylinder_surface(cylinder_core(spec.cylinder, radius))
+                               : sphere_surface(sphere_core(spec.sphere, radius));
+    } catch (const std::invalid_argument& e) {
+      c.fail(e.what(), "radius");
+    }
+  }
   if (has_bones) {
     const std::string file = c.string("skeleton");
     const std::filesystem::path skeleton_path =

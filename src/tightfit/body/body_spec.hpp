@@ -22,7 +22,11 @@
 ///   "max_radius_edge": 1.4,           // TetGen radius-edge bound (≥ 1)
 ///   "min_dihedral_deg": 12,           // TetGen dihedral target (0..18)
 ///   "interior_edge_length": 0.03,     // tets ≤ a regular tet of this edge; default 2·edge_length
-///   "core": {"soft_tissue": 0.015}    // pin vertices deeper than this (default when no bones)
+///   "core": {"soft_tissue": 0.015}    // pin vertices deeper than this (the default
+///                                     // when neither bones nor radius are given)
+///   "core": {"radius": 0.03}          // generators only: an exact concentric core
+///                                     // (capsule/sphere) built into the tet mesh and
+///                                     // pinned with everything inside (generators.hpp)
 ///   "core": {"skeleton": "data/rig/mh_male_regular.joints.json",
 ///            "bones": ["upperleg02.L", "lowerleg01.L"], "bone_radius": 0.01,
 ///            "soft_tissue": 0.02}     // optional with bones: the union is pinned

@@ -255,6 +255,35 @@ TriMesh sphere_surface(const SphereParams& p, LimitFitResult* fit) {
   return mesh;
 }
 
+namespace {
+double core_edge(double body_edge, double body_radius, double core_radius) {
+  if (!(core_radius > 0.0 && core_radius < body_radius))
+    throw std::invalid_argument("the core radius must be positive and smaller than the body's");
+  return std::min(resolved_edge(body_edge, body_radius), 2.0 * kPi * core_radius / 32.0);
+}
+}  // namespace
+
+CylinderParams cylinder_core(const CylinderParams& body, double core_radius) {
+  CylinderParams core = body;
+  core.edge_length = core_edge(body.edge_length, body.radius, core_radius);
+  core.radius = core_radius;
+  core.fit_limit = false;
+  if (body.caps == CapStyle::Flat) {
+    core.length = body.length - 2.0 * (body.radius - core_radius);
+    if (!(core.length > 0.0))
+      throw std::invalid_argument("the flat-capped core would have no length: use a larger core radius");
+  }
+  return core;
+}
+
+SphereParams sphere_core(const SphereParams& body, double core_radius) {
+  SphereParams core = body;
+  core.edge_length = core_edge(body.edge_length, body.radius, core_radius);
+  core.radius = core_radius;
+  core.fit_limit = false;
+  return core;
+}
+
 Vec3 project_to_cylinder(const CylinderParams& p, const Vec3& x) {
   const Frame frame = make_frame(p.axis);
   const double half = 0.5 * p.length;

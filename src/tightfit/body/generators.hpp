@@ -64,6 +64,16 @@ TriMesh cylinder_surface(const CylinderParams& params, LimitFitResult* fit = nul
 /// valence 5, all others valence 6.
 TriMesh sphere_surface(const SphereParams& params, LimitFitResult* fit = nullptr);
 
+/// The concentric core of a generator body with the uniform soft-tissue thickness
+/// `radius − core_radius` (0 < core_radius < radius): a capsule of the same length for
+/// round caps, a cylinder shortened by twice the thickness for flat caps (which must
+/// leave a positive length), a concentric sphere. Not limit-fitted (it is not a garment
+/// surface); edge length min(h, 2π core_radius / 32) (volume within 1 %). Use it as
+/// CoreOptions::embedded_core (an exact bone for the Lamé check of DESIGN.md §7).
+/// Throws std::invalid_argument for a core radius out of range.
+CylinderParams cylinder_core(const CylinderParams& body, double core_radius);
+SphereParams sphere_core(const SphereParams& body, double core_radius);
+
 /// Closest point of the analytic capped cylinder's surface to `p` (m).
 Vec3 project_to_cylinder(const CylinderParams& params, const Vec3& p);
 /// Closest point of the analytic sphere to `p` (m); the centre maps to an arbitrary pole.

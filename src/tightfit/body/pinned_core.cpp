@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "tightfit/common/error.hpp"
 
@@ -31,15 +32,18 @@ Points3 bone_sample_points(const CoreOptions& options, const SurfaceDistance& su
 
 std::vector<int> pinned_core(const TetMesh& volume, int num_surface_vertices,
                              const SurfaceDistance& surface, const CoreOptions& options,
-                             int num_bone_samples) {
+                             int num_always_pinned) {
   if (options.soft_tissue && !(*options.soft_tissue > 0.0))
     throw InputError(options.source, "the soft-tissue thickness must be positive");
   if (!(options.bone_radius >= 0.0)) throw InputError(options.source, "the bone radius must be non-negative");
   std::vector<int> pinned;
   double deepest = 0.0;
+  const std::optional<SurfaceDistance> core =
+      options.embedded_core.num_faces() > 0 ? std::optional<SurfaceDistance>(std::in_place, options.embedded_core)
+                                            : std::nullopt;
   for (int v = num_surface_vertices; v < volume.num_vertices(); ++v) {
     const Vec3 p = volume.vertices.row(v);
-    bool pin = v < num_surface_vertices + num_bone_samples;
+    bool pin = v < num_surface_vertices + num_always_pinned || (core && core->contains(p));
     if (options.soft_tissue) {
       const double depth = surface.distance(p);
       deepest = std::max(deepest, depth);

@@ -13,8 +13,9 @@
 namespace tightfit {
 
 /// Which interior vertices are pinned: the union of
-///  * every vertex deeper than `soft_tissue` below the surface (when set), and
-///  * every vertex within `bone_radius` of one of `bones`.
+///  * every vertex deeper than `soft_tissue` below the surface (when set),
+///  * every vertex within `bone_radius` of one of `bones` (and their samples), and
+///  * the vertices of `embedded_core` and every vertex inside it.
 /// Surface vertices are never pinned.
 struct CoreOptions {
   std::optional<double> soft_tissue;   ///< soft-tissue thickness (m), > 0
@@ -26,6 +27,10 @@ struct CoreOptions {
   /// Samples closer than this to the surface (m) are not inserted (they would make
   /// flat tets next to the surface).
   double bone_sample_clearance = 0.0;
+  /// A closed, outward-oriented surface strictly inside the body (e.g. a bone, or the
+  /// concentric core of a generator body) that is built into the tet mesh as internal
+  /// faces, so the pinned region has exactly this boundary. Empty = none.
+  TriMesh embedded_core;
   /// Name used in error messages (e.g. "spec.json: /core").
   std::string source = "core";
 };
@@ -36,11 +41,12 @@ struct CoreOptions {
 Points3 bone_sample_points(const CoreOptions& options, const SurfaceDistance& surface);
 
 /// The pinned vertices (sorted, unique) of `volume`, whose first `num_surface_vertices`
-/// vertices are the surface, followed by `num_bone_samples` bone samples (always pinned).
-/// Throws InputError (source `options.source`) if no vertex is pinned, saying how deep
-/// the deepest vertex is.
+/// vertices are the surface, followed by `num_always_pinned` vertices that are pinned
+/// in any case (the embedded core's vertices and the bone samples, see
+/// tetrahedralize_surface). Throws InputError (source `options.source`) if no vertex is
+/// pinned, saying how deep the deepest vertex is.
 std::vector<int> pinned_core(const TetMesh& volume, int num_surface_vertices,
                              const SurfaceDistance& surface, const CoreOptions& options,
-                             int num_bone_samples = 0);
+                             int num_always_pinned = 0);
 
 }  // namespace tightfit

@@ -80,22 +80,27 @@ void check_boundary(const Tetrahedra& tets, const Triangles& faces) {
 }  // namespace
 
 TetMesh tetrahedralize_surface(const TriMesh& surface, const TetQuality& quality,
-                               const Points3& interior_points) {
+                               const Points3& interior_points, const TriMesh& internal_surface) {
   const std::string switches = tetgen_switches(quality);
   const int n_surface = surface.num_vertices();
-  const int n_fixed = n_surface + static_cast<int>(interior_points.rows());
+  const int n_internal = internal_surface.num_vertices();
+  // Input vertices in their final order: surface, internal surface, interior points.
+  Points3 fixed(n_surface + n_internal + interior_points.rows(), 3);
+  fixed << surface.vertices, internal_surface.vertices, interior_points;
+  Triangles facets(surface.num_faces() + internal_surface.num_faces(), 3);
+  facets << surface.faces, (internal_surface.faces.array() + n_surface).matrix();
+  const int n_fixed = static_cast<int>(fixed.rows());
 
   tetgenio in;
   in.firstnumber = 0;
   in.numberofpoints = n_fixed;
   in.pointlist = new REAL[3 * static_cast<size_t>(n_fixed)];
   for (int i = 0; i < n_fixed; ++i)
-    for (int c = 0; c < 3; ++c)
-      in.pointlist[3 * i + c] =
-          i < n_surface ? surface.vertices(i, c) : interior_points(i - n_surface, c);
-  in.numberoffacets = surface.num_faces();
-  in.facetlist = new tetgenio::facet[static_cast<size_t>(surface.num_faces())];
-  for (int f = 0; f < surface.num_faces(); ++f) {
+    for (int c = 0; c < 3; ++c) in.pointlist[3 * i + c] = fixed(i, c);
+  const int n_facets = static_cast<int>(facets.rows());
+  in.numberoffacets = n_facets;
+  in.facetlist = new tetgenio::facet[static_cast<size_t>(n_facets)];
+  for (int f = 0; f < n_facets; ++f) {
     tetgenio::facet& facet = in.facetlist[f];
     tetgenio::init(&facet);
     facet.numberofpolygons = 1;
@@ -103,7 +108,7 @@ TetMesh tetrahedralize_surface(const TriMesh& surface, const TetQuality& quality
     tetgenio::init(&facet.polygonlist[0]);
     facet.polygonlist[0].numberofvertices = 3;
     facet.polygonlist[0].vertexlist = new int[3];
-    for (int c = 0; c < 3; ++c) facet.polygonlist[0].vertexlist[c] = surface.faces(f, c);
+    for (int c = 0; c < 3; ++c) facet.polygonlist[0].vertexlist[c] = facets(f, c);
   }
 
   tetgenio out;
@@ -171,9 +176,7 @@ TetMesh tetrahedralize_surface(const TriMesh& surface, const TetQuality& quality
 
   // The Body invariant: surface vertex i == volume vertex i, and the boundary is the surface.
   for (int i = 0; i < n_fixed; ++i) {
-    const Vec3 expected = i < n_surface ? Vec3(surface.vertices.row(i))
-                                        : Vec3(interior_points.row(i - n_surface));
-    if (Vec3(mesh.vertices.row(i)) != expected)
+    if (mesh.vertices.row(i) != fixed.row(i))
       throw SolverError("tetrahedralization: volume vertex " + std::to_string(i) +
                         " is not input vertex " + std::to_string(i));
   }

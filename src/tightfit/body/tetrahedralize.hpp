@@ -29,16 +29,21 @@ double regular_tet_volume(double edge);
 std::string tetgen_switches(const TetQuality& quality);
 
 /// Tetrahedralizes the volume bounded by the closed, outward-oriented, non-self-
-/// intersecting triangle mesh `surface`. `interior_points` (k×3, m; may be empty) are
-/// extra vertices strictly inside (e.g. samples of bone segments); they become volume
-/// vertices n_surface .. n_surface+k−1 in order. Further vertices are TetGen's interior
-/// Steiner points. Tets are returned positively oriented.
+/// intersecting triangle mesh `surface`. Optional constraints inside it:
+///  * `interior_points` (k×3, m): extra vertices strictly inside (e.g. samples of bone
+///    segments);
+///  * `internal_surface`: a closed surface strictly inside (e.g. an embedded bone) whose
+///    triangles become faces of the tet mesh (kept exactly, like the surface).
+/// Volume vertices are, in order: the n_surface surface vertices, the internal surface's
+/// vertices, the interior points, then TetGen's interior Steiner points. Tets are
+/// returned positively oriented.
 ///
 /// Throws std::invalid_argument for bad quality bounds, InputError (source "surface")
 /// when TetGen rejects the surface (self-intersection, tiny features, close facets) and
 /// SolverError on other TetGen failures or when the invariant above cannot be
 /// established (checked at run time, also in Release builds).
 TetMesh tetrahedralize_surface(const TriMesh& surface, const TetQuality& quality,
-                               const Points3& interior_points = Points3(0, 3));
+                               const Points3& interior_points = Points3(0, 3),
+                               const TriMesh& internal_surface = TriMesh());
 
 }  // namespace tightfit
