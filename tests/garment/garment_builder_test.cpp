@@ -4,10 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 
 #include "garment/garment_test_meshes.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/garment/pattern_svg.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
 
 namespace tightfit {
 namespace {
@@ -96,7 +99,16 @@ TEST(BuildGarment, SleeveOnCylinder) {
     }
     // Both cuffs pinned: two pinned runs per piece.
     EXPECT_EQ(b.garment.pattern.pinned.size(), 4u);
-    write_pattern_svg(std::string("/tmp/sleeve_") + (on_limit ? "limit" : "control") + ".svg", b.garment.pattern);
+    // The debugging SVG: one group per piece, 1:1 in millimetres.
+    const std::string svg = pattern_svg(b.garment.pattern);
+    EXPECT_NE(svg.find("<g id=\"piece-front\">"), std::string::npos);
+    EXPECT_NE(svg.find("<g id=\"piece-back\">"), std::string::npos);
+    EXPECT_NE(svg.find(">front/back#2</text>"), std::string::npos);
+    EXPECT_NE(svg.find("mm\" height=\""), std::string::npos);
+    const std::string file = ::testing::TempDir() + "/sleeve.svg";
+    write_pattern_svg(file, b.garment.pattern);
+    std::ifstream in(file);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), svg);
   }
 }
 
@@ -163,6 +175,74 @@ TEST(BuildGarment, RejectsPanelsThatOverlapThemselvesWhenFlattened) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("bag.json: panel \"bag\" overlaps itself when flattened"),
               std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tightfit
+
+namespace tightfit {
+namespace {
+
+/// Writes the rules layout as an OBJ the way Blender exports separate objects: every
+/// panel with its own copies of the vertices.
+void write_blender_style_obj(const std::string& file, const Layout& layout) {
+  ObjGroups obj;
+  std::vector<Vec3> v;
+  std::vector<std::array<int, 3>> f;
+  for (size_t p = 0; p < layout.panels.size(); ++p) {
+    const LayoutPanel& panel = layout.panels[p];
+    const int base = static_cast<int>(v.size());
+    for (int i = 0; i < panel.mesh.num_vertices(); ++i) v.push_back(panel.mesh.vertices.row(i).transpose());
+    for (int t = 0; t < panel.mesh.num_faces(); ++t) {
+      f.push_back({base + panel.mesh.faces(t, 0), base + panel.mesh.faces(t, 1), base + panel.mesh.faces(t, 2)});
+      obj.face_group.push_back(static_cast<int>(p));
+    }
+    obj.group_names.push_back(panel.name);
+  }
+  obj.mesh.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
+  for (size_t i = 0; i < v.size(); ++i) obj.mesh.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  obj.mesh.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (size_t i = 0; i < f.size(); ++i) obj.mesh.faces.row(static_cast<Eigen::Index>(i)) << f[i][0], f[i][1], f[i][2];
+  write_obj_with_groups(file, obj);
+}
+
+TEST(BuildGarment, ObjGroupLayoutGivesTheSamePiecesAsTheRules) {
+  const TriMesh body = test::closed_cylinder(0.05, 0.5, 32, 21);
+  const LimitSurface limit(body);
+  PatternOptions options;
+  options.edge_length = 0.01;
+  options.flatten_limit_surface = false;  // identical panels in, identical pieces out
+  const LayoutSpec rules = spec_from(kSleeve);
+  const GarmentBuild a = build_garment(body, limit, rules, options);
+
+  const std::string dir = ::testing::TempDir();
+  write_layout_obj(dir + "/sleeve_layout.obj", a.layout);
+  write_blender_style_obj(dir + "/sleeve_blender.obj", a.layout);
+  for (const char* file : {"sleeve_layout.obj", "sleeve_blender.obj"}) {
+    auto j = nlohmann::json::parse(R"({"pinned": [
+        {"name": "cuff", "on_plane": {"point": [0, 0.1, 0], "normal": [0, 1, 0]}},
+        {"name": "top", "nearest": [0.05, 0.41, 0]}]})");
+    j["mesh"] = file;
+    JsonFields f(j, dir + "/sleeve.json", "");
+    const GarmentBuild b = build_garment(body, limit, parse_layout_spec(f, dir), options);
+    ASSERT_EQ(b.garment.pattern.pieces.size(), a.garment.pattern.pieces.size()) << file;
+    for (size_t k = 0; k < a.garment.pattern.pieces.size(); ++k) {
+      const PatternPiece& pa = a.garment.pattern.pieces[k];
+      const PatternPiece& pb = b.garment.pattern.pieces[k];
+      EXPECT_EQ(pa.name, pb.name);
+      ASSERT_EQ(pa.rest.rows(), pb.rest.rows()) << file;
+      ASSERT_EQ(pa.triangles.rows(), pb.triangles.rows()) << file;
+      EXPECT_LT((pa.rest - pb.rest).cwiseAbs().maxCoeff(), 1e-9) << file;
+      EXPECT_TRUE(pa.triangles == pb.triangles) << file;
+      EXPECT_EQ(pa.corners, pb.corners) << file;
+    }
+    ASSERT_EQ(b.garment.pattern.seams.size(), a.garment.pattern.seams.size());
+    for (size_t s = 0; s < a.garment.pattern.seams.size(); ++s)
+      EXPECT_EQ(a.garment.pattern.seams[s].a.vertices, b.garment.pattern.seams[s].a.vertices);
+    EXPECT_EQ(b.garment.pinned, a.garment.pinned) << file;
+    EXPECT_EQ(b.garment.num_garment_vertices, a.garment.num_garment_vertices);
+    EXPECT_LT((b.positions - a.positions).cwiseAbs().maxCoeff(), 1e-9);
   }
 }
 

@@ -97,15 +97,22 @@ TEST(Layout, RejectsPanelsThatAreNotDiscs) {
   const std::string tube = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f, "")); });
   EXPECT_NE(tube.find("tube.json: /panels/0: panel \"tube\" is not a disc: it has 2 boundary loops"),
             std::string::npos) << tube;
-  // A divider that cuts the front panel into two separate parts.
-  j = nlohmann::json::parse(kSleeve);
-  j["dividers"].push_back(nlohmann::json::parse(R"({"name": "waist", "point": [0, 0.2, 0], "normal": [0, 1, 0]})"));
-  j["panels"] = nlohmann::json::parse(
-      R"([{"name": "front", "sides": ["+side"]}, {"name": "back_low", "sides": ["-side", "-waist"]},
-          {"name": "back_high", "sides": ["-side", "+waist"]}, {"name": "nothing", "sides": ["+side", "-waist"]}])");
-  JsonFields g(j, "parts.json", "");
-  const std::string parts = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(g, "")); });
-  EXPECT_NE(parts.find("overlap"), std::string::npos) << parts;
+  // A group layout whose "front" panel falls apart into two parts.
+  const Layout sleeve = layout_from_rules(body, spec_from(kSleeve));
+  std::vector<int> groups = sleeve.face_panel;
+  for (int t = 0; t < sleeve.surface.num_faces(); ++t) {
+    const double y = (sleeve.surface.vertices.row(sleeve.surface.faces(t, 0)) +
+                      sleeve.surface.vertices.row(sleeve.surface.faces(t, 1)) +
+                      sleeve.surface.vertices.row(sleeve.surface.faces(t, 2))).y() / 3.0;
+    if (y > 0.15 && y < 0.2) groups[t] = 1;  // a band around the middle goes to "back"
+  }
+  auto m = nlohmann::json::parse(R"({"mesh": "parts.obj"})");
+  JsonFields g(m, "parts.json", "");
+  const LayoutSpec mesh_spec = parse_layout_spec(g, "");
+  const std::string parts = expect_input_error(
+      [&] { layout_from_groups(sleeve.surface, groups, {"front", "back"}, mesh_spec, "parts.obj"); });
+  EXPECT_NE(parts.find("panel \"front\" is not a disc: it falls apart into separate parts"), std::string::npos)
+      << parts;
 }
 
 TEST(Layout, RejectsClosedSeamsAndEmptyPanels) {
@@ -190,6 +197,24 @@ TEST(Layout, GroupLayoutMatchesRuleLayoutAndReportsGapsAndOverlaps) {
   const std::string overlap =
       expect_input_error([&] { layout_from_groups(doubled, doubled_groups, names, spec, "o.obj"); });
   EXPECT_NE(overlap.find("o.obj: an overlap"), std::string::npos) << overlap;
+  // Panels whose boundaries run side by side without sharing vertices (a sloppy export).
+  TriMesh apart = rules.surface;
+  std::vector<int> moved(apart.num_vertices(), -1);
+  for (int t = 0; t < apart.num_faces(); ++t) {
+    if (rules.face_panel[t] != 1) continue;
+    for (int c = 0; c < 3; ++c) {
+      int& v = moved[apart.faces(t, c)];
+      if (v < 0) {
+        v = apart.num_vertices();
+        apart.vertices.conservativeResize(v + 1, 3);
+        apart.vertices.row(v) = rules.surface.vertices.row(apart.faces(t, c)) * (1.0 + 2e-5);
+      }
+      apart.faces(t, c) = v;
+    }
+  }
+  const std::string apart_error =
+      expect_input_error([&] { layout_from_groups(apart, rules.face_panel, names, spec, "a.obj"); });
+  EXPECT_NE(apart_error.find("a.obj: a gap between panels"), std::string::npos) << apart_error;
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 #include <cstdio>
 
 #include "tightfit/garment/garment_builder.hpp"
-#include "tightfit/garment/pattern_svg.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 
 namespace tightfit {

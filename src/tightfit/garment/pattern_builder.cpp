@@ -273,7 +273,7 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     for (size_t i = 0; i < boundary_points.size(); ++i) polygon.row(static_cast<Eigen::Index>(i)) = boundary_points[i].transpose();
     PieceMesh mesh;
     try {
-      mesh = mesh_piece(polygon, h, options.lloyd_iterations);
+      mesh = mesh_piece(polygon, h, options.smoothing_iterations);
     } catch (const std::invalid_argument& e) {
       throw InputError(layout.source, "piece \"" + panel.name + "\" cannot be meshed (" + e.what() +
                                           "); try a smaller edge_length");

@@ -35,8 +35,8 @@ PatternOptions parse_pattern_options(JsonFields& f) {
   }
   o.flatten.max_iterations = f.integer("arap_iterations", o.flatten.max_iterations);
   if (o.flatten.max_iterations < 0) f.fail("must not be negative", "arap_iterations");
-  o.lloyd_iterations = f.integer("lloyd_iterations", o.lloyd_iterations);
-  if (o.lloyd_iterations < 0) f.fail("must not be negative", "lloyd_iterations");
+  o.smoothing_iterations = f.integer("smoothing_iterations", o.smoothing_iterations);
+  if (o.smoothing_iterations < 0) f.fail("must not be negative", "smoothing_iterations");
   o.flatten_limit_surface = f.boolean("flatten_limit_surface", o.flatten_limit_surface);
   f.finish();
   return o;

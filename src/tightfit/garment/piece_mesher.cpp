@@ -1,17 +1,14 @@
 #include "tightfit/garment/piece_mesher.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Delaunay_mesh_face_base_2.h>
-#include <CGAL/Delaunay_mesh_size_criteria_2.h>
-#include <CGAL/Delaunay_mesh_vertex_base_2.h>
-#include <CGAL/Delaunay_mesher_no_edge_refinement_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
-#include <CGAL/lloyd_optimize_mesh_2.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <map>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -20,41 +17,50 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 struct VertexInfo {
-  int boundary = -1;  // index into the boundary polygon, −1 for interior vertices
+  int id = -1;
 };
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexInfo, K, CGAL::Delaunay_mesh_vertex_base_2<K>>;
-using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexInfo, K>;
+struct FaceInfo {
+  int nesting = -1;  // number of constrained edges crossed from the infinite face
+};
+using Fb = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K, CGAL::Constrained_triangulation_face_base_2<K>>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
-using Criteria = CGAL::Delaunay_mesh_size_criteria_2<Cdt>;
-using Mesher = CGAL::Delaunay_mesher_no_edge_refinement_2<Cdt, Criteria>;
 
-double polygon_area(const Points2& p) {
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+double polygon_area(const std::vector<Vec2>& p) {
   double a = 0.0;
-  const Eigen::Index n = p.rows();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Index j = (i + 1) % n;
-    a += p(i, 0) * p(j, 1) - p(j, 0) * p(i, 1);
-  }
+  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
   return 0.5 * a;
 }
 
-}  // namespace
+bool inside_polygon(const std::vector<Vec2>& p, const Vec2& q) {
+  bool in = false;
+  for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+    if ((p[i].y() > q.y()) != (p[j].y() > q.y()) &&
+        q.x() < (p[j].x() - p[i].x()) * (q.y() - p[i].y()) / (p[j].y() - p[i].y()) + p[i].x())
+      in = !in;
+  }
+  return in;
+}
 
-PieceMesh mesh_piece(const Points2& boundary, double edge_length, int lloyd_iterations) {
-  const int nb = static_cast<int>(boundary.rows());
-  if (nb < 3) throw std::invalid_argument("mesh_piece: a boundary needs at least 3 vertices");
-  if (!(edge_length > 0)) throw std::invalid_argument("mesh_piece: edge length must be positive");
-  if (polygon_area(boundary) <= 0)
-    throw std::invalid_argument("mesh_piece: the boundary is not counter-clockwise");
+double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double t = std::clamp((q - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (a + t * ab - q).norm();
+}
 
+/// Constrained Delaunay triangulation of the boundary and the interior points; the
+/// triangles inside the polygon, each rotated to start at its smallest index, sorted.
+std::vector<std::array<int, 3>> triangulate(const std::vector<Vec2>& boundary, const std::vector<Vec2>& interior) {
+  const int nb = static_cast<int>(boundary.size());
   Cdt cdt;
   std::vector<Cdt::Vertex_handle> handles(nb);
   for (int i = 0; i < nb; ++i) {
-    handles[i] = cdt.insert(K::Point_2(boundary(i, 0), boundary(i, 1)));
-    if (handles[i]->info().boundary >= 0)
-      throw std::invalid_argument("mesh_piece: two boundary vertices coincide");
-    handles[i]->info().boundary = i;
+    handles[i] = cdt.insert(K::Point_2(boundary[i].x(), boundary[i].y()));
+    if (handles[i]->info().id >= 0) throw std::invalid_argument("mesh_piece: two boundary vertices coincide");
+    handles[i]->info().id = i;
   }
   try {
     for (int i = 0; i < nb; ++i) cdt.insert_constraint(handles[i], handles[(i + 1) % nb]);
@@ -63,37 +69,117 @@ PieceMesh mesh_piece(const Points2& boundary, double edge_length, int lloyd_iter
   }
   if (static_cast<int>(cdt.number_of_vertices()) != nb)
     throw std::invalid_argument("mesh_piece: the boundary touches itself");
-
-  Mesher mesher(cdt, Criteria(0.125, edge_length));
-  mesher.init(false);  // no seeds: faces inside the polygon are the domain
-  mesher.refine_mesh();
-  if (lloyd_iterations > 0)
-    CGAL::lloyd_optimize_mesh_2(cdt, CGAL::parameters::max_iteration_number = lloyd_iterations);
-
-  // Collect the domain: boundary vertices first, then interior vertices in order of use.
-  std::map<Cdt::Vertex_handle, int> index;
-  for (int i = 0; i < nb; ++i) index[handles[i]] = i;
-  std::vector<Vec2> interior;
+  for (size_t i = 0; i < interior.size(); ++i) {
+    const auto v = cdt.insert(K::Point_2(interior[i].x(), interior[i].y()));
+    v->info().id = nb + static_cast<int>(i);
+  }
+  // The domain: faces reached from the infinite face by crossing one constrained edge
+  // (exact, unlike testing face centroids, which fails for slivers along straight runs).
+  std::vector<Cdt::Face_handle> front{cdt.infinite_face()}, next;
+  cdt.infinite_face()->info().nesting = 0;
+  for (int level = 0; !front.empty(); ++level) {
+    std::vector<Cdt::Face_handle> queue = front;
+    next.clear();
+    while (!queue.empty()) {
+      const Cdt::Face_handle f = queue.back();
+      queue.pop_back();
+      for (int i = 0; i < 3; ++i) {
+        const Cdt::Face_handle g = f->neighbor(i);
+        if (g->info().nesting >= 0) continue;
+        if (cdt.is_constrained(Cdt::Edge(f, i))) {
+          next.push_back(g);
+        } else {
+          g->info().nesting = level;
+          queue.push_back(g);
+        }
+      }
+    }
+    front.clear();
+    for (const auto& g : next)
+      if (g->info().nesting < 0) {
+        g->info().nesting = level + 1;
+        front.push_back(g);
+      }
+  }
   std::vector<std::array<int, 3>> tris;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-    if (!f->is_in_domain()) continue;
-    std::array<int, 3> t;
-    for (int c = 0; c < 3; ++c) {
-      const auto v = f->vertex(c);
-      auto it = index.find(v);
-      if (it == index.end()) {
-        it = index.emplace(v, nb + static_cast<int>(interior.size())).first;
-        interior.emplace_back(v->point().x(), v->point().y());
-      }
-      t[c] = it->second;
-    }
+    if (f->info().nesting % 2 != 1) continue;
+    std::array<int, 3> t{f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
     tris.push_back(t);
   }
+  std::sort(tris.begin(), tris.end());
+  return tris;
+}
+
+}  // namespace
+
+PieceMesh mesh_piece(const Points2& boundary_points, double h, int smoothing_iterations) {
+  const int nb = static_cast<int>(boundary_points.rows());
+  if (nb < 3) throw std::invalid_argument("mesh_piece: a boundary needs at least 3 vertices");
+  if (!(h > 0)) throw std::invalid_argument("mesh_piece: edge length must be positive");
+  std::vector<Vec2> boundary(nb);
+  for (int i = 0; i < nb; ++i) boundary[i] = boundary_points.row(i).transpose();
+  if (polygon_area(boundary) <= 0) throw std::invalid_argument("mesh_piece: the boundary is not counter-clockwise");
+
+  // Lattice points inside, at least h/2 from the boundary.
+  Vec2 lo = boundary[0], hi = boundary[0];
+  for (const Vec2& p : boundary) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  std::vector<Vec2> interior;
+  const double dy = h * std::sqrt(3.0) / 2.0;
+  for (int row = 0; lo.y() + (row + 0.5) * dy < hi.y(); ++row) {
+    const double y = lo.y() + (row + 0.5) * dy;
+    for (double x = lo.x() + (row % 2 == 0 ? 0.5 : 1.0) * h; x < hi.x(); x += h) {
+      const Vec2 q(x, y);
+      if (!inside_polygon(boundary, q)) continue;
+      double d = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < nb && d >= 0.5 * h; ++i) d = std::min(d, segment_distance(q, boundary[i], boundary[(i + 1) % nb]));
+      if (d >= 0.5 * h) interior.push_back(q);
+    }
+  }
+
+  std::vector<std::array<int, 3>> tris = triangulate(boundary, interior);
+  auto point = [&](int i) -> const Vec2& { return i < nb ? boundary[i] : interior[i - nb]; };
+  for (int it = 0; it < smoothing_iterations && !interior.empty(); ++it) {
+    // Optimal-Delaunay step: each interior vertex to Σ|T| c_T / Σ|T| over its triangles.
+    std::vector<Vec2> sum(interior.size(), Vec2::Zero());
+    std::vector<double> weight(interior.size(), 0.0);
+    std::vector<std::vector<int>> star(interior.size());
+    for (size_t t = 0; t < tris.size(); ++t) {
+      const Vec2 a = point(tris[t][0]), b = point(tris[t][1]), c = point(tris[t][2]);
+      const double area2 = cross(b - a, c - a);
+      if (area2 <= 0) continue;
+      const Vec2 ab = b - a, ac = c - a;
+      const Vec2 cc = a + (ac.squaredNorm() * Vec2(ab.y(), -ab.x()) - ab.squaredNorm() * Vec2(ac.y(), -ac.x())) /
+                              (-2.0 * cross(ab, ac));
+      for (int k = 0; k < 3; ++k)
+        if (tris[t][k] >= nb) {
+          sum[tris[t][k] - nb] += 0.5 * area2 * cc;
+          weight[tris[t][k] - nb] += 0.5 * area2;
+          star[tris[t][k] - nb].push_back(static_cast<int>(t));
+        }
+    }
+    for (size_t v = 0; v < interior.size(); ++v) {
+      if (weight[v] <= 0) continue;
+      const Vec2 old = interior[v];
+      interior[v] = sum[v] / weight[v];
+      bool folds = false;
+      for (int t : star[v]) {
+        const Vec2 a = point(tris[t][0]), b = point(tris[t][1]), c = point(tris[t][2]);
+        if (cross(b - a, c - a) <= 1e-3 * h * h) folds = true;
+      }
+      if (folds) interior[v] = old;
+    }
+    tris = triangulate(boundary, interior);
+  }
+
   PieceMesh out;
   out.vertices.resize(nb + static_cast<Eigen::Index>(interior.size()), 2);
-  out.vertices.topRows(nb) = boundary;
-  for (size_t i = 0; i < interior.size(); ++i)
-    out.vertices.row(nb + static_cast<Eigen::Index>(i)) = interior[i].transpose();
+  for (int i = 0; i < nb; ++i) out.vertices.row(i) = boundary_points.row(i);
+  for (size_t i = 0; i < interior.size(); ++i) out.vertices.row(nb + static_cast<Eigen::Index>(i)) = interior[i].transpose();
   out.triangles.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (size_t i = 0; i < tris.size(); ++i)
     for (int c = 0; c < 3; ++c) out.triangles(static_cast<Eigen::Index>(i), c) = tris[i][c];

@@ -11,13 +11,15 @@ struct PieceMesh {
 };
 
 /// Meshes the interior of the simple counter-clockwise polygon `boundary` (k×2, m)
-/// without adding or moving boundary vertices: constrained Delaunay triangulation,
-/// Delaunay refinement of the interior (CGAL Mesh_2 without edge refinement) to edges
-/// of about `edge_length` and angles of at least ~20° where the boundary allows, then
-/// `lloyd_iterations` Lloyd (centroidal Voronoi) smoothing steps of interior vertices.
-/// Throws std::invalid_argument for fewer than 3 boundary vertices or a boundary that
-/// is not a simple counter-clockwise polygon.
-PieceMesh mesh_piece(const Points2& boundary, double edge_length, int lloyd_iterations = 20);
+/// without adding or moving boundary vertices. Interior points start on an equilateral
+/// lattice of spacing `edge_length` (those closer than half a spacing to the boundary
+/// are dropped), are connected by a constrained Delaunay triangulation (CGAL), and are
+/// then moved by `smoothing_iterations` steps of optimal-Delaunay smoothing (each
+/// vertex to the area-weighted mean of its triangles' circumcentres, unless that would
+/// fold a triangle), re-triangulating after each step. The result is deterministic: it
+/// depends only on the input numbers. Throws std::invalid_argument for fewer than 3
+/// boundary vertices or a boundary that is not a simple counter-clockwise polygon.
+PieceMesh mesh_piece(const Points2& boundary, double edge_length, int smoothing_iterations = 10);
 
 /// Minimum interior angle (degrees) over the triangles; 0 for an empty mesh.
 double min_angle_deg(const Points2& vertices, const Triangles& triangles);
