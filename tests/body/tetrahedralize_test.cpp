@@ -126,5 +126,15 @@ TEST(Tetrahedralize, SelfIntersectingSurfaceIsAnInputError) {
   EXPECT_THROW(tetrahedralize_surface(both, TetQuality()), InputError);
 }
 
+TEST(Tetrahedralize, ConstraintsOutsideTheSurfaceAreInputErrors) {
+  const TriMesh surface = small_sphere();
+  Points3 outside(1, 3);
+  outside << 0.2, 0.0, 0.0;
+  EXPECT_THROW(tetrahedralize_surface(surface, TetQuality(), outside), InputError);
+  TriMesh shifted = surface;  // crosses the surface
+  shifted.vertices.col(0).array() += 0.03;
+  EXPECT_THROW(tetrahedralize_surface(surface, TetQuality(), Points3(0, 3), shifted), InputError);
+}
+
 }  // namespace
 }  // namespace tightfit

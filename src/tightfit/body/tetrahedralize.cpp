@@ -13,7 +13,9 @@
 
 #include <Eigen/Geometry>
 
+#include "tightfit/body/surface_distance.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/geometry/mesh_validation.hpp"
 
 namespace tightfit {
 
@@ -77,6 +79,36 @@ void check_boundary(const Tetrahedra& tets, const Triangles& faces) {
                       std::to_string(input.size()) + " faces)");
 }
 
+/// TetGen 1.5.0 frees its memory twice when it stops on bad input (terminatetetgen
+/// frees, then the unwinding destructor frees again) and crashes, so everything it would
+/// reject is checked here first.
+void check_input(const TriMesh& surface, const TriMesh& internal, const Points3& interior,
+                 const Triangles& facets, const Points3& fixed) {
+  std::vector<std::string> problems = surface_problems(surface);
+  if (!problems.empty()) throw InputError("surface", problems.front());
+  if (internal.num_faces() == 0 && interior.rows() == 0) return;
+  const SurfaceDistance outer(surface);
+  if (internal.num_faces() > 0) {
+    problems = surface_problems(internal);
+    if (!problems.empty()) throw InputError("internal surface", problems.front());
+    problems = surface_problems(TriMesh{fixed.topRows(surface.num_vertices() + internal.num_vertices()), facets});
+    if (!problems.empty()) throw InputError("internal surface", "it touches the surface: " + problems.front());
+    for (int v = 0; v < internal.num_vertices(); ++v)
+      if (!outer.contains(internal.vertices.row(v)))
+        throw InputError("internal surface", "vertex " + std::to_string(v) + " is outside the surface");
+  }
+  if (interior.rows() > 0) {
+    const SurfaceDistance inner(internal);
+    for (Eigen::Index i = 0; i < interior.rows(); ++i) {
+      const Vec3 p = interior.row(i);
+      if (!outer.contains(p) || outer.distance(p) == 0.0)
+        throw InputError("interior points", "point " + std::to_string(i) + " is not strictly inside the surface");
+      if (internal.num_faces() > 0 && inner.distance(p) == 0.0)
+        throw InputError("interior points", "point " + std::to_string(i) + " lies on the internal surface");
+    }
+  }
+}
+
 }  // namespace
 
 TetMesh tetrahedralize_surface(const TriMesh& surface, const TetQuality& quality,
@@ -90,6 +122,7 @@ TetMesh tetrahedralize_surface(const TriMesh& surface, const TetQuality& quality
   Triangles facets(surface.num_faces() + internal_surface.num_faces(), 3);
   facets << surface.faces, (internal_surface.faces.array() + n_surface).matrix();
   const int n_fixed = static_cast<int>(fixed.rows());
+  check_input(surface, internal_surface, interior_points, facets, fixed);
 
   tetgenio in;
   in.firstnumber = 0;

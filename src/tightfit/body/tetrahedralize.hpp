@@ -38,8 +38,11 @@ std::string tetgen_switches(const TetQuality& quality);
 /// vertices, the interior points, then TetGen's interior Steiner points. Tets are
 /// returned positively oriented.
 ///
-/// Throws std::invalid_argument for bad quality bounds, InputError (source "surface")
-/// when TetGen rejects the surface (self-intersection, tiny features, close facets) and
+/// The input is validated first (TetGen 1.5.0 crashes on its own error path): the
+/// surfaces must be closed, manifold, outward and free of (mutual) intersections, the
+/// internal surface and points strictly inside. Throws std::invalid_argument for bad
+/// quality bounds, InputError (source "surface", "internal surface" or "interior
+/// points") for invalid input or when TetGen rejects it (tiny features, close facets),
 /// SolverError on other TetGen failures or when the invariant above cannot be
 /// established (checked at run time, also in Release builds).
 TetMesh tetrahedralize_surface(const TriMesh& surface, const TetQuality& quality,
