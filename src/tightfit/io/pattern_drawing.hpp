@@ -1,0 +1,63 @@
+#pragma once
+/// What is drawn for each pattern piece, in millimetres in the piece's own plane
+/// (x right, y up, like PatternPiece::rest × 1000): sew line, cut line, notches,
+/// grain line. All pattern writers draw from this.
+#include <string>
+#include <vector>
+
+#include "tightfit/garment/pattern.hpp"
+#include "tightfit/io/pattern_export_options.hpp"
+#include "tightfit/io/pattern_offset.hpp"
+
+namespace tightfit {
+
+/// A notch: a short tick perpendicular to the sew line, from the sew line outward to
+/// the cut line. Notches with the same `seam` and `index` on the two sides of a seam
+/// are sewn together.
+struct Notch {
+  std::string seam;  ///< name of the seam
+  int side = 0;      ///< 0: on seam side a, 1: on side b
+  int index = 0;     ///< 0 at the first vertex of the seam sides, count−1 at the last
+  Vec2 sew;          ///< mm, on the sew line
+  Vec2 cut;          ///< mm, outer end (sew + allowance × outward normal)
+};
+
+struct PieceDrawing {
+  std::string name;
+  int quantity = 1;
+  std::string annotation;
+  /// mm, counter-clockwise; point k is rest vertex boundary[k].
+  Polygon2 sew_line;
+  /// mm, allowance of sew-line edge k (point k → point k+1).
+  std::vector<double> allowance;
+  /// mm, counter-clockwise, outward offset of the sew line by the allowances.
+  Polygon2 cut_line;
+  std::vector<Notch> notches;
+  /// mm, grain line through the centroid; the arrow points at `grain_end`.
+  Vec2 grain_start = Vec2::Zero();
+  Vec2 grain_end = Vec2::Zero();
+  /// mm, area centroid of the sew line (labels are placed here).
+  Vec2 centroid = Vec2::Zero();
+};
+
+/// Arc-length positions of notches along one seam: for k = 0..m the notch k sits at
+/// segment `segment[k]` (between side vertices segment and segment+1) at local
+/// parameter `t[k]` ∈ [0, 1], the same on both sides so that notch k of side a meets
+/// notch k of side b under the seam's vertex correspondence. The target fraction k/m
+/// is measured on the mean of the two sides' normalised arc lengths, which equals the
+/// arc-length fraction on both sides when their vertices are spaced proportionally.
+/// m = max(1, round(mean side length / spacing)), m = 1 when `spacing` is 0.
+struct SeamNotchParameters {
+  std::vector<int> segment;
+  std::vector<double> t;
+};
+SeamNotchParameters seam_notch_parameters(const std::vector<Vec2>& side_a,
+                                          const std::vector<Vec2>& side_b, double spacing);
+
+/// Validates `pattern` and `options` (InputError naming `source`) and computes every
+/// piece's drawing, in piece order.
+std::vector<PieceDrawing> draw_pattern_pieces(const Pattern& pattern,
+                                              const PatternExportOptions& options,
+                                              const std::string& source);
+
+}  // namespace tightfit

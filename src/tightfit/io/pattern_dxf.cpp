@@ -1,0 +1,196 @@
+#include "tightfit/io/pattern_dxf.hpp"
+
+#include <ostream>
+#include <set>
+
+#include "tightfit/common/atomic_file.hpp"
+#include "tightfit/io/pattern_drawing.hpp"
+#include "tightfit/io/pattern_layout.hpp"
+#include "tightfit/io/pattern_text.hpp"
+
+namespace tightfit {
+namespace {
+
+constexpr int kDecimals = 9;
+
+/// Writes DXF group-code/value pairs.
+class DxfWriter {
+ public:
+  explicit DxfWriter(std::ostream& out) : out_(out) {}
+  void pair(int code, const std::string& value) { out_ << code << "\n" << value << "\n"; }
+  void pair(int code, int value) { pair(code, std::to_string(value)); }
+  void number(int code, double value) { pair(code, fixed(value, kDecimals)); }
+  void point(int code, const Vec2& q) {
+    number(code, q.x());
+    number(code + 10, q.y());
+    number(code + 20, 0.0);
+  }
+  void text(const std::string& layer, const Vec2& at, double height, const std::string& content) {
+    pair(0, "TEXT");
+    pair(8, layer);
+    point(10, at);
+    number(40, height);
+    pair(1, ascii_escape(content).substr(0, 250));
+    pair(7, "STANDARD");
+  }
+  void line(const std::string& layer, const Vec2& a, const Vec2& b) {
+    pair(0, "LINE");
+    pair(8, layer);
+    point(10, a);
+    point(11, b);
+  }
+  void closed_polyline(const std::string& layer, const Polygon2& polygon) {
+    pair(0, "POLYLINE");
+    pair(8, layer);
+    pair(66, 1);
+    point(10, Vec2::Zero());
+    pair(70, 1);
+    for (const Vec2& q : polygon) {
+      pair(0, "VERTEX");
+      pair(8, layer);
+      point(10, q);
+    }
+    pair(0, "SEQEND");
+    pair(8, layer);
+  }
+
+ private:
+  std::ostream& out_;
+};
+
+void write_header(DxfWriter& dxf, const PatternLayout& layout) {
+  dxf.pair(999, "tightfit pattern, AAMA/ASTM D6673 layout, ASCII DXF R12");
+  dxf.pair(999, "units: millimetres (1 drawing unit = 1 mm), scale 1:1");
+  dxf.pair(0, "SECTION");
+  dxf.pair(2, "HEADER");
+  dxf.pair(9, "$ACADVER");
+  dxf.pair(1, "AC1009");
+  dxf.pair(9, "$INSBASE");
+  dxf.point(10, Vec2::Zero());
+  dxf.pair(9, "$EXTMIN");
+  dxf.point(10, Vec2::Zero());
+  dxf.pair(9, "$EXTMAX");
+  dxf.point(10, Vec2(layout.width_mm, layout.height_mm));
+  dxf.pair(9, "$INSUNITS");
+  dxf.pair(70, 4);
+  dxf.pair(9, "$MEASUREMENT");
+  dxf.pair(70, 1);
+  dxf.pair(9, "$LUNITS");
+  dxf.pair(70, 2);
+  dxf.pair(0, "ENDSEC");
+}
+
+void write_tables(DxfWriter& dxf) {
+  dxf.pair(0, "SECTION");
+  dxf.pair(2, "TABLES");
+  dxf.pair(0, "TABLE");
+  dxf.pair(2, "LTYPE");
+  dxf.pair(70, 2);
+  dxf.pair(0, "LTYPE");
+  dxf.pair(2, "CONTINUOUS");
+  dxf.pair(70, 0);
+  dxf.pair(3, "Solid line");
+  dxf.pair(72, 65);
+  dxf.pair(73, 0);
+  dxf.number(40, 0.0);
+  dxf.pair(0, "LTYPE");
+  dxf.pair(2, "DASHED");
+  dxf.pair(70, 0);
+  dxf.pair(3, "Dashed __ __ __");
+  dxf.pair(72, 65);
+  dxf.pair(73, 2);
+  dxf.number(40, 4.5);
+  dxf.number(49, 3.0);
+  dxf.number(49, -1.5);
+  dxf.pair(0, "ENDTAB");
+  struct Layer {
+    const char* name;
+    int colour;
+    const char* linetype;
+  };
+  const Layer layers[] = {{"0", 7, "CONTINUOUS"},
+                          {"1", 7, "CONTINUOUS"},
+                          {"4", 1, "CONTINUOUS"},
+                          {"7", 3, "CONTINUOUS"},
+                          {"14", 5, "DASHED"}};
+  dxf.pair(0, "TABLE");
+  dxf.pair(2, "LAYER");
+  dxf.pair(70, static_cast<int>(std::size(layers)));
+  for (const Layer& layer : layers) {
+    dxf.pair(0, "LAYER");
+    dxf.pair(2, layer.name);
+    dxf.pair(70, 0);
+    dxf.pair(62, layer.colour);
+    dxf.pair(6, layer.linetype);
+  }
+  dxf.pair(0, "ENDTAB");
+  dxf.pair(0, "TABLE");
+  dxf.pair(2, "STYLE");
+  dxf.pair(70, 1);
+  dxf.pair(0, "STYLE");
+  dxf.pair(2, "STANDARD");
+  dxf.pair(70, 0);
+  dxf.number(40, 0.0);
+  dxf.number(41, 1.0);
+  dxf.number(50, 0.0);
+  dxf.pair(71, 0);
+  dxf.number(42, 2.5);
+  dxf.pair(3, "txt");
+  dxf.pair(4, "");
+  dxf.pair(0, "ENDTAB");
+  dxf.pair(0, "ENDSEC");
+}
+
+void write_block(DxfWriter& dxf, const PieceDrawing& piece, const std::string& name) {
+  dxf.pair(0, "BLOCK");
+  dxf.pair(8, "0");
+  dxf.pair(2, name);
+  dxf.pair(70, 0);
+  dxf.point(10, Vec2::Zero());
+  dxf.pair(3, name);
+  dxf.closed_polyline("1", piece.cut_line);
+  dxf.closed_polyline("14", piece.sew_line);
+  for (const Notch& n : piece.notches) dxf.line("4", n.sew, n.cut);
+  dxf.line("7", piece.grain_start, piece.grain_end);
+  const Vec2 at = piece.centroid + Vec2(3.0, 0.0);
+  dxf.text("1", at, 5.0, "Piece Name: " + piece.name);
+  dxf.text("1", at - Vec2(0.0, 7.0), 4.0, "Quantity: " + std::to_string(piece.quantity));
+  dxf.text("1", at - Vec2(0.0, 13.0), 3.0, "Annotation: " + piece.annotation);
+  dxf.pair(0, "ENDBLK");
+  dxf.pair(8, "0");
+}
+
+}  // namespace
+
+void write_pattern_dxf(const Pattern& pattern, const PatternExportOptions& options,
+                       const std::filesystem::path& path) {
+  const std::vector<PieceDrawing> pieces = draw_pattern_pieces(pattern, options, path.string());
+  const PatternLayout layout = layout_pattern(pieces, options);
+  std::set<std::string> taken;
+  std::vector<std::string> names;
+  for (const PieceDrawing& piece : pieces) {
+    names.push_back(unique_identifier(piece.name, taken, false));
+  }
+  write_file_atomically(path, [&](std::ostream& out) {
+    DxfWriter dxf(out);
+    write_header(dxf, layout);
+    write_tables(dxf);
+    dxf.pair(0, "SECTION");
+    dxf.pair(2, "BLOCKS");
+    for (size_t p = 0; p < pieces.size(); ++p) write_block(dxf, pieces[p], names[p]);
+    dxf.pair(0, "ENDSEC");
+    dxf.pair(0, "SECTION");
+    dxf.pair(2, "ENTITIES");
+    for (size_t p = 0; p < pieces.size(); ++p) {
+      dxf.pair(0, "INSERT");
+      dxf.pair(8, "0");
+      dxf.pair(2, names[p]);
+      // Layout y points down; the DXF plane's y points up.
+      dxf.point(10, Vec2(layout.offsets[p].x(), layout.height_mm - layout.offsets[p].y()));
+    }
+    dxf.pair(0, "ENDSEC");
+    dxf.pair(0, "EOF");
+  });
+}
+
+}  // namespace tightfit

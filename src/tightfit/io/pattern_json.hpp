@@ -1,0 +1,40 @@
+#pragma once
+/// pieces.json: every pattern piece with its mesh and outlines, and the seams and pinned
+/// boundaries between them, so seam correspondences survive the export; and its reader.
+#include <filesystem>
+
+#include "tightfit/garment/pattern.hpp"
+#include "tightfit/io/pattern_export_options.hpp"
+
+namespace tightfit {
+
+/// Writes pieces.json (atomically). Format (version 1):
+/// {
+///   "format": "tightfit-pieces", "version": 1,
+///   "units": {"rest": "m", "outlines": "mm"},
+///   "seam_allowance_m": default allowance,
+///   "pieces": [{ "name", "quantity",
+///       "rest": [[x, y], ...]          (m, n×2; the mesh vertices),
+///       "triangles": [[i, j, k], ...]  (counter-clockwise),
+///       "boundary": [...]               (counter-clockwise loop of vertex indices),
+///       "corners": [...], "grain": [gx, gy],
+///       "sew_line_mm": [[x, y], ...]   (= rest[boundary] × 1000),
+///       "cut_line_mm": [[x, y], ...]   (counter-clockwise),
+///       "allowance_mm": [...]          (per sew-line edge boundary[k] → boundary[k+1]),
+///       "grain_line_mm": [[x, y], [x, y]] (tail, head),
+///       "notches_mm": [{"seam", "side": "a"|"b", "index", "sew": [x, y], "cut": [x, y]}] }],
+///   "seams": [{"name", "a": {"piece", "piece_name", "vertices"}, "b": {...}}],
+///   "pinned": [{"name", "piece", "piece_name", "vertices"}]
+/// }
+/// Seam side vertex i of "a" meets vertex i of "b". Piece references are indices into
+/// "pieces" ("piece_name" is informative). InputError for an invalid pattern/options.
+void write_pieces_json(const Pattern& pattern, const PatternExportOptions& options,
+                       const std::filesystem::path& path);
+
+/// Reads the pattern (pieces' name, rest, triangles, boundary, corners, grain; seams;
+/// pinned boundaries) back from pieces.json. The derived fields (outlines, notches,
+/// allowances, quantity) are accepted and ignored. InputError naming the file and JSON
+/// path for a malformed file, and validate_pattern's errors for an invalid pattern.
+Pattern read_pieces_json(const std::filesystem::path& path);
+
+}  // namespace tightfit

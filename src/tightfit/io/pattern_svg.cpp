@@ -1,0 +1,108 @@
+#include "tightfit/io/pattern_svg.hpp"
+
+#include <sstream>
+
+#include "tightfit/common/atomic_file.hpp"
+#include "tightfit/io/pattern_drawing.hpp"
+#include "tightfit/io/pattern_layout.hpp"
+#include "tightfit/io/pattern_text.hpp"
+
+namespace tightfit {
+namespace {
+
+std::string point(const Vec2& q) { return fixed(q.x(), 4) + "," + fixed(q.y(), 4); }
+
+std::string path_data(const PatternLayout& layout, size_t piece, const Polygon2& polygon) {
+  std::string d;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    d += (i == 0 ? "M" : " L") + point(layout.to_layout(piece, polygon[i]));
+  }
+  return d + " Z";
+}
+
+std::string line(const Vec2& a, const Vec2& b) {
+  return "<line x1=\"" + fixed(a.x(), 4) + "\" y1=\"" + fixed(a.y(), 4) + "\" x2=\"" +
+         fixed(b.x(), 4) + "\" y2=\"" + fixed(b.y(), 4) + "\"/>";
+}
+
+std::string text(const Vec2& at, double size_mm, const std::string& content,
+                 const std::string& css_class) {
+  return "<text class=\"" + css_class + "\" x=\"" + fixed(at.x(), 3) + "\" y=\"" +
+         fixed(at.y(), 3) + "\" font-size=\"" + fixed(size_mm, 2) + "\">" + xml_escape(content) +
+         "</text>";
+}
+
+void write_piece(std::ostream& out, const PieceDrawing& piece, const PatternLayout& layout,
+                 size_t p, const std::string& id, const PatternExportOptions& options) {
+  out << "<g id=\"" << id << "\">\n<title>" << xml_escape(piece.name) << "</title>\n";
+  out << "<path class=\"cut\" d=\"" << path_data(layout, p, piece.cut_line) << "\"/>\n";
+  out << "<path class=\"sew\" d=\"" << path_data(layout, p, piece.sew_line) << "\"/>\n";
+  out << "<g class=\"notches\">\n";
+  for (const Notch& n : piece.notches) {
+    out << line(layout.to_layout(p, n.sew), layout.to_layout(p, n.cut)) << "\n";
+  }
+  out << "</g>\n<g class=\"grain\">\n";
+  const Vec2 a = layout.to_layout(p, piece.grain_start);
+  const Vec2 b = layout.to_layout(p, piece.grain_end);
+  out << line(a, b) << "\n";
+  if ((b - a).norm() > 0.0) {
+    const Vec2 back = (a - b).normalized() * 6.0;
+    const Vec2 side(-back.y() * 0.4, back.x() * 0.4);
+    out << "<path d=\"M" << point(b + back + side) << " L" << point(b) << " L"
+        << point(b + back - side) << "\"/>\n";
+  }
+  out << "</g>\n";
+  if (options.piece_labels) {
+    const Vec2 c = layout.to_layout(p, piece.centroid);
+    out << text(c + Vec2(3.0, 0.0), 6.0, piece.name, "label") << "\n";
+    out << text(c + Vec2(3.0, 6.0), 4.0, "Cut " + std::to_string(piece.quantity), "note") << "\n";
+    out << text(c + Vec2(3.0, 11.0), 3.0, piece.annotation, "note") << "\n";
+  }
+  out << "</g>\n";
+}
+
+}  // namespace
+
+void write_pattern_svg(const Pattern& pattern, const PatternExportOptions& options,
+                       const std::filesystem::path& path) {
+  const std::vector<PieceDrawing> pieces = draw_pattern_pieces(pattern, options, path.string());
+  const PatternLayout layout = layout_pattern(pieces, options);
+  write_file_atomically(path, [&](std::ostream& out) {
+    const std::string w = fixed(layout.width_mm, 3);
+    const std::string h = fixed(layout.height_mm, 3);
+    out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+        << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << w
+        << "mm\" height=\"" << h << "mm\" viewBox=\"0 0 " << w << " " << h << "\">\n"
+        << "<title>tightfit pattern</title>\n"
+        << "<desc>Scale 1:1, user units are millimetres. Cut on the solid line, sew on the "
+           "dashed line; match the notches of each seam; grain line arrow parallel to the "
+           "selvage.</desc>\n"
+        << "<style>\n"
+        << "path, line { fill: none; stroke: #000; stroke-linecap: round; "
+           "stroke-linejoin: round; }\n"
+        << ".cut { stroke-width: 0.4; }\n"
+        << ".sew { stroke-width: 0.25; stroke-dasharray: 3 1.5; stroke: #1a4fd0; }\n"
+        << ".notches line { stroke-width: 0.4; stroke: #c00000; }\n"
+        << ".grain line, .grain path { stroke-width: 0.35; stroke: #007a2e; }\n"
+        << "text { font-family: sans-serif; fill: #000; }\n"
+        << "#test-square rect { fill: none; stroke: #000; stroke-width: 0.3; }\n"
+        << "</style>\n";
+    if (layout.has_test_square) {
+      const Box2& s = layout.test_square;
+      out << "<g id=\"test-square\">\n<rect x=\"" << fixed(s.min.x(), 4) << "\" y=\""
+          << fixed(s.min.y(), 4) << "\" width=\"" << fixed(kTestSquareMm, 4) << "\" height=\""
+          << fixed(kTestSquareMm, 4) << "\"/>\n"
+          << text(s.min + Vec2(8.0, 45.0), 7.0, "10 cm", "label") << "\n"
+          << text(s.min + Vec2(8.0, 55.0), 4.0, "test square: measure 100 mm", "note") << "\n"
+          << "</g>\n";
+    }
+    std::set<std::string> ids{"test-square"};
+    for (size_t p = 0; p < pieces.size(); ++p) {
+      const std::string id = unique_identifier("piece-" + pieces[p].name, ids);
+      write_piece(out, pieces[p], layout, p, id, options);
+    }
+    out << "</svg>\n";
+  });
+}
+
+}  // namespace tightfit
