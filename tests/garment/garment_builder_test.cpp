@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "garment/garment_test_meshes.hpp"
+#include "tightfit/body/generators.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/garment/pattern_svg.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
@@ -129,8 +130,54 @@ const char* kSphereCover = R"({
   "seam_tolerance": 0.2
 })";
 
+TEST(BuildGarment, SleeveOnTheGeneratedCapsule) {
+  // The body layer's capsule: staggered rings, control points fitted so that the limit
+  // surface lies on the analytic cylinder. Panels flattened on the limit surface.
+  CylinderParams params;
+  params.radius = 0.05;
+  params.length = 0.4;
+  params.axis = Vec3::UnitY();
+  params.center = Vec3(0, 0.25, 0);
+  const TriMesh body = cylinder_surface(params);
+  const LimitSurface limit(body);
+  PatternOptions options;
+  options.edge_length = 0.01;
+  options.grain = Vec3::UnitY();
+  const GarmentBuild b = build_garment(body, limit, spec_from(kSleeve), options);
+  std::printf("sleeve on the generated capsule:\n");
+  print_report(b);
+  ASSERT_EQ(b.garment.pattern.pieces.size(), 2u);
+  for (const auto& p : b.pieces) {
+    EXPECT_LT(p.distortion.area_error, 1e-3) << p.name;
+    EXPECT_LT(p.distortion.mean_area_distortion, 1e-3) << p.name;
+  }
+  check_garment(b, 5e-4);
+  // The garment lies on the analytic cylinder (the fitted limit surface).
+  for (Eigen::Index v = 0; v < b.positions.rows(); ++v)
+    EXPECT_NEAR(std::hypot(b.positions(v, 0), b.positions(v, 2)), 0.05, 2e-4);
+  // Pinned: exactly the two cuff rings, at y = 0.1 and 0.4.
+  ASSERT_FALSE(b.garment.pinned.empty());
+  for (int v : b.garment.pinned) {
+    const double y = b.positions(v, 1);
+    EXPECT_LT(std::min(std::abs(y - 0.1), std::abs(y - 0.4)), 1e-9);
+  }
+  int on_cuffs = 0;
+  for (Eigen::Index v = 0; v < b.positions.rows(); ++v)
+    on_cuffs += std::min(std::abs(b.positions(v, 1) - 0.1), std::abs(b.positions(v, 1) - 0.4)) < 1e-9;
+  EXPECT_EQ(on_cuffs, static_cast<int>(b.garment.pinned.size()));
+  // Garment triangles face outward.
+  const Triangles& t = b.garment.garment_triangles;
+  for (Eigen::Index f = 0; f < t.rows(); ++f) {
+    const Vec3 p0 = b.positions.row(t(f, 0)), p1 = b.positions.row(t(f, 1)), p2 = b.positions.row(t(f, 2));
+    const Vec3 c = (p0 + p1 + p2) / 3.0;
+    EXPECT_GT((p1 - p0).cross(p2 - p0).dot(Vec3(c.x(), 0, c.z())), 0.0);
+  }
+}
+
 TEST(BuildGarment, ThreePieceCoverOnSphere) {
-  const TriMesh body = test::geodesic_sphere(0.1, 8);
+  SphereParams params;
+  params.radius = 0.1;
+  const TriMesh body = sphere_surface(params);
   const LimitSurface limit(body);
   PatternOptions options;
   options.edge_length = 0.01;

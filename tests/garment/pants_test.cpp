@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "tightfit/body/surface_remeshing.hpp"
 #include "tightfit/garment/garment_builder.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 
@@ -51,14 +52,16 @@ class Pants : public ::testing::Test {
     delete body_;
   }
 
-  static GarmentBuild build(const char* text) {
+  static GarmentBuild build(const char* text) { return build_on(*body_, *limit_, text); }
+
+  static GarmentBuild build_on(const TriMesh& body, const LimitSurface& limit, const char* text) {
     const auto j = nlohmann::json::parse(text);
     JsonFields f(j, "pants.json", "");
     PatternOptions options;
     options.edge_length = 0.02;
     options.grain = Vec3::UnitY();
     options.scale = {0.95, 0.77};  // ~30 % stretch around the legs
-    return build_garment(*body_, *limit_, parse_layout_spec(f, ""), options);
+    return build_garment(body, limit, parse_layout_spec(f, ""), options);
   }
 
   static void report(const GarmentBuild& b) {
@@ -134,6 +137,20 @@ TEST_F(Pants, EightPiecesWithAKneeDivider) {
   // 6 seams of the 4-piece pants, each leg seam split at the knee (+4), and 4 knee seams.
   EXPECT_EQ(b.garment.pattern.seams.size(), 14u);
   check(b, 0.05);  // the knee seams at the back (hollow of the knee) differ by ~4 %
+}
+
+TEST_F(Pants, FourPiecesOnTheRemeshedLegsBody) {
+  // The simulation body: the legs remeshed isotropically by the body layer.
+  RemeshOptions remesh;
+  remesh.edge_length = 0.02;
+  const TriMesh body = remesh_isotropic(*body_, remesh).mesh;
+  const LimitSurface limit(body);
+  const GarmentBuild b = build_on(body, limit, kPants4);
+  std::printf("4-piece pants on mh_legs_male remeshed at 2 cm (%d faces):\n", body.num_faces());
+  report(b);
+  ASSERT_EQ(b.garment.pattern.pieces.size(), 4u);
+  EXPECT_EQ(b.garment.pattern.seams.size(), 6u);
+  check(b, 0.01);
 }
 
 }  // namespace

@@ -5,7 +5,13 @@
 ///
 /// Indexing. Pattern vertices are numbered globally, piece after piece
 /// (`piece_offset[k] + local index`); garment vertices are the welded 3D vertices: the
-/// two sides of a seam share one garment vertex per seam vertex pair.
+/// two sides of a seam share one garment vertex per seam vertex pair, and seam ends
+/// where several pieces meet (a crotch point) are one garment vertex for all of them.
+/// Each pattern vertex keeps its own 2D rest position in its piece (Xbar of the paper);
+/// the 3D position of garment vertex i is the limit-surface point embedding[i].
+///
+/// Made by build_garment (garment_builder.hpp) from a body and a layout spec, or by
+/// weld_pattern from a pattern plus an embedding computed elsewhere.
 #include <array>
 #include <vector>
 
@@ -23,7 +29,7 @@ struct Garment {
   Triangles garment_triangles;            ///< the same triangles in garment-vertex indices
   std::vector<int> triangle_piece;        ///< piece of each triangle
   std::vector<SurfacePoint> embedding;    ///< per garment vertex: where it lies on the limit surface
-  std::vector<int> pinned;                ///< garment vertices held at their embedding (sorted)
+  std::vector<int> pinned;                ///< garment vertices held at their embedding (sorted, unique)
 
   int num_pattern_vertices() const { return piece_offset.empty() ? 0 : piece_offset.back(); }
   /// Stacked rest positions of all pattern vertices (num_pattern_vertices × 2, m).
