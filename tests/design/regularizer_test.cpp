@@ -25,7 +25,8 @@ PatternPiece grid_piece(const std::string& name, int nx, int ny, double w, doubl
   auto id = [&](int i, int j) { return j * nx + i; };
   piece.rest.resize(nx * ny, 2);
   for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) piece.rest.row(id(i, j)) << x0 + w * i / (nx - 1), h * j / (ny - 1);
+    for (int i = 0; i < nx; ++i)
+      piece.rest.row(id(i, j)) << x0 + w * i / (nx - 1), h * j / (ny - 1);
   piece.triangles.resize(2 * (nx - 1) * (ny - 1), 3);
   int t = 0;
   for (int j = 0; j + 1 < ny; ++j)
@@ -179,12 +180,13 @@ TEST(BoundarySmoothnessRegularizer, FoldBackIsInfinite) {
 }
 
 /// Brute-force ρ of pair (i, j) of loop `loop` along the arc that was shorter at `initial`.
-double brute_ratio(const std::vector<int>& loop, const Points2& initial, const Points2& rest,
-                   int i, int j) {
+double brute_ratio(const std::vector<int>& loop, const Points2& initial, const Points2& rest, int i,
+                   int j) {
   const int n = static_cast<int>(loop.size());
   auto arc = [&](const Points2& p, int from, int to) {  // forward from → to
     double s = 0.0;
-    for (int k = from; k != to; k = (k + 1) % n) s += (p.row(loop[(k + 1) % n]) - p.row(loop[k])).norm();
+    for (int k = from; k != to; k = (k + 1) % n)
+      s += (p.row(loop[(k + 1) % n]) - p.row(loop[k])).norm();
     return s;
   };
   const bool forward = arc(initial, i, j) <= arc(initial, j, i);

@@ -18,7 +18,8 @@ struct GarmentState {
 };
 
 /// An nx × ny grid piece over [0,w]×[0,h], interior vertices jittered by up to `jitter`
-/// of the spacing, random diagonals; boundary counter-clockwise, corners marked.
+/// of the spacing (< 0.25 keeps every triangle counter-clockwise on a square grid),
+/// random diagonals; boundary counter-clockwise, corners marked.
 inline PatternPiece grid_piece(int nx, int ny, double w, double h, double jitter, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-jitter, jitter);

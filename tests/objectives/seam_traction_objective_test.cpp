@@ -21,15 +21,17 @@ TEST(SeamTractionObjective, UniformSleeveByHand) {
   const SeamTractionObjective t(s.garment, m);
   ASSERT_EQ(t.elements().size(), static_cast<std::size_t>(2 * (ny - 1)));
   const double stretch = 2.0 * r * std::sin(std::numbers::pi / (nx - 1)) / (w / (nx - 1));
-  const double sxx = m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio) *
-                     0.5 * (stretch * stretch - 1.0);
+  const double sxx = m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio) * 0.5 *
+                     (stretch * stretch - 1.0);
   const Points2 rest = s.garment.rest_positions();
-  EXPECT_NEAR(t.value({s.x, rest}), 2.0 * h * m.thickness * sxx, 1e-9 * 2.0 * h * m.thickness * sxx);
-  for (double tr : t.tractions({s.x, rest})) EXPECT_NEAR(tr, m.thickness * sxx, 1e-9 * m.thickness * sxx);
+  EXPECT_NEAR(t.value({s.x, rest}), 2.0 * h * m.thickness * sxx,
+              1e-9 * 2.0 * h * m.thickness * sxx);
+  for (double tr : t.tractions({s.x, rest}))
+    EXPECT_NEAR(tr, m.thickness * sxx, 1e-9 * m.thickness * sxx);
 }
 
 TEST(SeamTractionObjective, GradientsOnRandomStates) {
-  const test::GarmentState s = test::sleeve(9, 5, 0.05, 0.28, 0.1, 0.3, 3);
+  const test::GarmentState s = test::sleeve(9, 5, 0.05, 0.28, 0.1, 0.2, 3);
   const SeamTractionObjective t(s.garment, ClothMaterial{});
   for (unsigned seed = 1; seed <= 3; ++seed) {
     const VecX x = test::perturb(s.x, 0.003, seed);

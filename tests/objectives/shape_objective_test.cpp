@@ -98,7 +98,8 @@ TEST(ImlsSurface, GradientNearTheCutOffAndInTheFallback) {
   const ImlsSurface pair(c, n, h);
   const Vec3 out_dir(-0.8, 0.0, 0.6);
   for (double eps : {1e-1, 1e-3, 1e-6}) {
-    const Vec3 x = Vec3(0.03, 0.0, 0.0) + h * (1.0 - eps) * (out_dir + Vec3(0.0, 0.02, 0.0)).normalized();
+    const Vec3 x =
+        Vec3(0.03, 0.0, 0.0) + h * (1.0 - eps) * (out_dir + Vec3(0.0, 0.02, 0.0)).normalized();
     ASSERT_LT((x - Vec3(0.03, 0.0, 0.0)).norm(), h);
     ASSERT_LT(x.norm(), h);
     EXPECT_FALSE(pair.evaluate(x).fallback);
@@ -131,7 +132,7 @@ TEST(ImlsSurface, RejectsBadTargets) {
 TEST(ShapeObjective, ValueAndGradientOnASleeve) {
   // Sleeve of radius 0.05 against a sphere of radius 0.06 centred at the sleeve's middle:
   // some vertices within the cut-off, some in the fallback.
-  test::GarmentState s = test::sleeve(13, 6, 0.05, 0.3, 0.1, 0.3, 2);
+  test::GarmentState s = test::sleeve(13, 6, 0.05, 0.3, 0.1, 0.2, 2);
   const int m = 2000;  // Fibonacci sphere, spacing about 5 mm
   Points3 pts(m, 3), nrm(m, 3);
   for (int k = 0; k < m; ++k) {

@@ -33,8 +33,8 @@ void validate(const PatternPiece& piece) {
   std::vector<char> seen(n, 0);
   for (int v : piece.boundary) {
     if (v < 0 || v >= n)
-      throw InputError(src, "boundary vertex " + std::to_string(v) + " outside [0, " +
-                                std::to_string(n) + ")");
+      throw InputError(
+          src, "boundary vertex " + std::to_string(v) + " outside [0, " + std::to_string(n) + ")");
     if (seen[v]) throw InputError(src, "boundary loop repeats vertex " + std::to_string(v));
     seen[v] = 1;
   }
@@ -62,10 +62,12 @@ void weak_laplacian(const PatternPiece& piece, SparseMatrix& laplacian, VecX& ma
     const Vec2 e1 = p[1] - p[0], e2 = p[2] - p[0];
     const double twice_signed = e1.x() * e2.y() - e1.y() * e2.x();
     const double scale = e1.squaredNorm() + e2.squaredNorm();
-    if (!(std::abs(twice_signed) > 1e-14 * scale))
-      throw InputError(source_of(piece), "triangle " + std::to_string(t) + " is degenerate");
-    const double area = 0.5 * std::abs(twice_signed);
-    // ∇φ_i = perp(p_{i+2} − p_{i+1}) / (2 A_signed), valid for either orientation.
+    // Exact affine precision needs a valid triangulation: every triangle counter-clockwise.
+    if (!(twice_signed > 1e-14 * scale))
+      throw InputError(source_of(piece),
+                       "triangle " + std::to_string(t) + " is degenerate or clockwise (inverted)");
+    const double area = 0.5 * twice_signed;
+    // ∇φ_i = perp(p_{i+2} − p_{i+1}) / (2 A).
     std::array<Vec2, 3> grad;
     for (int i = 0; i < 3; ++i) grad[i] = perp(p[(i + 2) % 3] - p[(i + 1) % 3]) / twice_signed;
     for (int i = 0; i < 3; ++i) {

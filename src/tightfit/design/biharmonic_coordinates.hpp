@@ -37,8 +37,10 @@ class PieceBiharmonicCoordinates {
  public:
   /// Builds W from the piece's current rest mesh. Throws InputError (source "pattern
   /// piece NAME") for bad indices, a boundary loop with repeated or out-of-range
-  /// vertices, fewer than 3 boundary vertices or a degenerate triangle; SolverError when
-  /// Q_II is not positive definite.
+  /// vertices, fewer than 3 boundary vertices, a vertex in no triangle, or a degenerate
+  /// or clockwise (inverted) triangle; SolverError when Q_II is not positive definite.
+  /// Every vertex not in the boundary loop is interior (a hole's vertices too: they get
+  /// the natural boundary condition).
   explicit PieceBiharmonicCoordinates(const PatternPiece& piece);
 
   int num_vertices() const { return static_cast<int>(weights_.rows()); }

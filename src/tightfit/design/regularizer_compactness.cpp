@@ -37,7 +37,8 @@ CompactnessRegularizer::CompactnessRegularizer(const Garment& garment, Compactne
     : options_(options), num_pattern_(garment.num_pattern_vertices()) {
   if (!(options_.min_ratio > 0.0 && options_.min_ratio <= 1.0))
     throw std::invalid_argument("compactness: r_D must lie in (0, 1]");
-  if (options_.pair_stride < 1) throw std::invalid_argument("compactness: pair stride must be >= 1");
+  if (options_.pair_stride < 1)
+    throw std::invalid_argument("compactness: pair stride must be >= 1");
   const Points2 rest = garment.rest_positions();
   for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k) {
     Loop loop;
@@ -50,7 +51,8 @@ CompactnessRegularizer::CompactnessRegularizer(const Garment& garment, Compactne
     for (int i = 0; i < n; i += s)
       for (int j = i + s; j < n; j += s) {
         const int forward = j - i, backward = n - forward;
-        const bool use_forward = l.prefix[j] - l.prefix[i] <= l.prefix[n] - (l.prefix[j] - l.prefix[i]);
+        const bool use_forward =
+            l.prefix[j] - l.prefix[i] <= l.prefix[n] - (l.prefix[j] - l.prefix[i]);
         Pair p{i, j, use_forward ? i : j, use_forward ? forward : backward};
         if (p.count >= 2) loop.pairs.push_back(p);
       }

@@ -71,8 +71,7 @@ EdgeLengthDifferenceTerm seam_length_regularizer(const Garment& garment) {
       pairs.push_back({{oa + seam.a.vertices[i], oa + seam.a.vertices[i + 1]},
                        {ob + seam.b.vertices[i], ob + seam.b.vertices[i + 1]}});
   }
-  return EdgeLengthDifferenceTerm("seam length", std::move(pairs),
-                                  garment.num_pattern_vertices());
+  return EdgeLengthDifferenceTerm("seam length", std::move(pairs), garment.num_pattern_vertices());
 }
 
 EdgeLengthDifferenceTerm even_spacing_regularizer(const Garment& garment) {

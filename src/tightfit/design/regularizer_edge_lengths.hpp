@@ -27,8 +27,7 @@ class EdgeLengthDifferenceTerm : public DesignTerm {
 
   /// `pairs` over global pattern vertices in [0, num_pattern_vertices). Throws
   /// std::invalid_argument on an index out of range.
-  EdgeLengthDifferenceTerm(std::string name, std::vector<EdgePair> pairs,
-                           int num_pattern_vertices);
+  EdgeLengthDifferenceTerm(std::string name, std::vector<EdgePair> pairs, int num_pattern_vertices);
 
   std::string name() const override { return name_; }
   double value(const DesignState& state) const override;

@@ -41,7 +41,9 @@ Scalar<N> variable(double v, int index) {
 
 /// A scalar g(I1, I2) known by its value and partials (a, b) at the value of (i1, i2),
 /// chained to i1, i2's own derivatives.
-inline double chain(double v, double /*a*/, double /*b*/, double /*i1*/, double /*i2*/) { return v; }
+inline double chain(double v, double /*a*/, double /*b*/, double /*i1*/, double /*i2*/) {
+  return v;
+}
 template <int N>
 Scalar<N> chain(double v, double a, double b, const Scalar<N>& i1, const Scalar<N>& i2) {
   return Scalar<N>(v, a * i1.derivatives() + b * i2.derivatives());

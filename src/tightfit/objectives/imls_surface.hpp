@@ -35,7 +35,7 @@ class ImlsSurface {
 
   /// f(x) and ∇f(x) (unit-free: m/m).
   struct Evaluation {
-    double value = 0.0;           ///< f(x), m
+    double value = 0.0;            ///< f(x), m
     Vec3 gradient = Vec3::Zero();  ///< ∇f(x)
     bool fallback = false;         ///< true when no target point lies within h
   };

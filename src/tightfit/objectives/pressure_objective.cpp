@@ -1,6 +1,7 @@
 #include "tightfit/objectives/pressure_objective.hpp"
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -37,7 +38,8 @@ FaceOperator<S> face_operator(const std::array<Vec3T<S>, 6>& p,
   FaceOperator<S> op;
   const Vec3T<S> n = (p[1] - p[0]).cross(p[2] - p[0]);
   const S twice = sqrt(n.squaredNorm());
-  const double scale = value_of((p[1] - p[0]).squaredNorm()) + value_of((p[2] - p[0]).squaredNorm());
+  const double scale =
+      value_of((p[1] - p[0]).squaredNorm()) + value_of((p[2] - p[0]).squaredNorm());
   if (!(value_of(twice) > 1e-12 * scale))
     throw SolverError("pressure objective: garment face " + std::to_string(face) +
                       " is degenerate");
@@ -190,64 +192,98 @@ std::array<bool, 3> has_opposite(const std::array<int, 3>& opposite) {
 
 }  // namespace
 
-VecX PressureObjective::solve_edges(const VecX& x) const {
-  const int m = static_cast<int>(garment_triangles_.rows());
+namespace {
+
+/// The mid-edge system at x: every face's operator pieces, the factorized matrix K of
+/// the edge unknowns and their solution φ.
+struct EdgeSystem {
+  std::vector<FaceOperator<double>> ops;
+  std::unique_ptr<SparseCholesky> solver = std::make_unique<SparseCholesky>();
+  VecX phi;
+};
+
+EdgeSystem solve_edge_system(const VecX& x, const Triangles& tri,
+                             const std::vector<std::array<int, 3>>& face_edge,
+                             const std::vector<std::array<int, 3>>& face_sign,
+                             const std::vector<std::array<int, 3>>& face_opposite, int num_edges) {
+  const int m = static_cast<int>(tri.rows());
+  EdgeSystem sys;
+  sys.ops.reserve(m);
   std::vector<Triplet> trip;
   trip.reserve(9 * static_cast<std::size_t>(m));
-  VecX rhs = VecX::Zero(num_edges_);
+  VecX rhs = VecX::Zero(num_edges);
   for (int f = 0; f < m; ++f) {
-    const FaceOperator<double> op = face_operator<double>(
-        face_points(x, garment_triangles_, face_opposite_[f], f), has_opposite(face_opposite_[f]), f);
+    sys.ops.push_back(face_operator<double>(face_points(x, tri, face_opposite[f], f),
+                                            has_opposite(face_opposite[f]), f));
+    const FaceOperator<double>& op = sys.ops.back();
     const Mat3 g = gram(op);
     for (int i = 0; i < 3; ++i) {
       double r = 0.0;
       for (int j = 0; j < 3; ++j) {
-        trip.emplace_back(face_edge_[f][i], face_edge_[f][j],
-                          op.area * face_sign_[f][i] * face_sign_[f][j] * g(i, j));
+        trip.emplace_back(face_edge[f][i], face_edge[f][j],
+                          op.area * face_sign[f][i] * face_sign[f][j] * g(i, j));
         r += 0.5 * op.theta[j] * g(i, j);
       }
-      rhs[face_edge_[f][i]] -= op.area * face_sign_[f][i] * r;
+      rhs[face_edge[f][i]] -= op.area * face_sign[f][i] * r;
     }
   }
-  SparseMatrix k(num_edges_, num_edges_);
+  SparseMatrix k(num_edges, num_edges);
   k.setFromTriplets(trip.begin(), trip.end());
-  SparseCholesky solver;
-  if (!solver.factorize(k))
+  if (!sys.solver->factorize(k))
     throw SolverError("pressure objective: mid-edge system is not positive definite");
-  return solver.solve(rhs);
+  sys.phi = sys.solver->solve(rhs);
+  return sys;
 }
 
-std::vector<Mat3> PressureObjective::shape_operators(const VecX& x) const {
-  if (x.size() != 3 * static_cast<Eigen::Index>(num_garment_))
-    throw std::invalid_argument("pressure objective: wrong position vector size");
-  const VecX phi = solve_edges(x);
-  const int m = static_cast<int>(garment_triangles_.rows());
-  std::vector<Mat3> out(m);
-  for (int f = 0; f < m; ++f) {
-    const FaceOperator<double> op = face_operator<double>(
-        face_points(x, garment_triangles_, face_opposite_[f], f), has_opposite(face_opposite_[f]), f);
+/// Λ_f of every face from a solved system.
+std::vector<Mat3> operators_of(const EdgeSystem& sys,
+                               const std::vector<std::array<int, 3>>& face_edge,
+                               const std::vector<std::array<int, 3>>& face_sign) {
+  std::vector<Mat3> out(sys.ops.size());
+  for (std::size_t f = 0; f < sys.ops.size(); ++f) {
     out[f].setZero();
     for (int i = 0; i < 3; ++i)
-      out[f] += (0.5 * op.theta[i] + face_sign_[f][i] * phi[face_edge_[f][i]]) * op.b[i];
+      out[f] += (0.5 * sys.ops[f].theta[i] + face_sign[f][i] * sys.phi[face_edge[f][i]]) *
+                sys.ops[f].b[i];
   }
   return out;
 }
 
-VecX PressureObjective::pressures(const DesignState& state) const {
-  check(state);
-  const std::vector<Mat3> lambda = shape_operators(state.x);
-  const int m = static_cast<int>(garment_triangles_.rows());
-  VecX p(m);
-  for (int f = 0; f < m; ++f) {
+}  // namespace
+
+std::vector<Mat3> PressureObjective::shape_operators(const VecX& x) const {
+  if (x.size() != 3 * static_cast<Eigen::Index>(num_garment_))
+    throw std::invalid_argument("pressure objective: wrong position vector size");
+  const EdgeSystem sys =
+      solve_edge_system(x, garment_triangles_, face_edge_, face_sign_, face_opposite_, num_edges_);
+  return operators_of(sys, face_edge_, face_sign_);
+}
+
+namespace {
+
+/// p_e of every element given its shape operator.
+VecX element_pressures(const RelaxedStVK& law, const DesignState& state,
+                       const Triangles& garment_tri, const Triangles& pattern_tri,
+                       const std::vector<Mat3>& lambda) {
+  VecX p(garment_tri.rows());
+  for (int f = 0; f < static_cast<int>(garment_tri.rows()); ++f) {
     std::array<Vec3, 3> x;
     std::array<Vec2, 3> r;
     for (int k = 0; k < 3; ++k) {
-      x[k] = state.x.segment<3>(3 * garment_triangles_(f, k));
-      r[k] = state.rest.row(pattern_triangles_(f, k)).transpose();
+      x[k] = state.x.segment<3>(3 * garment_tri(f, k));
+      r[k] = state.rest.row(pattern_tri(f, k)).transpose();
     }
-    p[f] = element_pressure<double>(law_, x, r, lambda[f], f);
+    p[f] = element_pressure<double>(law, x, r, lambda[f], f);
   }
   return p;
+}
+
+}  // namespace
+
+VecX PressureObjective::pressures(const DesignState& state) const {
+  check(state);
+  return element_pressures(law_, state, garment_triangles_, pattern_triangles_,
+                           shape_operators(state.x));
 }
 
 double PressureObjective::value(const DesignState& state) const {
@@ -265,8 +301,11 @@ void PressureObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& 
   check(state);
   if (d_x.size() != state.x.size() || d_rest.size() != 2 * state.rest.rows())
     throw std::invalid_argument("pressure objective: gradient vectors have the wrong size");
-  const VecX p = pressures(state);
-  const VecX phi = solve_edges(state.x);
+  const EdgeSystem sys = solve_edge_system(state.x, garment_triangles_, face_edge_, face_sign_,
+                                           face_opposite_, num_edges_);
+  const VecX& phi = sys.phi;
+  const VecX p = element_pressures(law_, state, garment_triangles_, pattern_triangles_,
+                                   operators_of(sys, face_edge_, face_sign_));
   const int m = static_cast<int>(garment_triangles_.rows());
 
   // Pass 1: ∂T/∂x, ∂T/∂Xbar at fixed φ, and ∂T/∂φ. Local variables: 18 positions (corners,
@@ -298,7 +337,8 @@ void PressureObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& 
     const Eigen::Matrix<double, kN, 1>& g = t.derivatives();
     for (int k = 0; k < 3; ++k) {
       d_x.segment<3>(3 * garment_triangles_(f, k)) += g.segment<3>(3 * k);
-      if (face_opposite_[f][k] >= 0) d_x.segment<3>(3 * face_opposite_[f][k]) += g.segment<3>(9 + 3 * k);
+      if (face_opposite_[f][k] >= 0)
+        d_x.segment<3>(3 * face_opposite_[f][k]) += g.segment<3>(9 + 3 * k);
       d_rest.segment<2>(2 * pattern_triangles_(f, k)) += g.segment<2>(18 + 2 * k);
       d_phi[face_edge_[f][k]] += g[24 + k];
     }
@@ -306,25 +346,7 @@ void PressureObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& 
   if (!any) return;
 
   // Adjoint of the φ system: K μ = ∂T/∂φ, then subtract ∂/∂x Σ_f A_f tr(Λ_f Γ_f).
-  const int ne = num_edges_;
-  std::vector<Triplet> trip;
-  trip.reserve(9 * static_cast<std::size_t>(m));
-  for (int f = 0; f < m; ++f) {
-    const FaceOperator<double> op = face_operator<double>(
-        face_points(state.x, garment_triangles_, face_opposite_[f], f),
-        has_opposite(face_opposite_[f]), f);
-    const Mat3 gm = gram(op);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        trip.emplace_back(face_edge_[f][i], face_edge_[f][j],
-                          op.area * face_sign_[f][i] * face_sign_[f][j] * gm(i, j));
-  }
-  SparseMatrix kmat(ne, ne);
-  kmat.setFromTriplets(trip.begin(), trip.end());
-  SparseCholesky solver;
-  if (!solver.factorize(kmat))
-    throw SolverError("pressure objective: mid-edge system is not positive definite");
-  const VecX mu = solver.solve(d_phi);
+  const VecX mu = sys.solver->solve(d_phi);
 
   constexpr int kM = 18;
   using R = Scalar<kM>;
@@ -345,7 +367,8 @@ void PressureObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& 
     const Eigen::Matrix<double, kM, 1>& g = h.derivatives();
     for (int k = 0; k < 3; ++k) {
       d_x.segment<3>(3 * garment_triangles_(f, k)) -= g.segment<3>(3 * k);
-      if (face_opposite_[f][k] >= 0) d_x.segment<3>(3 * face_opposite_[f][k]) -= g.segment<3>(9 + 3 * k);
+      if (face_opposite_[f][k] >= 0)
+        d_x.segment<3>(3 * face_opposite_[f][k]) -= g.segment<3>(9 + 3 * k);
     }
   }
 }

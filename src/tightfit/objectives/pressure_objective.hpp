@@ -55,7 +55,6 @@ class PressureObjective : public DesignTerm {
 
  private:
   void check(const DesignState& state) const;
-  VecX solve_edges(const VecX& x) const;
 
   Triangles pattern_triangles_;
   Triangles garment_triangles_;

@@ -66,8 +66,9 @@ void SeamTractionObjective::check(const DesignState& state) const {
       state.rest.rows() != num_pattern_)
     throw std::invalid_argument("seam traction objective: state has " +
                                 std::to_string(state.x.size()) + " position entries and " +
-                                std::to_string(state.rest.rows()) + " rest positions, expected 3 x " +
-                                std::to_string(num_garment_) + " and " + std::to_string(num_pattern_));
+                                std::to_string(state.rest.rows()) +
+                                " rest positions, expected 3 x " + std::to_string(num_garment_) +
+                                " and " + std::to_string(num_pattern_));
 }
 
 namespace {

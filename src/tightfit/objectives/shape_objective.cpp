@@ -9,7 +9,9 @@ namespace tightfit {
 
 ShapeObjective::ShapeObjective(ImlsSurface target, int num_garment_vertices,
                                std::vector<int> vertices)
-    : target_(std::move(target)), num_garment_(num_garment_vertices), vertices_(std::move(vertices)) {
+    : target_(std::move(target)),
+      num_garment_(num_garment_vertices),
+      vertices_(std::move(vertices)) {
   if (vertices_.empty()) {
     vertices_.resize(num_garment_);
     std::iota(vertices_.begin(), vertices_.end(), 0);

@@ -27,8 +27,8 @@ ElementKinematics kinematics(const DesignState& s, const Triangles& tri,
   Mat32 ds;
   for (int k = 0; k < 2; ++k) {
     dm.col(k) = (s.rest.row(tri(e, k + 1)) - s.rest.row(tri(e, 0))).transpose();
-    ds.col(k) = s.x.segment<3>(3 * to_garment[tri(e, k + 1)]) -
-                s.x.segment<3>(3 * to_garment[tri(e, 0)]);
+    ds.col(k) =
+        s.x.segment<3>(3 * to_garment[tri(e, k + 1)]) - s.x.segment<3>(3 * to_garment[tri(e, 0)]);
   }
   const double det = dm.determinant();
   if (!(std::abs(det) > 1e-14 * dm.squaredNorm()))
@@ -128,11 +128,10 @@ void StretchObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& d
     const double s = pen(l1) + pen(l2);
     if (s == 0.0 && dpen(l1) == 0.0 && dpen(l2) == 0.0) continue;
     const double gap = l1 - l2;
-    const double divided = gap > 1e-12 * std::max(1.0, std::abs(ev.m))
-                               ? (dpen(l1) - dpen(l2)) / gap
-                               : ddpen(ev.m);
-    const Mat2 ds_dc = 0.5 * (dpen(l1) + dpen(l2)) * Mat2::Identity() +
-                       divided * (k.c - ev.m * Mat2::Identity());
+    const double divided =
+        gap > 1e-12 * std::max(1.0, std::abs(ev.m)) ? (dpen(l1) - dpen(l2)) / gap : ddpen(ev.m);
+    const Mat2 ds_dc =
+        0.5 * (dpen(l1) + dpen(l2)) * Mat2::Identity() + divided * (k.c - ev.m * Mat2::Identity());
     // T_e = A s(C): ∂T_e/∂F = 2 A F ∂s/∂C.
     const Mat32 p = 2.0 * k.area * k.f * ds_dc;
     // F = Ds B: ∂/∂Ds = P Bᵀ; ∂/∂Dm = −Fᵀ P Bᵀ (through F) + s A Bᵀ (through A).

@@ -50,7 +50,7 @@ class StretchObjective : public DesignTerm {
  private:
   void check(const DesignState& state) const;
 
-  Triangles triangles_;                 // over pattern vertices
+  Triangles triangles_;  // over pattern vertices
   std::vector<int> pattern_to_garment_;
   int num_garment_ = 0;
   int num_pattern_ = 0;
