@@ -2,7 +2,8 @@
 /// The JSON description of a body, used stand-alone (`tightfit body SPEC`) and as the
 /// "body" section of scene files. Lengths in metres, angles in degrees. One of:
 ///
-///   {"generator": "cylinder", "radius": 0.05, "length": 0.3,
+///   {"generator": "cylinder", "radius": 0.05,
+///    "length": 0.3,                  // of the cylindrical side, without the caps
 ///    "edge_length": 0.01,            // default 2π radius / 48
 ///    "caps": "round" | "flat",       // default "round" (hemispheres; see generators.hpp)
 ///    "center": [0, 0, 0], "axis": [0, 0, 1],
@@ -14,7 +15,7 @@
 ///    "crop": [{"point": [0, 0.5, 0], "normal": [0, 1, 0]}],  // keep where the normal points
 ///    "edge_length": 0.015,            // remeshing target; default 0.015
 ///    "remesh": true, "remesh_iterations": 5,
-///    "sharp_angle_deg": 60,           // creases kept as feature lines while remeshing
+///    "sharp_angle_deg": 60,           // closed crease loops (cap rims) kept while remeshing
 ///    "fit_limit": false}              // fit the limit surface to the (cropped) input
 ///
 /// plus, for all kinds, the volume mesh and core:
