@@ -295,3 +295,40 @@ TEST(BuildGarment, ObjGroupLayoutGivesTheSamePiecesAsTheRules) {
 
 }  // namespace
 }  // namespace tightfit
+
+namespace tightfit {
+namespace {
+
+TEST(BuildGarment, KeepsSharpTurnsOfOpenBoundariesAsCorners) {
+  // The sleeve's upper edge is cut by two planes meeting at x = 0: a 45° turn in the
+  // middle of each piece's open upper boundary.
+  const TriMesh body = test::closed_cylinder(0.05, 0.5, 32, 21);
+  const LimitSurface limit(body);
+  const LayoutSpec spec = spec_from(R"({
+    "region": [{"name": "bottom", "point": [0, 0.1, 0], "normal": [0, 1, 0]},
+               {"name": "top", "point": [0, 0.4, 0], "normal": [0, -1, 0]},
+               {"name": "slant", "point": [0, 0.4, 0], "normal": [-1, -1, 0]}],
+    "dividers": [{"name": "side", "point": [0, 0, 0], "normal": [0, 0, 1]}],
+    "panels": [{"name": "front", "sides": ["+side"]}, {"name": "back", "sides": ["-side"]}]})");
+  PatternOptions options;
+  options.edge_length = 0.01;
+  options.flatten_limit_surface = false;
+  const GarmentBuild b = build_garment(body, limit, spec, options);
+  for (size_t k = 0; k < 2; ++k) {
+    const PatternPiece& piece = b.garment.pattern.pieces[k];
+    // Four seam ends and the turn.
+    ASSERT_EQ(piece.corners.size(), 5u) << piece.name;
+    int at_turn = 0;
+    for (int c : piece.corners) {
+      const Vec3 x = panel_position(b.layout, b.maps[k], b.maps[k].location[c]);
+      if (std::abs(x.x()) < 1e-9 && std::abs(x.y() - 0.4) < 1e-9) ++at_turn;
+    }
+    EXPECT_EQ(at_turn, 1) << piece.name;
+  }
+  options.corner_angle_deg = 60;  // a 45° turn is then no corner
+  const GarmentBuild smooth = build_garment(body, limit, spec, options);
+  EXPECT_EQ(smooth.garment.pattern.pieces[0].corners.size(), 4u);
+}
+
+}  // namespace
+}  // namespace tightfit

@@ -44,6 +44,14 @@ double length_3d(const LayoutPanel& panel, const BoundarySegment& s) {
   return len;
 }
 
+/// Turning angle (degrees, 0 for a straight run) of the flattened boundary at loop
+/// position i.
+double turning_angle_deg(const LayoutPanel& panel, const Points2& flat, int i) {
+  const Vec2 a = flat.row(loop_vertex(panel, i)) - flat.row(loop_vertex(panel, i - 1));
+  const Vec2 b = flat.row(loop_vertex(panel, i + 1)) - flat.row(loop_vertex(panel, i));
+  return std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b)) * 180.0 / 3.14159265358979323846;
+}
+
 /// Grain direction of a flattened panel in flat coordinates (unit).
 Vec2 grain_direction(const LayoutPanel& panel, const Points2& flat, const PatternOptions& options) {
   const TriMesh& m = panel.mesh;
@@ -220,43 +228,76 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     map.offset = -moved.colwise().minCoeff().transpose();
   }
 
-  // Vertex counts per segment: seams shared by both sides.
-  std::vector<std::vector<int>> count(np);
-  auto min_count = [&](int p) {
-    const size_t k = layout.panels[p].segments.size();
-    return k == 1 ? 3 : (k == 2 ? 2 : 1);
-  };
+  // Runs: the layout's boundary segments, open ones further split at sharp turns of the
+  // flattened boundary (piece corners that are not seam ends). Seams stay whole so that
+  // both sides are sampled alike.
+  std::vector<std::vector<BoundarySegment>> runs(np);
+  std::vector<std::vector<int>> first_run(np);  // per layout segment: index of its first run
   for (int p = 0; p < np; ++p) {
     const LayoutPanel& panel = layout.panels[p];
-    for (const BoundarySegment& s : panel.segments) {
-      const double len = flat_length(panel, s, out.maps[p].flat, out.maps[p].linear);
-      count[p].push_back(std::max(min_count(p), static_cast<int>(std::lround(len / h))));
+    for (const BoundarySegment& segment : panel.segments) {
+      first_run[p].push_back(static_cast<int>(runs[p].size()));
+      BoundarySegment s = segment;
+      if (s.seam >= 0) {
+        runs[p].push_back(s);
+        continue;
+      }
+      auto sharp = [&](int i) { return turning_angle_deg(panel, out.maps[p].flat, i) > options.corner_angle_deg; };
+      if (panel.segments.size() == 1)  // a whole open loop: start at a corner if it has one
+        for (int i = 0; i < s.count; ++i)
+          if (sharp(s.first + i)) {
+            s.first += i;
+            break;
+          }
+      BoundarySegment r = s;
+      r.count = 0;
+      for (int e = 0; e < s.count; ++e) {
+        ++r.count;
+        if (e + 1 < s.count && sharp(s.first + e + 1)) {
+          runs[p].push_back(r);
+          r.first = s.first + e + 1;
+          r.count = 0;
+        }
+      }
+      runs[p].push_back(r);
     }
   }
+
+  // Vertex counts per run (edges): seams shared by both sides.
+  std::vector<std::vector<int>> count(np);
+  auto min_count = [&](int p) {
+    const size_t k = runs[p].size();
+    return k == 1 ? 3 : (k == 2 ? 2 : 1);
+  };
+  for (int p = 0; p < np; ++p)
+    for (const BoundarySegment& r : runs[p]) {
+      const double len = flat_length(layout.panels[p], r, out.maps[p].flat, out.maps[p].linear);
+      count[p].push_back(std::max(min_count(p), static_cast<int>(std::lround(len / h))));
+    }
   for (size_t k = 0; k < layout.seams.size(); ++k) {
     const LayoutSeam& seam = layout.seams[k];
-    int& na = count[seam.panel_a][seam.segment_a];
-    int& nb = count[seam.panel_b][seam.segment_b];
-    const double la = flat_length(layout.panels[seam.panel_a], layout.panels[seam.panel_a].segments[seam.segment_a],
-                                  out.maps[seam.panel_a].flat, out.maps[seam.panel_a].linear);
-    const double lb = flat_length(layout.panels[seam.panel_b], layout.panels[seam.panel_b].segments[seam.segment_b],
-                                  out.maps[seam.panel_b].flat, out.maps[seam.panel_b].linear);
-    na = nb = std::max({min_count(seam.panel_a), min_count(seam.panel_b),
-                        static_cast<int>(std::lround(0.5 * (la + lb) / h))});
-    out.seams[k].vertices = na + 1;
+    const int ra = first_run[seam.panel_a][seam.segment_a], rb = first_run[seam.panel_b][seam.segment_b];
+    const double la = flat_length(layout.panels[seam.panel_a], runs[seam.panel_a][ra], out.maps[seam.panel_a].flat,
+                                  out.maps[seam.panel_a].linear);
+    const double lb = flat_length(layout.panels[seam.panel_b], runs[seam.panel_b][rb], out.maps[seam.panel_b].flat,
+                                  out.maps[seam.panel_b].linear);
+    const int n = std::max({min_count(seam.panel_a), min_count(seam.panel_b),
+                            static_cast<int>(std::lround(0.5 * (la + lb) / h))});
+    count[seam.panel_a][ra] = count[seam.panel_b][rb] = n;
+    out.seams[k].vertices = n + 1;
   }
 
   // Resample the boundaries and mesh the pieces.
-  std::vector<std::vector<int>> segment_start(np);
+  std::vector<std::vector<int>> run_start(np);
   for (int p = 0; p < np; ++p) {
     const LayoutPanel& panel = layout.panels[p];
     PieceMap& map = out.maps[p];
     const SurfaceTopology topo(panel.mesh.faces, panel.mesh.num_vertices());
     std::vector<PanelPoint> boundary_location;
     std::vector<Vec2> boundary_points;
-    for (size_t si = 0; si < panel.segments.size(); ++si) {
-      segment_start[p].push_back(static_cast<int>(boundary_points.size()));
-      for (const BoundarySample& b : sample_segment(panel, panel.segments[si], count[p][si])) {
+    for (size_t ri = 0; ri < runs[p].size(); ++ri) {
+      run_start[p].push_back(static_cast<int>(boundary_points.size()));
+      for (const BoundarySample& b : sample_segment(panel, runs[p][ri], count[p][ri])) {
         const int i = loop_vertex(panel, b.edge), j = loop_vertex(panel, b.edge + 1);
         const int f = topo.edge_faces(topo.find_edge(i, j))[0];
         PanelPoint loc{f, Vec3::Zero()};
@@ -284,7 +325,7 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     piece.triangles = std::move(mesh.triangles);
     const int nb = static_cast<int>(polygon.rows());
     for (int i = 0; i < nb; ++i) piece.boundary.push_back(i);
-    if (panel.segments.size() > 1 || panel.segments[0].seam >= 0) piece.corners = segment_start[p];
+    if (runs[p].size() > 1 || runs[p][0].seam >= 0) piece.corners = run_start[p];
     piece.grain = Vec2::UnitY();
     map.location = boundary_location;
     const FlatLocator locator(panel.mesh, map.flat);
@@ -294,19 +335,22 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     out.pattern.pieces.push_back(std::move(piece));
   }
 
-  // Seams and pinned boundaries in piece vertex indices.
-  auto segment_vertices = [&](int p, int si) {
-    const int n = count[p][si];
+  // Seams and pinned boundaries in piece vertex indices: the boundary vertices of the
+  // runs [r0, r1) of panel p, both ends included.
+  auto run_vertices = [&](int p, int r0, int r1) {
+    int n = 0;
+    for (int r = r0; r < r1; ++r) n += count[p][r];
     const int nb = static_cast<int>(out.pattern.pieces[p].boundary.size());
     std::vector<int> v;
-    for (int k = 0; k <= n; ++k) v.push_back((segment_start[p][si] + k) % nb);
+    for (int k = 0; k <= n; ++k) v.push_back((run_start[p][r0] + k) % nb);
     return v;
   };
   for (const LayoutSeam& seam : layout.seams) {
+    const int ra = first_run[seam.panel_a][seam.segment_a], rb = first_run[seam.panel_b][seam.segment_b];
     Seam s;
     s.name = seam.name;
-    s.a = {seam.panel_a, segment_vertices(seam.panel_a, seam.segment_a)};
-    s.b = {seam.panel_b, segment_vertices(seam.panel_b, seam.segment_b)};
+    s.a = {seam.panel_a, run_vertices(seam.panel_a, ra, ra + 1)};
+    s.b = {seam.panel_b, run_vertices(seam.panel_b, rb, rb + 1)};
     std::reverse(s.b.vertices.begin(), s.b.vertices.end());
     out.pattern.seams.push_back(std::move(s));
   }
@@ -314,7 +358,8 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     for (size_t si = 0; si < layout.panels[p].segments.size(); ++si) {
       const BoundarySegment& s = layout.panels[p].segments[si];
       if (s.seam >= 0 || s.pin < 0) continue;
-      std::vector<int> v = segment_vertices(p, static_cast<int>(si));
+      const int r1 = si + 1 < first_run[p].size() ? first_run[p][si + 1] : static_cast<int>(runs[p].size());
+      std::vector<int> v = run_vertices(p, first_run[p][si], r1);
       if (layout.panels[p].segments.size() == 1) v.pop_back();  // whole loop: no repeat
       out.pattern.pinned.push_back({layout.pin_names[s.pin], p, std::move(v)});
     }

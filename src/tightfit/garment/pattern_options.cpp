@@ -37,6 +37,7 @@ PatternOptions parse_pattern_options(JsonFields& f) {
   if (o.flatten.max_iterations < 0) f.fail("must not be negative", "arap_iterations");
   o.smoothing_iterations = f.integer("smoothing_iterations", o.smoothing_iterations);
   if (o.smoothing_iterations < 0) f.fail("must not be negative", "smoothing_iterations");
+  o.corner_angle_deg = f.positive("corner_angle_deg", o.corner_angle_deg);
   o.flatten_limit_surface = f.boolean("flatten_limit_surface", o.flatten_limit_surface);
   f.finish();
   return o;

@@ -5,7 +5,8 @@
 /// ```json
 /// {"edge_length": 0.02, "scale": [0.9, 0.9], "grain": [0, 1, 0],
 ///  "piece_scale": {"left_front": [0.95, 0.77]},
-///  "arap_iterations": 200, "smoothing_iterations": 10, "flatten_limit_surface": true}
+///  "arap_iterations": 200, "smoothing_iterations": 10, "corner_angle_deg": 30,
+///  "flatten_limit_surface": true}
 /// ```
 /// `scale` is [along the grain, across the grain]: the factors by which each flattened
 /// piece is shrunk so that the garment starts stretched (e.g. 1/1.3 ≈ 0.77 across the
@@ -35,6 +36,9 @@ struct PatternOptions {
   /// panel. Without it the grain is the longest principal axis of the flattened piece.
   std::optional<Vec3> grain;
   FlattenOptions flatten;                        ///< LSCM + ARAP settings
+  /// An open boundary turning by more than this angle (degrees) at a vertex of the
+  /// flattened panel keeps that vertex as a piece corner (seam ends always are corners).
+  double corner_angle_deg = 30.0;
   int smoothing_iterations = 10;                 ///< smoothing steps of the 2D meshes (piece_mesher.hpp)
   /// Move the panel vertices onto the limit surface before flattening, so that the
   /// unscaled pieces fit the surface the garment is embedded in (which lies slightly
