@@ -12,7 +12,7 @@ BUILD_PKGS=(
 )
 # Clients used by the tests to check exports with real third-party readers.
 CHECK_PKGS=(
-  python3 python3-ezdxf python3-meshio python3-numpy librsvg2-bin poppler-utils librecad
+  python3 python3-ezdxf python3-meshio python3-numpy python3-jsonschema librsvg2-bin poppler-utils librecad
 )
 
 SUDO=""

@@ -1,0 +1,52 @@
+#include "tightfit/io/scene_loader.hpp"
+
+#include <chrono>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
+  auto scene = std::make_unique<LoadedScene>();
+  scene->spec = std::move(spec);
+  auto t0 = Clock::now();
+  scene->body = build_body(scene->spec.body, &scene->body_report);
+  scene->stage_seconds.emplace_back("body", seconds_since(t0));
+
+  t0 = Clock::now();
+  scene->surface = std::make_unique<LimitSurface>(scene->body.surface, scene->spec.limit);
+  scene->stage_seconds.emplace_back("limit surface", seconds_since(t0));
+
+  t0 = Clock::now();
+  const Points3& control = scene->body.surface.vertices;
+  const GarmentSpec& g = scene->spec.garment;
+  switch (g.kind) {
+    case GarmentKind::kSleeve:
+      scene->garment = make_sleeve(g.sleeve, *scene->surface, control);
+      break;
+    case GarmentKind::kCover:
+      scene->garment = make_cover(*scene->surface, control, g.cover_scale);
+      break;
+    case GarmentKind::kLayout:
+      scene->build = build_garment(scene->body.surface, *scene->surface, g.layout, g.pattern);
+      scene->garment = scene->build->garment;
+      break;
+  }
+  scene->stage_seconds.emplace_back("garment", seconds_since(t0));
+  return scene;
+}
+
+std::unique_ptr<GarmentSimulation> make_simulation(const LoadedScene& scene) {
+  return std::make_unique<GarmentSimulation>(scene.body, *scene.surface, scene.garment,
+                                             scene.spec.materials, scene.spec.newton);
+}
+
+}  // namespace tightfit

@@ -1,0 +1,34 @@
+#pragma once
+/// Turns a SceneSpec into the objects a simulation needs: the body (built from its
+/// spec), the limit surface of its surface, and the garment embedded on it.
+#include <memory>
+#include <optional>
+
+#include "tightfit/garment/garment_builder.hpp"
+#include "tightfit/io/scene_spec.hpp"
+
+namespace tightfit {
+
+/// A loaded scene. Not movable once built: the simulation keeps references into it.
+struct LoadedScene {
+  SceneSpec spec;
+  Body body;
+  BuildReport body_report;
+  std::unique_ptr<LimitSurface> surface;
+  Garment garment;                       ///< the initial garment (embedded)
+  /// For layouts: the panels, piece maps and flattening reports the garment came from.
+  std::optional<GarmentBuild> build;
+  std::vector<std::pair<std::string, double>> stage_seconds;  ///< load stages (s)
+
+  LoadedScene() = default;
+  LoadedScene(const LoadedScene&) = delete;
+  LoadedScene& operator=(const LoadedScene&) = delete;
+};
+
+/// Builds the body, its limit surface and the initial garment.
+std::unique_ptr<LoadedScene> load_scene(SceneSpec spec);
+
+/// A simulation of the loaded scene's garment (the scene must outlive it).
+std::unique_ptr<GarmentSimulation> make_simulation(const LoadedScene& scene);
+
+}  // namespace tightfit

@@ -1,0 +1,135 @@
+#include "tightfit/io/scene_spec.hpp"
+
+#include "tightfit/common/json_fields.hpp"
+
+namespace tightfit {
+namespace {
+
+SleeveParams parse_sleeve(JsonFields& f) {
+  SleeveParams p;
+  p.radius = f.positive("radius", p.radius);
+  p.center = f.vec3("center", p.center);
+  p.axis = f.vec3("axis", p.axis);
+  if (p.axis.norm() == 0.0) f.fail("the axis must not be zero", "axis");
+  p.axial_begin = f.number("axial_begin", p.axial_begin);
+  p.axial_end = f.number("axial_end", p.axial_end);
+  if (!(p.axial_end > p.axial_begin)) f.fail("must be greater than axial_begin", "axial_end");
+  p.hoop_scale = f.positive("hoop_scale", p.hoop_scale);
+  p.axial_scale = f.positive("axial_scale", p.axial_scale);
+  p.edge_length = f.positive("edge_length", p.edge_length);
+  p.jitter = f.positive("jitter", p.jitter, true);
+  if (p.jitter >= 1.0) f.fail("must be below 1 (a fraction of the grid spacing)", "jitter");
+  p.seed = static_cast<unsigned>(f.integer("seed", static_cast<int>(p.seed)));
+  p.rotation = f.number("rotation", p.rotation);
+  p.twist = f.number("twist", p.twist);
+  p.pin_first_ring = f.boolean("pin_first_ring", p.pin_first_ring);
+  p.pin_last_ring = f.boolean("pin_last_ring", p.pin_last_ring);
+  f.finish();
+  return p;
+}
+
+GarmentSpec parse_garment(JsonFields& f, const std::filesystem::path& base_dir) {
+  GarmentSpec g;
+  g.json_path = f.path();
+  int kinds = 0;
+  if (auto s = f.object("sleeve")) {
+    g.kind = GarmentKind::kSleeve;
+    g.sleeve = parse_sleeve(*s);
+    ++kinds;
+  }
+  if (auto c = f.object("cover")) {
+    g.kind = GarmentKind::kCover;
+    g.cover_scale = c->positive("scale", 0.9);
+    c->finish();
+    ++kinds;
+  }
+  if (auto l = f.object("layout")) {
+    g.kind = GarmentKind::kLayout;
+    g.layout = parse_layout_spec(*l, base_dir.string());
+    ++kinds;
+  }
+  if (auto p = f.object("pattern")) {
+    if (g.kind != GarmentKind::kLayout || kinds == 0) f.fail("only goes with a \"layout\"", "pattern");
+    g.pattern = parse_pattern_options(*p);
+  }
+  if (kinds != 1) f.fail("needs exactly one of \"sleeve\", \"cover\" or \"layout\"");
+  f.finish();
+  return g;
+}
+
+void parse_fabric(JsonFields& f, ClothMaterial& m) {
+  m.youngs_modulus = f.positive("youngs_modulus", m.youngs_modulus);
+  m.poisson_ratio = f.number("poisson_ratio", m.poisson_ratio);
+  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 1.0))
+    f.fail("must lie in (-1, 1) for a membrane", "poisson_ratio");
+  m.thickness = f.positive("thickness", m.thickness);
+  m.regime_smoothing = f.positive("regime_smoothing", m.regime_smoothing);
+  f.finish();
+}
+
+void parse_seam(JsonFields& f, SeamMaterial& m) {
+  m.youngs_modulus = f.positive("youngs_modulus", m.youngs_modulus, true);
+  m.width = f.positive("width", m.width);
+  m.depth = f.positive("thickness", m.depth);
+  f.finish();
+}
+
+void parse_body_material(JsonFields& f, NeoHookeanMaterial& m, bool& rigid) {
+  m.youngs_modulus = f.positive("youngs_modulus", m.youngs_modulus);
+  m.poisson_ratio = f.number("poisson_ratio", m.poisson_ratio);
+  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
+    f.fail("must lie in (-1, 0.5) for a solid", "poisson_ratio");
+  rigid = f.boolean("rigid", rigid);
+  f.finish();
+}
+
+void parse_solver(JsonFields& f, NewtonOptions& n, LimitSurfaceOptions& l) {
+  n.relative_force_tolerance = f.positive("relative_force_tolerance", n.relative_force_tolerance);
+  n.absolute_force_tolerance = f.positive("absolute_force_tolerance", n.absolute_force_tolerance);
+  n.max_iterations = f.integer("max_iterations", n.max_iterations);
+  if (n.max_iterations < 1) f.fail("must be at least 1", "max_iterations");
+  l.approx_level_smooth = f.integer("limit_level", l.approx_level_smooth);
+  if (l.approx_level_smooth < 1 || l.approx_level_smooth > 10) f.fail("must be in 1..10", "limit_level");
+  l.approx_level_sharp = std::max(l.approx_level_sharp, l.approx_level_smooth);
+  f.finish();
+}
+
+}  // namespace
+
+SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
+                      const std::filesystem::path& base_dir) {
+  SceneSpec s;
+  s.file = file;
+  s.base_dir = base_dir;
+  s.document = document;
+  JsonFields root(document, file, "");
+  root.string("$schema", std::string());
+  root.string("description", std::string());
+  auto body = root.object("body", true);
+  s.body = parse_body_spec(*body, base_dir);
+  auto garment = root.object("garment", true);
+  s.garment = parse_garment(*garment, base_dir);
+  if (auto f = root.object("fabric")) parse_fabric(*f, s.materials.fabric);
+  if (auto f = root.object("seam")) parse_seam(*f, s.materials.seam);
+  if (auto f = root.object("body_material"))
+    parse_body_material(*f, s.materials.body, s.materials.rigid_body);
+  if (auto f = root.object("solver")) parse_solver(*f, s.newton, s.limit);
+  if (auto f = root.object("pressure")) {
+    s.pressure_operator = f->choice("shape_operator", {"mid_edge", "limit_surface"}, "mid_edge") ==
+                                  "mid_edge"
+                              ? ShapeOperatorKind::kMidEdge
+                              : ShapeOperatorKind::kLimitSurface;
+    f->finish();
+  }
+  root.finish();
+  return s;
+}
+
+SceneSpec read_scene(const std::filesystem::path& file) {
+  const nlohmann::json doc = read_json_file(file.string());
+  auto base = file.parent_path();
+  if (base.empty()) base = ".";
+  return parse_scene(doc, file.string(), base);
+}
+
+}  // namespace tightfit

@@ -1,0 +1,62 @@
+#pragma once
+/// The scene file: one JSON document describing a body, a garment on it, the
+/// materials and the solver settings. Its schema is `schema/scene.schema.json`; this
+/// parser enforces it strictly (unknown keys and wrong types are InputErrors naming
+/// the file and the JSON path). All values in SI units (m, Pa).
+///
+///   {
+///     "body": { ...body spec, see body/body_spec.hpp... },
+///     "garment": {"sleeve": {...}} | {"cover": {"scale": 0.9}}
+///              | {"layout": {...garment/layout_spec.hpp...},
+///                 "pattern": {...garment/pattern_options.hpp...}},
+///     "fabric": {"youngs_modulus": 5.4e6, "poisson_ratio": 0.33, "thickness": 1e-4,
+///                "regime_smoothing": 1e-3},
+///     "seam": {"youngs_modulus": 0, "width": 0.005, "thickness": 2e-4},
+///     "body_material": {"youngs_modulus": 24780, "poisson_ratio": 0.49, "rigid": false},
+///     "solver": {"relative_force_tolerance": 1e-9, "max_iterations": 100,
+///                "limit_level": 8},
+///     "pressure": {"shape_operator": "mid_edge" | "limit_surface"}
+///   }
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tightfit/body/body_spec.hpp"
+#include "tightfit/garment/layout_spec.hpp"
+#include "tightfit/garment/pattern_options.hpp"
+#include "tightfit/garment/primitive_garments.hpp"
+#include "tightfit/solve/garment_simulation.hpp"
+
+namespace tightfit {
+
+/// How the garment is made.
+enum class GarmentKind { kSleeve, kCover, kLayout };
+
+struct GarmentSpec {
+  GarmentKind kind = GarmentKind::kSleeve;
+  SleeveParams sleeve;          ///< kind == kSleeve
+  double cover_scale = 0.9;     ///< kind == kCover: rest size / body size
+  LayoutSpec layout;            ///< kind == kLayout: panels, seams, pinned boundaries
+  PatternOptions pattern;       ///< kind == kLayout: flattening, scale-down, meshing
+  std::string json_path;        ///< JSON pointer of the garment section
+};
+
+struct SceneSpec {
+  std::string file;                 ///< the scene file (for messages)
+  std::filesystem::path base_dir;   ///< relative paths resolve against this folder
+  nlohmann::json document;          ///< the whole scene, for reports
+  BodySpec body;
+  GarmentSpec garment;
+  SimulationMaterials materials;
+  NewtonOptions newton;
+  LimitSurfaceOptions limit;
+  ShapeOperatorKind pressure_operator = ShapeOperatorKind::kMidEdge;
+};
+
+/// Reads and validates a scene file.
+SceneSpec read_scene(const std::filesystem::path& file);
+/// Validates a scene document; `file` names it in errors, `base_dir` resolves paths.
+SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
+                      const std::filesystem::path& base_dir);
+
+}  // namespace tightfit

@@ -1,0 +1,142 @@
+#include "tightfit/io/simulation_outputs.hpp"
+
+#include <algorithm>
+
+namespace tightfit {
+namespace {
+
+nlohmann::json range_json(std::vector<double> v, double scale = 1.0) {
+  if (v.empty()) return nullptr;
+  std::sort(v.begin(), v.end());
+  return {{"min", v.front() / scale}, {"median", v[v.size() / 2] / scale}, {"max", v.back() / scale}};
+}
+
+}  // namespace
+
+const VecX& chosen_pressure(const FitAnalysis& fit, ShapeOperatorKind op) {
+  return op == ShapeOperatorKind::kMidEdge ? fit.pressure_mid_edge : fit.pressure_limit;
+}
+
+std::vector<MeshField> garment_face_fields(const GarmentSimulation& sim, const FitAnalysis& fit,
+                                           ShapeOperatorKind op) {
+  const auto n = static_cast<Eigen::Index>(fit.elements.size());
+  MatX smax(n, 1), smin(n, 1), dir(n, 3), regime(n, 1), tension(n, 1), piece(n, 1);
+  for (Eigen::Index e = 0; e < n; ++e) {
+    const auto& el = fit.elements[e];
+    smax(e, 0) = el.stretch[0];
+    smin(e, 0) = el.stretch[1];
+    dir.row(e) = el.direction1.transpose();
+    regime(e, 0) = static_cast<double>(el.regime);
+    tension(e, 0) = el.principal_tension[0];
+    piece(e, 0) = sim.garment().triangle_piece[e];
+  }
+  const VecX& p = chosen_pressure(fit, op);
+  return {{"stretch_max", smax},
+          {"stretch_min", smin},
+          {"stretch_dir", dir},
+          {"regime", regime},
+          {"tension_max", tension},
+          {"pressure_pa", p},
+          {"pressure_mmhg", p / kPascalPerMmHg},
+          {"pressure_mid_edge_pa", fit.pressure_mid_edge},
+          {"pressure_limit_pa", fit.pressure_limit},
+          {"piece", piece}};
+}
+
+std::vector<MeshField> garment_vertex_fields(const FitAnalysis& fit) {
+  return {{"normal_force", fit.vertex_normal_force},
+          {"force", MatX(fit.vertex_force)},
+          {"vertex_pressure_pa", fit.vertex_pressure}};
+}
+
+nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
+                              ShapeOperatorKind op) {
+  const VecX& p = chosen_pressure(fit, op);
+  const int n = static_cast<int>(fit.elements.size());
+  const int pieces = static_cast<int>(sim.garment().pattern.pieces.size());
+  std::vector<std::vector<double>> per_piece(pieces);
+  std::vector<double> all, smax, smin;
+  double area[3] = {0, 0, 0}, total = 0, lift_off = 0;
+  for (int e = 0; e < n; ++e) {
+    const auto& el = fit.elements[e];
+    all.push_back(p[e]);
+    per_piece[sim.garment().triangle_piece[e]].push_back(p[e]);
+    smax.push_back(el.stretch[0]);
+    smin.push_back(el.stretch[1]);
+    area[static_cast<int>(el.regime)] += el.deformed_area;
+    total += el.deformed_area;
+    if (p[e] < 0) lift_off += el.deformed_area;
+  }
+  nlohmann::json j;
+  j["pressure_operator"] = op == ShapeOperatorKind::kMidEdge ? "mid_edge" : "limit_surface";
+  j["pressure_pa"] = range_json(all);
+  j["pressure_mmhg"] = range_json(all, kPascalPerMmHg);
+  j["stretch_max"] = range_json(smax);
+  j["stretch_min"] = range_json(smin);
+  j["garment_area_m2"] = total;
+  j["area_share"] = {{"slack", total > 0 ? area[0] / total : 0.0},
+                     {"wrinkled", total > 0 ? area[1] / total : 0.0},
+                     {"taut", total > 0 ? area[2] / total : 0.0}};
+  j["lift_off_area_m2"] = lift_off;
+  j["lift_off_share"] = total > 0 ? lift_off / total : 0.0;
+  // Per piece only for garments with real pieces (the cover has one piece per triangle).
+  if (pieces <= 64) {
+    auto& jp = j["pieces"];
+    jp = nlohmann::json::array();
+    for (int k = 0; k < pieces; ++k)
+      jp.push_back({{"name", sim.garment().pattern.pieces[k].name},
+                    {"pressure_pa", range_json(per_piece[k])},
+                    {"pressure_mmhg", range_json(per_piece[k], kPascalPerMmHg)}});
+  }
+  return j;
+}
+
+nlohmann::json newton_report_json(const NewtonReport& r) {
+  nlohmann::json j;
+  j["converged"] = r.converged;
+  j["message"] = r.message;
+  j["iterations"] = r.iterations;
+  j["final_energy_j"] = r.final_energy;
+  j["final_force_residual_n"] = r.final_force_norm;
+  j["force_tolerance_n"] = r.tolerance;
+  j["hessian_nonzeros"] = r.hessian_nonzeros;
+  j["factor_nonzeros"] = r.factor_nonzeros;
+  double t_asm = 0, t_fact = 0, t_solve = 0, t_ls = 0;
+  auto& its = j["history"];
+  its = nlohmann::json::array();
+  for (const auto& it : r.history) {
+    its.push_back({{"energy_j", it.energy},
+                   {"force_residual_n", it.force_norm},
+                   {"step", it.step_size},
+                   {"regularization", it.regularization}});
+    t_asm += it.seconds_assembly;
+    t_fact += it.seconds_factorization;
+    t_solve += it.seconds_solve;
+    t_ls += it.seconds_line_search;
+  }
+  j["seconds"] = {{"total", r.seconds_total},
+                  {"assembly", t_asm},
+                  {"factorization", t_fact},
+                  {"solve", t_solve},
+                  {"line_search", t_ls}};
+  return j;
+}
+
+void write_fit_meshes(const std::filesystem::path& folder, const GarmentSimulation& sim,
+                      const FitAnalysis& fit, ShapeOperatorKind op) {
+  TriMesh garment{sim.garment_positions(), sim.garment().garment_triangles};
+  PlyAttributes ga;
+  ga.face_fields = garment_face_fields(sim, fit, op);
+  ga.vertex_fields = garment_vertex_fields(fit);
+  write_ply(folder / "garment.ply", garment, ga);
+
+  const int ns = sim.body().num_surface_vertices();
+  TriMesh body{sim.body_positions().topRows(ns), sim.body().surface.faces};
+  PlyAttributes ba;
+  const Points3 displacement = sim.body_positions().topRows(ns) - sim.body().surface.vertices;
+  ba.vertex_fields.push_back({"displacement", MatX(displacement)});
+  ba.vertex_fields.push_back({"displacement_norm", displacement.rowwise().norm()});
+  write_ply(folder / "body.ply", body, ba);
+}
+
+}  // namespace tightfit

@@ -1,0 +1,41 @@
+#pragma once
+/// Files written after a simulation: the garment and the deformed body as PLY with
+/// per-face and per-vertex fields, and result.json with energies, convergence, timings
+/// and pressure statistics.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/solve/garment_simulation.hpp"
+
+namespace tightfit {
+
+/// Per-face fields of the garment (one row per garment triangle):
+/// stretch_max, stretch_min (principal stretches, 1.3 = 30 %), stretch_dir (3D unit
+/// direction of the maximum stretch), regime (0 slack, 1 wrinkled, 2 taut),
+/// tension_max (N/m), pressure_pa and pressure_mmhg (Eq. 31 with the chosen shape
+/// operator), pressure_mid_edge_pa, pressure_limit_pa, piece (piece index).
+std::vector<MeshField> garment_face_fields(const GarmentSimulation& sim, const FitAnalysis& fit,
+                                           ShapeOperatorKind pressure_operator);
+/// Per-vertex fields of the garment: normal_force (N), force (3, N) on the body,
+/// vertex_pressure_pa (force over Voronoi area, for comparison).
+std::vector<MeshField> garment_vertex_fields(const FitAnalysis& fit);
+
+/// Pressure per element with the chosen operator (Pa).
+const VecX& chosen_pressure(const FitAnalysis& fit, ShapeOperatorKind op);
+
+/// Statistics of the fit: pressure min/median/max (Pa and mmHg, overall and per piece),
+/// area shares of slack / wrinkled / taut elements, lift-off area (negative pressure),
+/// stretch ranges.
+nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
+                              ShapeOperatorKind pressure_operator);
+
+/// JSON of a Newton report (iterations, residuals, time split).
+nlohmann::json newton_report_json(const NewtonReport& report);
+
+/// Writes garment.ply, body.ply (deformed surface; per-vertex displacement in m) into
+/// `folder` (atomic per file).
+void write_fit_meshes(const std::filesystem::path& folder, const GarmentSimulation& sim,
+                      const FitAnalysis& fit, ShapeOperatorKind pressure_operator);
+
+}  // namespace tightfit
