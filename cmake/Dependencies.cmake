@@ -50,3 +50,14 @@ endif()
 if(TIGHTFIT_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
+
+# The report viewer (report/template.html, report/viewer.js) and three.js from npm
+# (pinned in report/package.json, installed into report/node_modules by
+# scripts/install-deps.sh): write_report_html reads them at run time and inlines them
+# into report.html. ReportOptions can point elsewhere.
+set(TIGHTFIT_REPORT_DIR ${PROJECT_SOURCE_DIR}/report)
+add_library(tightfit_report_assets INTERFACE)
+target_compile_definitions(tightfit_report_assets INTERFACE
+  TIGHTFIT_REPORT_VIEWER_DIR="${TIGHTFIT_REPORT_DIR}"
+  TIGHTFIT_THREE_MODULE_JS="${TIGHTFIT_REPORT_DIR}/node_modules/three/build/three.module.js"
+  TIGHTFIT_THREE_ORBIT_CONTROLS_JS="${TIGHTFIT_REPORT_DIR}/node_modules/three/examples/jsm/controls/OrbitControls.js")

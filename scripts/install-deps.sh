@@ -13,7 +13,11 @@ BUILD_PKGS=(
 # Clients used by the tests to check exports with real third-party readers.
 CHECK_PKGS=(
   python3 python3-ezdxf python3-meshio python3-numpy python3-jsonschema librsvg2-bin poppler-utils librecad
+  chromium
 )
+# Node runs the report's npm packages (three.js, gltf-validator, playwright-core); a
+# machine that already has npm (e.g. a newer Node) keeps it.
+if ! command -v npm >/dev/null 2>&1; then CHECK_PKGS+=(nodejs npm); fi
 
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
@@ -27,10 +31,23 @@ done
 
 if [ "${#missing[@]}" -eq 0 ]; then
   echo "install-deps: all ${#BUILD_PKGS[@]}+${#CHECK_PKGS[@]} packages present"
-  exit 0
+else
+  echo "install-deps: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -q
+  $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-echo "install-deps: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -q
-$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+# The report's npm packages, exactly as locked in report/package-lock.json. Skipped
+# when node_modules was installed from the same lock file. No browser is downloaded:
+# the tests drive Debian's /usr/bin/chromium.
+report_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/report"
+lock_sum="$(sha256sum "$report_dir/package-lock.json" | cut -d' ' -f1)"
+stamp="$report_dir/node_modules/.tightfit-lock-sha256"
+if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$lock_sum" ]; then
+  echo "install-deps: report/node_modules up to date"
+else
+  echo "install-deps: npm ci --prefix report"
+  PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --prefix "$report_dir" --no-audit --no-fund
+  echo "$lock_sum" > "$stamp"
+fi

@@ -1,0 +1,442 @@
+// tightfit report viewer: reads the fit data embedded in report.html (see
+// src/tightfit/io/report_data.hpp for its layout) and draws the 3D view (three.js),
+// the legend, the pattern pieces, the statistics, the history and the parameters.
+// Exposes window.tightfitReport = {ready, renderCount, background, coloring, setColoring}
+// for the browser test (tests/io/report_browser_check.mjs).
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+const data = JSON.parse(document.getElementById('tightfit-data').textContent);
+const BACKGROUND = [238, 240, 243];
+const NO_VALUE = [153, 153, 153];
+const SVG_NS = 'http://www.w3.org/2000/svg';
+const report = { ready: false, renderCount: 0, background: BACKGROUND, coloring: -1, setColoring: null };
+window.tightfitReport = report;
+
+// ---- decoding --------------------------------------------------------------------
+
+function typedArray(text) {
+  const [kind, b64] = [text.slice(0, 4), text.slice(4)];
+  const binary = atob(b64);
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
+  if (kind === 'f32:') return new Float32Array(bytes.buffer);
+  if (kind === 'u32:') return new Uint32Array(bytes.buffer);
+  throw new Error('unknown array encoding ' + kind);
+}
+
+const garment = { positions: typedArray(data.garment.positions), indices: typedArray(data.garment.indices) };
+const body = data.body ? { positions: typedArray(data.body.positions), indices: typedArray(data.body.indices) } : null;
+const colorings = data.colorings.map((c) => ({ ...c, values: typedArray(c.values) }));
+const pieces = data.pieces.map((p) => ({
+  ...p, rest: typedArray(p.rest), triangles: typedArray(p.triangles), faces: typedArray(p.faces),
+}));
+
+// ---- numbers ---------------------------------------------------------------------
+
+function fmt(v, digits = 3) {
+  if (v === null || v === undefined || Number.isNaN(v)) return '–';
+  if (v === 0) return '0';
+  const a = Math.abs(v);
+  if (a >= 1e5 || a < 1e-3) return v.toExponential(digits - 1);
+  return Number(v.toPrecision(digits)).toString();
+}
+
+function percent(v) { return v === null || v === undefined ? '–' : (100 * v).toFixed(1) + ' %'; }
+
+// ---- colours ---------------------------------------------------------------------
+
+/// sRGB bytes of a value under a colouring (same rule as fit_colormap.hpp).
+function colorOf(coloring, value) {
+  if (Number.isNaN(value)) return NO_VALUE;
+  if (coloring.categories) {
+    const k = Math.min(Math.max(Math.round(value), 0), coloring.categories.length - 1);
+    return coloring.categories[k].color;
+  }
+  let t = (value - coloring.lo) / (coloring.hi - coloring.lo);
+  t = Math.min(Math.max(t, 0), 1);
+  const i = Math.round(t * 255) * 3;
+  return [coloring.lut[i], coloring.lut[i + 1], coloring.lut[i + 2]];
+}
+
+function cssColor(rgb) { return `rgb(${rgb[0]},${rgb[1]},${rgb[2]})`; }
+
+// ---- 3D view ---------------------------------------------------------------------
+
+const container = document.getElementById('view3d');
+const renderer = new THREE.WebGLRenderer({ antialias: true });
+renderer.setPixelRatio(window.devicePixelRatio);
+container.appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color().setRGB(...BACKGROUND.map((b) => b / 255), THREE.SRGBColorSpace);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x8a8f99, 2.0));
+const camera = new THREE.PerspectiveCamera(35, 1, 0.001, 100);
+const headlight = new THREE.DirectionalLight(0xffffff, 1.2);
+camera.add(headlight);
+scene.add(camera);
+
+// Garment: one vertex per face corner so that every face shows its own colour.
+const garmentGeometry = new THREE.BufferGeometry();
+{
+  const n = garment.indices.length;
+  const positions = new Float32Array(3 * n);
+  for (let i = 0; i < n; ++i) {
+    const v = garment.indices[i];
+    positions.set(garment.positions.subarray(3 * v, 3 * v + 3), 3 * i);
+  }
+  garmentGeometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  garmentGeometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
+  garmentGeometry.computeVertexNormals();
+}
+const garmentMesh = new THREE.Mesh(garmentGeometry,
+  new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide }));
+scene.add(garmentMesh);
+
+// Body: grey and smooth. The garment lies on the body's surface; the body is drawn with
+// a polygon offset (pushed away in depth) so that the garment is never hidden by it.
+let bodyMesh = null;
+if (body) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(body.positions, 3));
+  geometry.setIndex(new THREE.BufferAttribute(body.indices, 1));
+  geometry.computeVertexNormals();
+  bodyMesh = new THREE.Mesh(geometry, new THREE.MeshLambertMaterial({
+    color: 0xb9bcc2, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 4,
+  }));
+  scene.add(bodyMesh);
+}
+
+const controls = new OrbitControls(camera, renderer.domElement);
+{
+  garmentGeometry.computeBoundingSphere();
+  const sphere = garmentGeometry.boundingSphere.clone();
+  if (bodyMesh) {
+    bodyMesh.geometry.computeBoundingSphere();
+    sphere.union(bodyMesh.geometry.boundingSphere);
+  }
+  const radius = Math.max(sphere.radius, 1e-3);
+  const distance = radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.1;
+  controls.target.copy(sphere.center);
+  camera.position.copy(sphere.center).add(new THREE.Vector3(0.35, 0.25, 1).normalize().multiplyScalar(distance));
+  camera.near = distance / 100;
+  camera.far = distance * 10;
+  camera.updateProjectionMatrix();
+  controls.update();
+}
+
+function render() {
+  renderer.render(scene, camera);
+  report.renderCount += 1;
+}
+
+function resize() {
+  const w = Math.max(container.clientWidth, 1);
+  const h = Math.max(container.clientHeight, 1);
+  renderer.setSize(w, h, false);
+  camera.aspect = w / h;
+  camera.updateProjectionMatrix();
+  render();
+}
+controls.addEventListener('change', render);
+new ResizeObserver(resize).observe(container);
+
+document.getElementById('show-body').addEventListener('change', (e) => {
+  if (bodyMesh) bodyMesh.visible = e.target.checked;
+  render();
+});
+
+// ---- legend ----------------------------------------------------------------------
+
+function drawLegend(coloring) {
+  const legend = document.getElementById('legend');
+  legend.replaceChildren();
+  const unit = coloring.unit ? ` (${coloring.unit})` : ' (–)';
+  const title = document.createElement('strong');
+  title.textContent = coloring.label + (coloring.categories ? '' : unit);
+  legend.appendChild(title);
+  if (coloring.categories) {
+    for (const c of coloring.categories) {
+      const item = document.createElement('span');
+      item.className = 'cat';
+      item.innerHTML = `<span class="swatch" style="background:${cssColor(c.color)}"></span>`;
+      item.appendChild(document.createTextNode(c.label));
+      legend.appendChild(item);
+    }
+    return;
+  }
+  const box = document.createElement('div');
+  const canvas = document.createElement('canvas');
+  canvas.width = 260;
+  canvas.height = 14;
+  const ctx = canvas.getContext('2d');
+  for (let x = 0; x < canvas.width; ++x) {
+    const i = Math.round((x / (canvas.width - 1)) * 255) * 3;
+    ctx.fillStyle = cssColor([coloring.lut[i], coloring.lut[i + 1], coloring.lut[i + 2]]);
+    ctx.fillRect(x, 0, 1, canvas.height);
+  }
+  const ticks = document.createElement('div');
+  ticks.className = 'ticks';
+  // Ends, middle and zero (when inside the range), leaving out ticks that would overlap.
+  const candidates = [coloring.lo, coloring.hi];
+  if (coloring.lo < 0 && coloring.hi > 0) candidates.push(0);
+  candidates.push((coloring.lo + coloring.hi) / 2);
+  const values = [];
+  for (const v of candidates) {
+    const t = (v - coloring.lo) / (coloring.hi - coloring.lo);
+    if (values.every((w) => Math.abs((w - coloring.lo) / (coloring.hi - coloring.lo) - t) > 0.15)) values.push(v);
+  }
+  for (const v of values) {
+    const t = (v - coloring.lo) / (coloring.hi - coloring.lo);
+    const tick = document.createElement('span');
+    tick.style.left = `${Math.min(Math.max(t, 0.04), 0.96) * 100}%`;
+    tick.textContent = fmt(v);
+    ticks.appendChild(tick);
+  }
+  box.append(canvas, ticks);
+  legend.appendChild(box);
+  const note = document.createElement('span');
+  note.className = 'hint';
+  note.textContent = 'values outside the range are clamped; grey: no value';
+  legend.appendChild(note);
+}
+
+// ---- pattern pieces --------------------------------------------------------------
+
+const patternTriangles = [];  // [{element, face}]
+
+function drawPattern() {
+  const host = document.getElementById('pattern');
+  if (pieces.length === 0) {
+    host.textContent = 'No pattern pieces.';
+    return;
+  }
+  const gap = 0.03;  // m between pieces
+  let x0 = 0;
+  let top = -Infinity;
+  let bottom = Infinity;
+  const placed = [];
+  for (const p of pieces) {
+    let minX = Infinity, maxX = -Infinity, minY = Infinity, maxY = -Infinity;
+    for (let i = 0; i < p.rest.length; i += 2) {
+      minX = Math.min(minX, p.rest[i]); maxX = Math.max(maxX, p.rest[i]);
+      minY = Math.min(minY, p.rest[i + 1]); maxY = Math.max(maxY, p.rest[i + 1]);
+    }
+    if (!Number.isFinite(minX)) { minX = maxX = minY = maxY = 0; }
+    placed.push({ p, dx: x0 - minX, minX, maxX, minY, maxY });
+    x0 += maxX - minX + gap;
+    top = Math.max(top, maxY);
+    bottom = Math.min(bottom, minY);
+  }
+  const width = Math.max(x0 - gap, 1e-3);
+  const labelSpace = 0.05;  // m below the pieces for names and the scale bar
+  const height = Math.max(top - bottom, 1e-3) + labelSpace;
+  const margin = 0.01;
+  const svg = document.createElementNS(SVG_NS, 'svg');
+  svg.setAttribute('viewBox', `${-margin} ${-top - margin} ${width + 2 * margin} ${height + 2 * margin}`);
+  svg.setAttribute('role', 'img');
+  const stroke = width / 600;
+  for (const { p, dx, minX, maxX, minY } of placed) {
+    const g = document.createElementNS(SVG_NS, 'g');
+    g.setAttribute('data-piece', p.name);
+    const pt = (v) => [p.rest[2 * v] + dx, -p.rest[2 * v + 1]];
+    for (let t = 0; t < p.triangles.length / 3; ++t) {
+      const path = document.createElementNS(SVG_NS, 'path');
+      const [a, b, c] = [0, 1, 2].map((k) => pt(p.triangles[3 * t + k]));
+      path.setAttribute('d', `M${a[0]} ${a[1]}L${b[0]} ${b[1]}L${c[0]} ${c[1]}Z`);
+      path.setAttribute('stroke-width', stroke / 2);
+      g.appendChild(path);
+      patternTriangles.push({ element: path, face: p.faces[t] });
+    }
+    if (p.boundary.length > 1) {
+      const outline = document.createElementNS(SVG_NS, 'polygon');
+      outline.setAttribute('points', p.boundary.map((v) => pt(v).join(',')).join(' '));
+      outline.setAttribute('fill', 'none');
+      outline.setAttribute('stroke', '#1d232b');
+      outline.setAttribute('stroke-width', stroke * 1.5);
+      g.appendChild(outline);
+    }
+    // Grain line through the piece's centre.
+    const cx = (minX + maxX) / 2 + dx;
+    const cy = -(minY + top) / 2;
+    const len = Math.min(maxX - minX, top - minY) * 0.3;
+    const [gx, gy] = [p.grain[0] * len, -p.grain[1] * len];
+    const grain = document.createElementNS(SVG_NS, 'path');
+    const head = len * 0.15;
+    const ux = gx / (len || 1), uy = gy / (len || 1);
+    grain.setAttribute('d', `M${cx - gx / 2} ${cy - gy / 2}L${cx + gx / 2} ${cy + gy / 2}` +
+      `M${cx + gx / 2 - head * (ux - uy * 0.5)} ${cy + gy / 2 - head * (uy + ux * 0.5)}L${cx + gx / 2} ${cy + gy / 2}` +
+      `L${cx + gx / 2 - head * (ux + uy * 0.5)} ${cy + gy / 2 - head * (uy - ux * 0.5)}`);
+    grain.setAttribute('stroke', '#1d232b');
+    grain.setAttribute('stroke-width', stroke);
+    grain.setAttribute('fill', 'none');
+    const halo = grain.cloneNode();
+    halo.setAttribute('stroke', '#ffffff');
+    halo.setAttribute('stroke-width', stroke * 3);
+    g.append(halo, grain);
+    const label = document.createElementNS(SVG_NS, 'text');
+    label.setAttribute('x', cx);
+    label.setAttribute('y', -bottom + labelSpace * 0.4);
+    label.setAttribute('text-anchor', 'middle');
+    label.setAttribute('font-size', labelSpace * 0.32);
+    label.textContent = p.name;
+    g.appendChild(label);
+    svg.appendChild(g);
+  }
+  const bar = document.createElementNS(SVG_NS, 'path');
+  const barY = -bottom + labelSpace * 0.8;
+  bar.setAttribute('d', `M0 ${barY}h0.1M0 ${barY - 0.005}v0.01M0.1 ${barY - 0.005}v0.01`);
+  bar.setAttribute('stroke', '#1d232b');
+  bar.setAttribute('stroke-width', stroke);
+  svg.appendChild(bar);
+  const barLabel = document.createElementNS(SVG_NS, 'text');
+  barLabel.setAttribute('x', 0.105);
+  barLabel.setAttribute('y', barY + labelSpace * 0.1);
+  barLabel.setAttribute('font-size', labelSpace * 0.28);
+  barLabel.textContent = '10 cm';
+  svg.appendChild(barLabel);
+  host.appendChild(svg);
+}
+
+// ---- colouring -------------------------------------------------------------------
+
+function applyColoring(index) {
+  const colors = garmentGeometry.getAttribute('color');
+  const coloring = colorings[index];
+  const color = new THREE.Color();
+  const nFaces = garment.indices.length / 3;
+  for (let f = 0; f < nFaces; ++f) {
+    const rgb = coloring ? colorOf(coloring, coloring.values[f]) : [200, 200, 200];
+    color.setRGB(rgb[0] / 255, rgb[1] / 255, rgb[2] / 255, THREE.SRGBColorSpace);
+    for (let k = 0; k < 3; ++k) colors.setXYZ(3 * f + k, color.r, color.g, color.b);
+  }
+  colors.needsUpdate = true;
+  for (const { element, face } of patternTriangles) {
+    const css = cssColor(coloring ? colorOf(coloring, coloring.values[face]) : [200, 200, 200]);
+    element.setAttribute('fill', css);
+    element.setAttribute('stroke', css);
+  }
+  if (coloring) drawLegend(coloring);
+  report.coloring = index;
+  render();
+}
+report.setColoring = applyColoring;
+
+// ---- tables and plot -------------------------------------------------------------
+
+function cell(row, text, cls) {
+  const td = document.createElement('td');
+  td.textContent = text;
+  if (cls) td.className = cls;
+  row.appendChild(td);
+}
+
+function drawStats() {
+  const s = data.stats;
+  const table = document.createElement('table');
+  table.innerHTML = '<thead><tr><th class="name" rowspan="2">piece</th><th rowspan="2">area (cm²)</th>' +
+    '<th colspan="3">pressure (mmHg)</th><th colspan="3">pressure (Pa)</th><th colspan="2">max stretch (–)</th>' +
+    '<th colspan="3">share of area</th><th colspan="2">lift-off (p &lt; 0)</th></tr>' +
+    '<tr><th>min</th><th>median</th><th>max</th><th>min</th><th>median</th><th>max</th><th>median</th><th>max</th>' +
+    '<th>slack</th><th>wrinkled</th><th>taut</th><th>area (cm²)</th><th>share</th></tr></thead>';
+  const tbody = document.createElement('tbody');
+  const rows = [...s.pieces, { ...s.garment, total: true }];
+  for (const r of rows) {
+    const tr = document.createElement('tr');
+    if (r.total) tr.className = 'total';
+    cell(tr, r.total ? 'whole garment' : r.name, 'name');
+    cell(tr, fmt(r.area_m2 * 1e4));
+    for (const k of ['min', 'median', 'max']) cell(tr, fmt(r.pressure_mmhg[k]));
+    for (const k of ['min', 'median', 'max']) cell(tr, fmt(r.pressure_pa[k]));
+    cell(tr, fmt(r.stretch_max.median));
+    cell(tr, fmt(r.stretch_max.max));
+    for (const k of ['slack', 'wrinkled', 'taut']) cell(tr, percent(r.regime_share[k]));
+    const lift = r.liftoff_area_m2;
+    cell(tr, lift === null ? '–' : fmt(lift * 1e4), lift > 0 ? 'liftoff' : '');
+    cell(tr, percent(r.liftoff_share), lift > 0 ? 'liftoff' : '');
+    tbody.appendChild(tr);
+  }
+  table.appendChild(tbody);
+  document.getElementById('stats').appendChild(table);
+}
+
+function drawHistory() {
+  const host = document.getElementById('history');
+  const entries = Array.isArray(data.history) ? data.history : [];
+  const points = entries.map((e, i) => [typeof e.iteration === 'number' ? e.iteration : i, e.objective])
+    .filter(([x, y]) => typeof y === 'number' && Number.isFinite(y));
+  if (points.length === 0) {
+    host.textContent = 'No optimization history in this fit.';
+    return;
+  }
+  const ys = points.map((p) => p[1]);
+  const yMin = Math.min(...ys), yMax = Math.max(...ys);
+  const log = yMin > 0 && yMax / yMin > 100;
+  const fy = (y) => (log ? Math.log10(y) : y);
+  const [x0, x1] = [points[0][0], points[points.length - 1][0]];
+  const [l0, l1] = [fy(yMin), fy(yMax)];
+  const W = 520, H = 200, L = 64, R = 12, T = 10, B = 34;
+  const sx = (x) => L + (x1 === x0 ? 0.5 : (x - x0) / (x1 - x0)) * (W - L - R);
+  const sy = (y) => T + (l1 === l0 ? 0.5 : 1 - (fy(y) - l0) / (l1 - l0)) * (H - T - B);
+  const svg = document.createElementNS(SVG_NS, 'svg');
+  svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
+  svg.setAttribute('width', W);
+  svg.setAttribute('height', H);
+  svg.innerHTML = `<rect x="${L}" y="${T}" width="${W - L - R}" height="${H - T - B}" fill="#f7f8fa" stroke="#d5dae0"/>` +
+    `<polyline fill="none" stroke="#2a6fdb" stroke-width="2" points="${points.map(([x, y]) => `${sx(x)},${sy(y)}`).join(' ')}"/>` +
+    `<text x="${L - 6}" y="${T + 10}" text-anchor="end" font-size="11">${fmt(yMax)}</text>` +
+    `<text x="${L - 6}" y="${H - B}" text-anchor="end" font-size="11">${fmt(yMin)}</text>` +
+    `<text x="${L}" y="${H - B + 14}" font-size="11">${x0}</text>` +
+    `<text x="${W - R}" y="${H - B + 14}" text-anchor="end" font-size="11">${x1}</text>` +
+    `<text x="${(L + W - R) / 2}" y="${H - 4}" text-anchor="middle" font-size="12">iteration</text>` +
+    `<text x="12" y="${(T + H - B) / 2}" font-size="12" transform="rotate(-90 12 ${(T + H - B) / 2})" text-anchor="middle">objective${log ? ' (log)' : ''}</text>`;
+  host.appendChild(svg);
+}
+
+function drawParameters() {
+  const host = document.getElementById('parameters');
+  const rows = [];
+  const walk = (value, path) => {
+    if (value !== null && typeof value === 'object' && !Array.isArray(value)) {
+      for (const [k, v] of Object.entries(value)) walk(v, path ? `${path}.${k}` : k);
+    } else {
+      rows.push([path, JSON.stringify(value)]);
+    }
+  };
+  walk(data.parameters, '');
+  if (rows.length === 0) {
+    host.textContent = 'No scene parameters given.';
+    return;
+  }
+  const table = document.createElement('table');
+  for (const [k, v] of rows) {
+    const tr = document.createElement('tr');
+    cell(tr, k);
+    cell(tr, v);
+    table.appendChild(tr);
+  }
+  host.appendChild(table);
+}
+
+// ---- start -----------------------------------------------------------------------
+
+const select = document.getElementById('coloring');
+colorings.forEach((c, i) => {
+  const option = document.createElement('option');
+  option.value = String(i);
+  option.textContent = c.unit ? `${c.label} (${c.unit})` : c.label;
+  select.appendChild(option);
+});
+select.addEventListener('change', () => applyColoring(Number(select.value)));
+if (data.missing_colorings.length > 0) {
+  const missing = document.getElementById('missing');
+  missing.hidden = false;
+  missing.textContent = 'Not available in this fit: ' + data.missing_colorings.join(', ');
+}
+
+drawPattern();
+drawStats();
+drawHistory();
+drawParameters();
+resize();
+applyColoring(colorings.length > 0 ? 0 : -1);
+report.ready = true;

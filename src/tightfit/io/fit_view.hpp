@@ -1,0 +1,86 @@
+#pragma once
+/// The simulated fit as the exports see it: plain arrays that the simulation fills and
+/// that the PLY, glTF and report writers read (fit_ply.hpp, fit_glb.hpp, report_html.hpp).
+///
+/// Units: positions in metres, pressures in Pa (mmHg only as a derived field, 1 mmHg =
+/// kPascalPerMmHg Pa), forces in N, stretches dimensionless (1.3 = 30 % stretch).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tightfit/common/types.hpp"
+#include "tightfit/garment/pattern.hpp"
+#include "tightfit/geometry/mesh.hpp"
+
+namespace tightfit {
+
+/// Names of the standard garment face fields. The writers accept any field; these are
+/// the ones the report's colour maps and statistics look for.
+namespace fit_fields {
+/// Largest principal stretch s1 of the face (dimensionless, 1 = rest length).
+inline constexpr std::string_view kStretchMax = "stretch_max";
+/// Smallest principal stretch s2 <= s1 (dimensionless).
+inline constexpr std::string_view kStretchMin = "stretch_min";
+/// Unit 3D direction of s1 in the deformed face (3 components).
+inline constexpr std::string_view kStretchDirection = "stretch_dir";
+/// Cloth regime: 0 slack, 1 wrinkled, 2 taut (ClothRegime's order).
+inline constexpr std::string_view kRegime = "regime";
+/// Pressure on the body (Pa): positive presses onto the body, negative means the
+/// fabric would lift off there (never clamped).
+inline constexpr std::string_view kPressurePa = "pressure_pa";
+/// The same pressure in mmHg.
+inline constexpr std::string_view kPressureMmHg = "pressure_mmhg";
+/// Normal force of the face on the body (N): pressure times deformed face area.
+inline constexpr std::string_view kNormalForce = "normal_force_n";
+}  // namespace fit_fields
+
+/// A quantity per face of a mesh.
+struct FaceField {
+  std::string name;  ///< [A-Za-z0-9_]+, unique within its mesh (e.g. "pressure_pa")
+  std::string unit;  ///< "Pa", "mmHg", "N", "" for dimensionless, ...
+  /// num_faces × components: one row per face, 1 column for a scalar, 3 for a 3D
+  /// vector. NaN marks a face without a value.
+  MatX values;
+
+  int components() const { return static_cast<int>(values.cols()); }
+};
+
+/// Everything the fit exports show. Garment faces and pattern triangles are the same
+/// triangles: `piece_faces` says which garment face each pattern triangle became.
+struct FitView {
+  TriMesh body;                        ///< deformed body surface (m)
+  std::vector<FaceField> body_fields;  ///< per body face; may be empty
+  TriMesh garment;                     ///< garment in 3D (m), welded across seams
+  std::vector<FaceField> garment_fields;  ///< per garment face (see fit_fields)
+  Pattern pattern;                        ///< 2D pieces (m) and seams
+  /// piece_faces[k][t]: the garment face of triangle t of piece k. Empty means the
+  /// garment faces are the pieces' triangles in piece order (piece 0 first). Every
+  /// garment face belongs to exactly one pattern triangle.
+  std::vector<std::vector<int>> piece_faces;
+  nlohmann::json parameters = nlohmann::json::object();  ///< scene parameters to show
+  /// Optimization history: an array of per-iteration objects, e.g.
+  /// {"iteration": 3, "objective": 0.12, "gradient_norm": 1e-3}; may be empty.
+  nlohmann::json history = nlohmann::json::array();
+};
+
+/// Checks shapes and indices: faces index existing vertices, every field has one row
+/// per face of its mesh and a valid unique name, the pattern triangles map one-to-one
+/// onto the garment faces, `history` is an array and `parameters` an object.
+/// Throws InputError with `source` (e.g. the output file) naming the problem.
+void validate_fit_view(const FitView& view, const std::string& source);
+
+/// The field called `name`, or nullptr.
+const FaceField* find_field(const std::vector<FaceField>& fields, std::string_view name);
+
+/// piece_faces resolved: the explicit mapping, or the piece-order concatenation when
+/// FitView::piece_faces is empty. Assumes a valid view.
+std::vector<std::vector<int>> resolved_piece_faces(const FitView& view);
+
+/// The piece of every garment face (size garment.num_faces()). Assumes a valid view.
+std::vector<int> garment_face_pieces(const FitView& view);
+
+/// A pressure field in mmHg ("pressure_mmhg") from one in Pa.
+FaceField pressure_mmhg_field(const FaceField& pressure_pa);
+
+}  // namespace tightfit

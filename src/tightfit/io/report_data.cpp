@@ -1,0 +1,108 @@
+#include "tightfit/io/report_data.hpp"
+
+#include <cmath>
+
+#include "tightfit/io/fit_stats.hpp"
+#include "tightfit/io/report_encoding.hpp"
+
+namespace tightfit {
+
+namespace {
+
+std::string f32(const std::vector<double>& values) { return "f32:" + base64_float32(values); }
+std::string u32(const std::vector<std::int64_t>& values) { return "u32:" + base64_uint32(values); }
+
+template <typename Matrix>
+std::vector<double> flat_doubles(const Matrix& m) {
+  std::vector<double> out;
+  out.reserve(static_cast<std::size_t>(m.size()));
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    for (Eigen::Index c = 0; c < m.cols(); ++c) out.push_back(static_cast<double>(m(r, c)));
+  }
+  return out;
+}
+
+template <typename Matrix>
+std::vector<std::int64_t> flat_ints(const Matrix& m) {
+  std::vector<std::int64_t> out;
+  out.reserve(static_cast<std::size_t>(m.size()));
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    for (Eigen::Index c = 0; c < m.cols(); ++c) out.push_back(m(r, c));
+  }
+  return out;
+}
+
+nlohmann::json mesh_json(const TriMesh& mesh) {
+  return {{"positions", f32(flat_doubles(mesh.vertices))}, {"indices", u32(flat_ints(mesh.faces))}};
+}
+
+std::array<int, 3> bytes(const Rgb& rgb) {
+  std::array<int, 3> out{};
+  for (std::size_t k = 0; k < 3; ++k) out[k] = static_cast<int>(std::lround(255.0 * rgb[k]));
+  return out;
+}
+
+nlohmann::json coloring_json(const ResolvedColoring& c) {
+  nlohmann::json j = {{"field", c.coloring.field},
+                      {"label", c.coloring.label},
+                      {"unit", c.coloring.unit},
+                      {"colormap", colormap_name(c.coloring.colormap)},
+                      {"lo", c.lo},
+                      {"hi", c.hi},
+                      {"values", f32(c.values)}};
+  if (c.coloring.colormap == ColorMap::kRegime) {
+    nlohmann::json categories = nlohmann::json::array();
+    for (const auto& cat : regime_categories()) {
+      categories.push_back({{"value", cat.value}, {"label", cat.label}, {"color", bytes(cat.color)}});
+    }
+    j["categories"] = categories;
+  } else {
+    std::vector<int> lut;
+    for (int i = 0; i < 256; ++i) {
+      for (const int b : bytes(colormap_color(c.coloring.colormap, i / 255.0))) lut.push_back(b);
+    }
+    j["lut"] = lut;
+  }
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColoring>& colorings,
+                                const std::string& title, const std::string& source) {
+  nlohmann::json coloring_list = nlohmann::json::array();
+  nlohmann::json missing = nlohmann::json::array();
+  for (const auto& coloring : colorings) {
+    const FaceField* field = find_field(view.garment_fields, coloring.field);
+    if (field == nullptr) {
+      missing.push_back(coloring.label + " (field '" + coloring.field + "')");
+      continue;
+    }
+    coloring_list.push_back(coloring_json(resolve_coloring(coloring, *field, source)));
+  }
+
+  nlohmann::json pieces = nlohmann::json::array();
+  const auto map = resolved_piece_faces(view);
+  for (std::size_t k = 0; k < view.pattern.pieces.size(); ++k) {
+    const auto& piece = view.pattern.pieces[k];
+    std::vector<std::int64_t> faces(map[k].begin(), map[k].end());
+    pieces.push_back({{"name", piece.name},
+                      {"rest", f32(flat_doubles(piece.rest))},
+                      {"triangles", u32(flat_ints(piece.triangles))},
+                      {"faces", u32(faces)},
+                      {"boundary", piece.boundary},
+                      {"grain", {piece.grain.x(), piece.grain.y()}}});
+  }
+
+  return {{"title", title},
+          {"body", view.body.num_faces() > 0 ? mesh_json(view.body) : nlohmann::json()},
+          {"garment", mesh_json(view.garment)},
+          {"colorings", coloring_list},
+          {"missing_colorings", missing},
+          {"pieces", pieces},
+          {"stats", fit_statistics_json(compute_fit_statistics(view))},
+          {"parameters", view.parameters},
+          {"history", view.history}};
+}
+
+}  // namespace tightfit

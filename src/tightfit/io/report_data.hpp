@@ -1,0 +1,30 @@
+#pragma once
+/// The data the report viewer (report/viewer.js) shows, as one JSON object embedded in
+/// report.html. Arrays of numbers are base64 strings of little-endian typed arrays
+/// ("f32:" float32, "u32:" uint32 prefixes), which keeps large meshes compact:
+///
+///   title                 string
+///   body, garment         {positions: f32 n×3 (m), indices: u32 m×3} (body null if empty)
+///   colorings[]           {field, label, unit, colormap, lo, hi, values: f32 per garment
+///                          face (scaled), lut: 256×3 sRGB bytes (continuous maps) or
+///                          categories: [{value, label, color: [r,g,b] bytes}]}
+///   missing_colorings[]   labels of requested colourings whose field the fit lacks
+///   pieces[]              {name, rest: f32 n×2 (m), triangles: u32 t×3, faces: u32 t
+///                          (garment face of each triangle), boundary: [vertex], grain: [x,y]}
+///   stats                 fit_statistics_json
+///   parameters, history   as in FitView
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tightfit/io/fit_colormap.hpp"
+#include "tightfit/io/fit_view.hpp"
+
+namespace tightfit {
+
+/// Builds the viewer data of a valid view. Colourings whose field is absent are listed
+/// in missing_colorings; InputError (naming `source`) for a colouring of a vector field.
+nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColoring>& colorings,
+                                const std::string& title, const std::string& source);
+
+}  // namespace tightfit

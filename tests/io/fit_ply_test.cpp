@@ -1,0 +1,104 @@
+#include "tightfit/io/fit_ply.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "io/fit_test_tools.hpp"
+#include "io/fit_test_view.hpp"
+#include "tightfit/common/error.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
+
+namespace tightfit {
+namespace {
+
+/// Reads `ply` with Debian's python3-meshio and returns its JSON dump.
+nlohmann::json read_with_meshio(const std::filesystem::path& ply, const test::TempDir& dir) {
+  const auto out = dir / (ply.stem().string() + "_meshio.json");
+  const auto result = test::run_command(
+      "/usr/bin/python3 " + test::quoted(test::source_path("tests/io/fit_ply_read.py")) + " " +
+          test::quoted(ply) + " " + test::quoted(out),
+      dir / "meshio.log");
+  EXPECT_EQ(result.exit_code, 0) << "meshio could not read " << ply << " (needs /usr/bin/python3 "
+                                 << "with python3-meshio, see scripts/install-deps.sh):\n"
+                                 << result.output;
+  std::ifstream in(out);
+  if (!in) return nlohmann::json();
+  return nlohmann::json::parse(in);
+}
+
+void expect_mesh_and_fields(const nlohmann::json& read, const TriMesh& mesh,
+                            const std::vector<FaceField>& fields) {
+  ASSERT_TRUE(read.is_object());
+  ASSERT_EQ(read["points"].size(), static_cast<std::size_t>(mesh.num_vertices()));
+  ASSERT_EQ(read["triangles"].size(), static_cast<std::size_t>(mesh.num_faces()));
+  for (int v = 0; v < mesh.num_vertices(); v += 7) {
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(read["points"][v][k].get<double>(), mesh.vertices(v, k));
+  }
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(read["triangles"][f][k].get<int>(), mesh.faces(f, k));
+  }
+  const auto& data = read["cell_data"];
+  std::size_t columns = 0;
+  for (const auto& field : fields) {
+    for (int c = 0; c < field.components(); ++c) {
+      const std::string name =
+          field.components() == 1 ? field.name : field.name + "_" + std::to_string(c);
+      ++columns;
+      ASSERT_TRUE(data.contains(name)) << "meshio did not find face property " << name;
+      ASSERT_EQ(data[name].size(), static_cast<std::size_t>(mesh.num_faces()));
+      for (int f = 0; f < mesh.num_faces(); ++f) {
+        ASSERT_EQ(data[name][f].get<double>(), field.values(f, c)) << name << " face " << f;
+      }
+    }
+  }
+  EXPECT_EQ(data.size(), columns);
+}
+
+TEST(FitPly, MeshioReadsGarmentAndBodyFieldsExactly) {
+  test::TempDir dir("ply");
+  FitView view = test::band_on_sphere(12, 3);
+  FaceField body_pressure{"pressure_pa", "Pa", MatX(view.body.num_faces(), 1)};
+  for (int f = 0; f < view.body.num_faces(); ++f) body_pressure.values(f, 0) = 10.0 * f - 3.25;
+  view.body_fields = {body_pressure};
+  write_fit_ply(view, dir / "garment.ply", dir / "body.ply");
+
+  const auto garment = read_with_meshio(dir / "garment.ply", dir);
+  expect_mesh_and_fields(garment, view.garment, view.garment_fields);
+  for (const char* name : {"stretch_max", "stretch_min", "stretch_dir_0", "stretch_dir_1",
+                           "stretch_dir_2", "regime", "pressure_pa", "pressure_mmhg",
+                           "normal_force_n"}) {
+    EXPECT_TRUE(garment["cell_data"].contains(name)) << name;
+  }
+  const auto body = read_with_meshio(dir / "body.ply", dir);
+  expect_mesh_and_fields(body, view.body, view.body_fields);
+}
+
+TEST(FitPly, GeometryReaderReadsTheFieldsBackInBothEncodings) {
+  test::TempDir dir("ply_geometry");
+  const FitView view = test::band_on_sphere(6, 2);
+  for (const auto encoding : {PlyEncoding::ascii, PlyEncoding::binary_little_endian}) {
+    write_face_field_ply(dir / "garment.ply", view.garment, view.garment_fields, encoding);
+    const PlyData data = read_ply(dir / "garment.ply");
+    EXPECT_EQ(data.mesh.faces, view.garment.faces);
+    EXPECT_EQ(data.mesh.vertices, view.garment.vertices);
+    const auto& fields = data.attributes.face_fields;
+    const auto it = std::find_if(fields.begin(), fields.end(),
+                                 [](const MeshField& f) { return f.name == "pressure_mmhg"; });
+    ASSERT_NE(it, fields.end());
+    EXPECT_EQ(it->values, find_field(view.garment_fields, "pressure_mmhg")->values);
+    EXPECT_EQ(fields.size(), 9u);  // 6 scalars, stretch_dir_0..2
+  }
+}
+
+TEST(FitPly, RejectsFieldsOfTheWrongSize) {
+  test::TempDir dir("ply_bad");
+  const FitView view = test::band_on_sphere(6, 2);
+  FaceField wrong{"x", "", MatX::Zero(3, 1)};
+  EXPECT_THROW(write_face_field_ply(dir / "g.ply", view.garment, {wrong}), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "g.ply"));
+}
+
+}  // namespace
+}  // namespace tightfit

@@ -1,0 +1,114 @@
+#include "tightfit/io/report_html.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "io/fit_test_tools.hpp"
+#include "io/fit_test_view.hpp"
+#include "tightfit/common/error.hpp"
+#include "tightfit/io/report_data.hpp"
+
+namespace tightfit {
+namespace {
+
+/// The JSON embedded in a rendered report.
+nlohmann::json embedded_data(const std::string& html) {
+  const std::string open = "<script type=\"application/json\" id=\"tightfit-data\">";
+  const auto begin = html.find(open);
+  EXPECT_NE(begin, std::string::npos);
+  const auto start = begin + open.size();
+  const auto end = html.find("</script>", start);
+  return nlohmann::json::parse(html.substr(start, end - start));
+}
+
+TEST(ReportHtml, SelfContainedPage) {
+  const FitView view = test::band_on_sphere(8, 2);
+  ReportOptions options;
+  options.title = "Band <test> & fit";
+  const std::string html = render_report_html(view, options);
+  EXPECT_NE(html.find("<title>Band &lt;test&gt; &amp; fit</title>"), std::string::npos);
+  EXPECT_NE(html.find("<script type=\"importmap\">"), std::string::npos);
+  EXPECT_EQ(html.find("<!-- tightfit:"), std::string::npos);
+  EXPECT_EQ(html.find("{{TITLE}}"), std::string::npos);
+  // Nothing is loaded from elsewhere: no src/href attributes at all.
+  EXPECT_EQ(html.find(" src="), std::string::npos);
+  EXPECT_EQ(html.find(" href="), std::string::npos);
+
+  const auto data = embedded_data(html);
+  EXPECT_EQ(data["title"], options.title);
+  ASSERT_EQ(data["colorings"].size(), 4u);
+  EXPECT_EQ(data["colorings"][2]["unit"], "mmHg");
+  EXPECT_EQ(data["colorings"][3]["categories"].size(), 3u);
+  EXPECT_EQ(data["colorings"][0]["lut"].size(), 768u);
+  EXPECT_TRUE(data["missing_colorings"].empty());
+  ASSERT_EQ(data["pieces"].size(), 2u);
+  EXPECT_EQ(data["pieces"][1]["name"], "back");
+  EXPECT_EQ(data["history"].size(), 12u);
+  EXPECT_EQ(data["stats"]["pieces"].size(), 2u);
+}
+
+TEST(ReportHtml, MissingFieldsAreListed) {
+  FitView view = test::band_on_sphere(4, 1);
+  view.garment_fields.erase(view.garment_fields.begin());  // no stretch_max
+  const auto data = report_data_json(view, standard_colorings(), "t", "x");
+  EXPECT_EQ(data["colorings"].size(), 3u);
+  ASSERT_EQ(data["missing_colorings"].size(), 1u);
+  EXPECT_NE(data["missing_colorings"][0].get<std::string>().find("stretch_max"), std::string::npos);
+}
+
+TEST(ReportHtml, MissingThreeJsIsAnError) {
+  const FitView view = test::band_on_sphere(4, 1);
+  ReportOptions options;
+  options.three_module = "/nonexistent/three.module.js";
+  try {
+    render_report_html(view, options);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/three.module.js"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("install-deps.sh"), std::string::npos);
+  }
+  options = ReportOptions{};
+  options.viewer_dir = "/nonexistent";
+  EXPECT_THROW(render_report_html(view, options), InputError);
+}
+
+TEST(ReportHtml, TemplateWithoutMarkerIsAnError) {
+  test::TempDir dir("report_template");
+  std::filesystem::copy_file(default_report_viewer_dir() / "viewer.js", dir / "viewer.js");
+  std::ofstream(dir / "template.html") << "<html>{{TITLE}}<!-- tightfit:data --></html>";
+  ReportOptions options;
+  options.viewer_dir = dir.path();
+  EXPECT_THROW(render_report_html(test::band_on_sphere(4, 1), options), InputError);
+}
+
+TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
+  test::TempDir dir("report_browser");
+  const FitView view = test::band_on_sphere(32, 8);
+  write_report_html(dir / "report.html", view);
+  // Screenshots stay in TIGHTFIT_REPORT_SHOTS when set (to look at them), else in the temp dir.
+  const char* keep = std::getenv("TIGHTFIT_REPORT_SHOTS");
+  const std::filesystem::path shots = keep != nullptr ? std::filesystem::path(keep) : dir / "shots";
+  if (keep != nullptr) {
+    std::filesystem::create_directories(shots);
+    std::filesystem::copy_file(dir / "report.html", shots / "report.html",
+                               std::filesystem::copy_options::overwrite_existing);
+  }
+  const auto result = test::run_command(
+      "node " + test::quoted(test::source_path("tests/io/report_browser_check.mjs")) + " " +
+          test::quoted(dir / "report.html") + " " + test::quoted(shots),
+      dir / "browser.log");
+  ASSERT_EQ(result.exit_code, 0) << "report.html failed in headless chromium (needs node, "
+                                 << "/usr/bin/chromium and report/node_modules; see "
+                                 << "scripts/install-deps.sh):\n"
+                                 << result.output;
+  const auto summary = nlohmann::json::parse(result.output);
+  EXPECT_TRUE(summary["failures"].empty());
+  EXPECT_GT(summary["pixels"]["notBackground"].get<double>(), 0.05);
+  EXPECT_GT(summary["pixels"]["changed"].get<double>(), 0.02);
+  EXPECT_EQ(summary["statsRows"], 3);  // two pieces and the whole garment
+  EXPECT_NE(summary["statsText"].get<std::string>().find("lift-off"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tightfit
