@@ -30,7 +30,7 @@ TEST(FitColormap, TurboRunsFromDarkThroughBlueToDarkRed) {
   EXPECT_GT(blue[2], blue[0]);
   EXPECT_GT(hi[0], 0.4);  // dark red
   EXPECT_LT(hi[1] + hi[2], 0.1);
-  EXPECT_GT(mid[1], 0.8);    // bright green-yellow in the middle
+  EXPECT_GT(mid[1], 0.8);  // bright green-yellow in the middle
   for (double t = 0.0; t <= 1.0; t += 0.05) {
     for (const double c : colormap_color(ColorMap::kTurbo, t)) {
       EXPECT_GE(c, 0.0);

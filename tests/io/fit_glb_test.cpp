@@ -23,7 +23,8 @@ std::string read_bytes(const std::filesystem::path& path) {
 
 std::uint32_t u32_at(const std::string& bytes, std::size_t offset) {
   std::uint32_t v = 0;
-  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[offset + static_cast<std::size_t>(i)]);
+  for (int i = 3; i >= 0; --i)
+    v = (v << 8) | static_cast<unsigned char>(bytes[offset + static_cast<std::size_t>(i)]);
   return v;
 }
 
@@ -51,10 +52,10 @@ TEST(FitGlb, PassesTheKhronosValidator) {
   EXPECT_LT(used.lo, 0.0);  // lift-off kept in the range
   EXPECT_NEAR(used.hi, 2800.0 / kPascalPerMmHg, 0.2);
 
-  const auto result = test::run_command(
-      "node " + test::quoted(test::source_path("tests/io/fit_glb_validate.mjs")) + " " +
-          test::quoted(dir / "fit.glb"),
-      dir / "validator.log");
+  const auto result =
+      test::run_command("node " + test::quoted(test::source_path("tests/io/fit_glb_validate.mjs")) +
+                            " " + test::quoted(dir / "fit.glb"),
+                        dir / "validator.log");
   ASSERT_EQ(result.exit_code, 0) << "gltf-validator (node, report/node_modules; see "
                                  << "scripts/install-deps.sh) reported errors or could not run:\n"
                                  << result.output;

@@ -66,9 +66,9 @@ TEST(FitPly, MeshioReadsGarmentAndBodyFieldsExactly) {
 
   const auto garment = read_with_meshio(dir / "garment.ply", dir);
   expect_mesh_and_fields(garment, view.garment, view.garment_fields);
-  for (const char* name : {"stretch_max", "stretch_min", "stretch_dir_0", "stretch_dir_1",
-                           "stretch_dir_2", "regime", "pressure_pa", "pressure_mmhg",
-                           "normal_force_n"}) {
+  for (const char* name :
+       {"stretch_max", "stretch_min", "stretch_dir_0", "stretch_dir_1", "stretch_dir_2", "regime",
+        "pressure_pa", "pressure_mmhg", "normal_force_n"}) {
     EXPECT_TRUE(garment["cell_data"].contains(name)) << name;
   }
   const auto body = read_with_meshio(dir / "body.ply", dir);

@@ -2,8 +2,8 @@
 /// A small fit built by hand for the export tests: a sphere body (radius 0.1 m, y up),
 /// a band garment around its equator made of two pattern pieces (front and back
 /// halves, welded at two seams) and synthetic fields with known values.
-#include <cmath>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <numbers>
 
 #include "tightfit/io/fit_view.hpp"
@@ -28,7 +28,9 @@ inline TriMesh uv_sphere(double radius, int rings, int segments) {
     }
   }
   std::vector<Eigen::Vector3i> faces;
-  auto ring = [&](int r, int s) { return 1 + (r - 1) * segments + ((s % segments) + segments) % segments; };
+  auto ring = [&](int r, int s) {
+    return 1 + (r - 1) * segments + ((s % segments) + segments) % segments;
+  };
   for (int s = 0; s < segments; ++s) faces.emplace_back(0, ring(1, s), ring(1, s + 1));
   for (int r = 1; r < rings - 1; ++r) {
     for (int s = 0; s < segments; ++s) {
@@ -36,9 +38,11 @@ inline TriMesh uv_sphere(double radius, int rings, int segments) {
       faces.emplace_back(ring(r, s), ring(r + 1, s + 1), ring(r, s + 1));
     }
   }
-  for (int s = 0; s < segments; ++s) faces.emplace_back(n - 1, ring(rings - 1, s + 1), ring(rings - 1, s));
+  for (int s = 0; s < segments; ++s)
+    faces.emplace_back(n - 1, ring(rings - 1, s + 1), ring(rings - 1, s));
   m.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t i = 0; i < faces.size(); ++i) m.faces.row(static_cast<Eigen::Index>(i)) = faces[i].transpose();
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    m.faces.row(static_cast<Eigen::Index>(i)) = faces[i].transpose();
   return m;
 }
 
@@ -120,14 +124,17 @@ inline FitView band_on_sphere(int cols = 24, int rows = 6) {
     stretch_max.values(f, 0) = test_stretch_max(centroid.y(), half_height);
     stretch_min.values(f, 0) = 0.97 + 0.06 * std::sin(theta);
     stretch_dir.values.row(f) << std::cos(theta), 0.0, -std::sin(theta);
-    regime.values(f, 0) = stretch_min.values(f, 0) > 1.0 ? 2.0 : (std::cos(theta) > -0.5 ? 1.0 : 0.0);
+    regime.values(f, 0) =
+        stretch_min.values(f, 0) > 1.0 ? 2.0 : (std::cos(theta) > -0.5 ? 1.0 : 0.0);
     pressure.values(f, 0) = test_pressure(theta);
     force.values(f, 0) = pressure.values(f, 0) * area;
   }
-  view.garment_fields = {stretch_max, stretch_min, stretch_dir, regime, pressure,
-                         pressure_mmhg_field(pressure), force};
-  view.parameters = {{"body", {{"generator", "sphere"}, {"radius_m", kSphereRadius}}},
-                     {"fabric", {{"thickness_m", 1e-4}, {"young_modulus_pa", 5.4e6}, {"poisson", 0.33}}}};
+  view.garment_fields = {stretch_max, stretch_min, stretch_dir,
+                         regime,      pressure,    pressure_mmhg_field(pressure),
+                         force};
+  view.parameters = {
+      {"body", {{"generator", "sphere"}, {"radius_m", kSphereRadius}}},
+      {"fabric", {{"thickness_m", 1e-4}, {"young_modulus_pa", 5.4e6}, {"poisson", 0.33}}}};
   for (int it = 0; it < 12; ++it) {
     view.history.push_back({{"iteration", it}, {"objective", 2.0 * std::exp(-0.5 * it) + 0.01}});
   }

@@ -57,8 +57,14 @@ try {
     return route.abort();
   });
 
+  // Stop at the first uncaught page error instead of waiting for a page that never gets ready.
+  const pageFailed = new Promise((_, reject) => page.on('pageerror', (e) => reject(new Error(`page error: ${e.message}`))));
+  pageFailed.catch(() => {});
   await page.goto(pathToFileURL(path.resolve(htmlPath)).href);
-  await page.waitForFunction(() => window.tightfitReport && window.tightfitReport.ready === true, null, { timeout: 30000 });
+  await Promise.race([
+    page.waitForFunction(() => window.tightfitReport && window.tightfitReport.ready === true, null, { timeout: 30000 }),
+    pageFailed,
+  ]);
   summary.webgl = await page.evaluate(() => {
     const gl = document.createElement('canvas').getContext('webgl2');
     return gl ? gl.getParameter(gl.VERSION) : null;

@@ -21,7 +21,8 @@ TEST(ReportEncoding, Base64Rfc4648Vectors) {
 TEST(ReportEncoding, TypedArraysAreLittleEndian) {
   // 1.0f = 0x3f800000 → bytes 00 00 80 3f.
   EXPECT_EQ(base64_float32({1.0}), base64_encode(std::string("\x00\x00\x80\x3f", 4)));
-  EXPECT_EQ(base64_uint32({1, 258}), base64_encode(std::string("\x01\x00\x00\x00\x02\x01\x00\x00", 8)));
+  EXPECT_EQ(base64_uint32({1, 258}),
+            base64_encode(std::string("\x01\x00\x00\x00\x02\x01\x00\x00", 8)));
   EXPECT_EQ(base64_float32({std::nan("")}).size(), 8u);
   EXPECT_THROW(base64_uint32({-1}), std::invalid_argument);
 }

@@ -49,7 +49,8 @@ TEST(ReportModules, RelativeImportsBecomeMappedDataUrls) {
   write(dir / "shared/b.js", "export const b = 1;\n");
   write(dir / "addon.js", "import {a} from 'three'; import './lib/main.js';\n");
 
-  const auto map = inline_module_import_map({{"three", dir / "lib/main.js"}, {"addon", dir / "addon.js"}});
+  const auto map =
+      inline_module_import_map({{"three", dir / "lib/main.js"}, {"addon", dir / "addon.js"}});
   const auto& imports = map["imports"];
   // main, a, b and the addon: b is included once although two files import it, and the
   // addon's relative import of main.js reuses the "three" entry.

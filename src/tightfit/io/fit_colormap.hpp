@@ -52,10 +52,11 @@ struct FieldColoring {
   std::string field;  ///< face field name (must be a 1-component field)
   std::string label;  ///< shown in legends, e.g. "Pressure"
   std::string unit;   ///< unit of the scaled values, "" for dimensionless
-  double scale = 1.0; ///< values are multiplied by this before mapping (Pa → mmHg: 1/kPascalPerMmHg)
+  double scale =
+      1.0;  ///< values are multiplied by this before mapping (Pa → mmHg: 1/kPascalPerMmHg)
   ColorMap colormap = ColorMap::kViridis;
-  std::optional<double> lo;  ///< range start in scaled units; default from the data
-  std::optional<double> hi;  ///< range end in scaled units; default from the data
+  std::optional<double> lo;   ///< range start in scaled units; default from the data
+  std::optional<double> hi;   ///< range end in scaled units; default from the data
   bool include_zero = false;  ///< widen the default range to contain 0
 };
 

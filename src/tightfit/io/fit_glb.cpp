@@ -29,10 +29,8 @@ class GltfBuffers {
   int add_vec3(const std::vector<float>& data, bool with_bounds) {
     const auto count = data.size() / 3;
     const int view = add_view(data.data(), data.size() * sizeof(float), kArrayBuffer);
-    nlohmann::json accessor = {{"bufferView", view},
-                               {"componentType", kFloat},
-                               {"count", count},
-                               {"type", "VEC3"}};
+    nlohmann::json accessor = {
+        {"bufferView", view}, {"componentType", kFloat}, {"count", count}, {"type", "VEC3"}};
     if (with_bounds) {
       std::vector<float> lo(3, std::numeric_limits<float>::max());
       std::vector<float> hi(3, std::numeric_limits<float>::lowest());
@@ -48,7 +46,8 @@ class GltfBuffers {
   }
 
   int add_indices(const std::vector<std::uint32_t>& data) {
-    const int view = add_view(data.data(), data.size() * sizeof(std::uint32_t), kElementArrayBuffer);
+    const int view =
+        add_view(data.data(), data.size() * sizeof(std::uint32_t), kElementArrayBuffer);
     accessors_.push_back({{"bufferView", view},
                           {"componentType", kUnsignedInt},
                           {"count", data.size()},
@@ -164,7 +163,8 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
   if (view.garment.num_faces() == 0) throw InputError(source, "the garment has no faces");
   const FaceField* field = find_field(view.garment_fields, options.coloring.field);
   if (field == nullptr) {
-    throw InputError(source, "the garment has no field '" + options.coloring.field + "' to colour by");
+    throw InputError(source,
+                     "the garment has no field '" + options.coloring.field + "' to colour by");
   }
   const ResolvedColoring coloring = resolve_coloring(options.coloring, *field, source);
 
@@ -180,14 +180,18 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
   nlohmann::json scene_nodes = nlohmann::json::array();
   for (std::size_t i = 0; i < nodes.size(); ++i) scene_nodes.push_back(i);
 
-  const nlohmann::json materials = nlohmann::json::array(
-      {{{"name", "body"},
-        {"pbrMetallicRoughness",
-         {{"baseColorFactor", {0.55, 0.55, 0.55, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.8}}}},
-       {{"name", "garment"},
-        {"doubleSided", true},
-        {"pbrMetallicRoughness",
-         {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.9}}}}});
+  const nlohmann::json materials =
+      nlohmann::json::array({{{"name", "body"},
+                              {"pbrMetallicRoughness",
+                               {{"baseColorFactor", {0.55, 0.55, 0.55, 1.0}},
+                                {"metallicFactor", 0.0},
+                                {"roughnessFactor", 0.8}}}},
+                             {{"name", "garment"},
+                              {"doubleSided", true},
+                              {"pbrMetallicRoughness",
+                               {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}},
+                                {"metallicFactor", 0.0},
+                                {"roughnessFactor", 0.9}}}}});
   const auto& bin = buffers.bytes();
   nlohmann::json gltf = {
       {"asset",
@@ -219,8 +223,10 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
   append_u32(file, static_cast<std::uint32_t>(binary.size()));
   file.append("BIN\0", 4);
   file += binary;
-  write_file_atomically(path, [&](std::ostream& out) { out.write(file.data(), static_cast<std::streamsize>(file.size())); },
-                        true);
+  write_file_atomically(
+      path,
+      [&](std::ostream& out) { out.write(file.data(), static_cast<std::streamsize>(file.size())); },
+      true);
   return coloring;
 }
 

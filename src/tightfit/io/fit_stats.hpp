@@ -16,19 +16,19 @@ namespace tightfit {
 
 /// Statistics over a set of garment faces.
 struct FaceSetStatistics {
-  std::string name;          ///< piece name, or "garment" for all faces
+  std::string name;  ///< piece name, or "garment" for all faces
   int faces = 0;
-  double area = 0.0;         ///< m²
-  double pressure_min = 0.0;     ///< Pa
-  double pressure_median = 0.0;  ///< Pa, area-weighted
-  double pressure_max = 0.0;     ///< Pa
+  double area = 0.0;                ///< m²
+  double pressure_min = 0.0;        ///< Pa
+  double pressure_median = 0.0;     ///< Pa, area-weighted
+  double pressure_max = 0.0;        ///< Pa
   double stretch_max_median = 0.0;  ///< area-weighted median of stretch_max (–)
   double stretch_max_max = 0.0;     ///< largest stretch_max (–)
-  double slack_share = 0.0;     ///< share of area with regime 0, in [0, 1]
-  double wrinkled_share = 0.0;  ///< share of area with regime 1
-  double taut_share = 0.0;      ///< share of area with regime 2
-  double liftoff_area = 0.0;    ///< m² of faces with pressure < 0
-  double liftoff_share = 0.0;   ///< liftoff_area / area
+  double slack_share = 0.0;         ///< share of area with regime 0, in [0, 1]
+  double wrinkled_share = 0.0;      ///< share of area with regime 1
+  double taut_share = 0.0;          ///< share of area with regime 2
+  double liftoff_area = 0.0;        ///< m² of faces with pressure < 0
+  double liftoff_share = 0.0;       ///< liftoff_area / area
 };
 
 struct FitStatistics {

@@ -11,19 +11,20 @@ namespace {
 bool valid_field_name(const std::string& name) {
   if (name.empty()) return false;
   for (const char c : name) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '_';
+    const bool ok =
+        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
     if (!ok) return false;
   }
   return true;
 }
 
 void validate_mesh(const TriMesh& mesh, const std::string& what, const std::string& source) {
-  if (!mesh.vertices.allFinite()) throw InputError(source, what + " has non-finite vertex positions");
+  if (!mesh.vertices.allFinite())
+    throw InputError(source, what + " has non-finite vertex positions");
   if (mesh.faces.size() > 0 &&
       (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.num_vertices())) {
-    throw InputError(source, what + " has a face index outside 0.." +
-                                 std::to_string(mesh.num_vertices() - 1));
+    throw InputError(
+        source, what + " has a face index outside 0.." + std::to_string(mesh.num_vertices() - 1));
   }
 }
 
@@ -59,7 +60,8 @@ void validate_pattern_mapping(const FitView& view, const std::string& source) {
       throw InputError(source, name + " has a triangle index outside its vertices");
     }
     for (const int v : piece.boundary) {
-      if (v < 0 || v >= n) throw InputError(source, name + " has a boundary index outside its vertices");
+      if (v < 0 || v >= n)
+        throw InputError(source, name + " has a boundary index outside its vertices");
     }
   }
   if (!view.piece_faces.empty() && view.piece_faces.size() != pieces.size()) {

@@ -49,9 +49,9 @@ struct FaceField {
 /// Everything the fit exports show. Garment faces and pattern triangles are the same
 /// triangles: `piece_faces` says which garment face each pattern triangle became.
 struct FitView {
-  TriMesh body;                        ///< deformed body surface (m)
-  std::vector<FaceField> body_fields;  ///< per body face; may be empty
-  TriMesh garment;                     ///< garment in 3D (m), welded across seams
+  TriMesh body;                           ///< deformed body surface (m)
+  std::vector<FaceField> body_fields;     ///< per body face; may be empty
+  TriMesh garment;                        ///< garment in 3D (m), welded across seams
   std::vector<FaceField> garment_fields;  ///< per garment face (see fit_fields)
   Pattern pattern;                        ///< 2D pieces (m) and seams
   /// piece_faces[k][t]: the garment face of triangle t of piece k. Empty means the

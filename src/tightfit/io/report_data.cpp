@@ -53,7 +53,8 @@ nlohmann::json coloring_json(const ResolvedColoring& c) {
   if (c.coloring.colormap == ColorMap::kRegime) {
     nlohmann::json categories = nlohmann::json::array();
     for (const auto& cat : regime_categories()) {
-      categories.push_back({{"value", cat.value}, {"label", cat.label}, {"color", bytes(cat.color)}});
+      categories.push_back(
+          {{"value", cat.value}, {"label", cat.label}, {"color", bytes(cat.color)}});
     }
     j["categories"] = categories;
   } else {

@@ -28,9 +28,10 @@ std::string base64_encode(std::string_view bytes) {
   out.reserve((bytes.size() + 2) / 3 * 4);
   std::size_t i = 0;
   for (; i + 3 <= bytes.size(); i += 3) {
-    const std::uint32_t v = (static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16) |
-                            (static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8) |
-                            static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 2]));
+    const std::uint32_t v =
+        (static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16) |
+        (static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8) |
+        static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 2]));
     out.push_back(kAlphabet[(v >> 18) & 63u]);
     out.push_back(kAlphabet[(v >> 12) & 63u]);
     out.push_back(kAlphabet[(v >> 6) & 63u]);
@@ -51,7 +52,8 @@ std::string base64_encode(std::string_view bytes) {
 std::string base64_float32(const std::vector<double>& values) {
   std::string bytes;
   bytes.reserve(4 * values.size());
-  for (const double v : values) append_le32(bytes, std::bit_cast<std::uint32_t>(static_cast<float>(v)));
+  for (const double v : values)
+    append_le32(bytes, std::bit_cast<std::uint32_t>(static_cast<float>(v)));
   return base64_encode(bytes);
 }
 

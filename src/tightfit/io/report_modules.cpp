@@ -14,9 +14,10 @@ namespace {
 std::string read_text(const std::filesystem::path& path, const std::string& needed_by) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw InputError(path.string(), needed_by.empty()
-                                        ? "cannot read the JavaScript module"
-                                        : "cannot read the JavaScript module imported by " + needed_by);
+    throw InputError(path.string(),
+                     needed_by.empty()
+                         ? "cannot read the JavaScript module"
+                         : "cannot read the JavaScript module imported by " + needed_by);
   }
   std::ostringstream text;
   text << in.rdbuf();
