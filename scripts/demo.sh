@@ -4,8 +4,17 @@
 set -euo pipefail
 bin=${1:?tightfit binary}
 out=${2:?output directory}
+here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 "$bin" version
-# A soft cylinder (radius 5 cm, 30 cm long, rounded ends) with a 15 mm pinned core.
-"$bin" body --generator cylinder --radius 0.05 --length 0.3 --edge-length 0.01 \
-  --soft-tissue 0.015 --out "$out/body"
+# A two-panel sleeve on a soft forearm-sized cylinder: the panels are cut from the body
+# by planes, flattened, scaled down 10 % around and 5 % along, meshed, sewn, embedded on
+# the body's Loop limit surface and brought to equilibrium with the body.
+scene="$here/examples/sleeve_two_panels.json"
+"$bin" layout "$scene" --out "$out/layout"
+"$bin" simulate "$scene" --out "$out/fit"
+echo
+echo "demo results:"
+echo "  patterns:  $out/fit/pattern.svg  $out/fit/pattern_a4.pdf  $out/fit/pattern.dxf  $out/fit/pieces.json"
+echo "  fit:       $out/fit/garment.ply  $out/fit/body.ply  $out/fit/result.json"
+if [ -f "$out/fit/report.html" ]; then echo "  report:    $out/fit/report.html"; fi

@@ -70,12 +70,12 @@ TEST(SceneSpec, ErrorsNameTheFileAndJsonPath) {
             "bad.json: /fabric/youngs_modulus: expected a number, got string");
   EXPECT_EQ(error_of(with("fabrik", nlohmann::json::object())), "bad.json: /fabrik: unknown key \"fabrik\"");
   EXPECT_NE(error_of(with("fabric", {{"poisson_ratio", 1.5}})).find("/fabric/poisson_ratio"), std::string::npos);
-  EXPECT_NE(error_of(R"({"body": {"generator": "sphere"}, "garment": {}})").find("/garment"), std::string::npos);
+  EXPECT_NE(error_of(R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {}})").find("/garment"), std::string::npos);
   EXPECT_NE(error_of(R"({"garment": {"cover": {}}})").find("/body: missing"), std::string::npos);
-  EXPECT_NE(error_of(R"({"body": {"generator": "sphere"}, "garment": {"cover": {}, "sleeve": {}}})")
+  EXPECT_NE(error_of(R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}, "sleeve": {}}})")
                 .find("exactly one"),
             std::string::npos);
-  EXPECT_NE(error_of(R"({"body": {"generator": "sphere"}, "garment": {"sleeve": {"radius": -1}}})")
+  EXPECT_NE(error_of(R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"sleeve": {"radius": -1}}})")
                 .find("/garment/sleeve/radius"),
             std::string::npos);
 }

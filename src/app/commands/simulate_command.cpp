@@ -5,6 +5,7 @@
 #include "command_registry.hpp"
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/output_directory.hpp"
+#include "tightfit/io/pattern_outputs.hpp"
 #include "tightfit/io/scene_loader.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
 
@@ -65,11 +66,15 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir) {
   result["seconds"] = seconds;
   write_text_atomically(out.file("result.json"), result.dump(2) + "\n");
   write_text_atomically(out.file("scene.json"), scene->spec.document.dump(2) + "\n");
+  // A cover has one piece per triangle: no pattern to cut.
+  std::vector<std::string> files = {"garment.ply", "body.ply", "result.json"};
+  if (sim->garment().pattern.pieces.size() <= 64)
+    for (const auto& f : write_pattern_files(out.staging(), sim->garment().pattern)) files.push_back(f);
   out.commit();
   const auto& pr = result["fit"]["pressure_mmhg"];
   std::printf("  pressure %.1f / %.1f / %.1f mmHg (min / median / max)\n", pr["min"].get<double>(),
               pr["median"].get<double>(), pr["max"].get<double>());
-  std::printf("  wrote %s/{garment.ply, body.ply, result.json}\n", out.target().c_str());
+  for (const auto& f : files) std::printf("  %s/%s\n", out.target().c_str(), f.c_str());
 }
 
 const CommandRegistration kSimulate{"simulate", [](CLI::App& root) {

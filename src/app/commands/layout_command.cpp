@@ -1,0 +1,58 @@
+/// `tightfit layout SCENE --out DIR`: the initial pattern pieces and the garment
+/// embedded on the body, without simulating.
+#include <cstdio>
+
+#include "command_registry.hpp"
+#include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/output_directory.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/io/pattern_outputs.hpp"
+#include "tightfit/io/scene_loader.hpp"
+
+namespace tightfit::app {
+namespace {
+
+void run_layout(const std::string& scene_file, const std::string& out_dir) {
+  OutputDirectory out(out_dir);
+  auto scene = load_scene(read_scene(scene_file));
+  const Garment& g = scene->garment;
+  if (g.pattern.pieces.size() > 64)
+    throw InputError(scene_file, "this garment has one piece per triangle (a cover); it has no "
+                                 "pattern to lay out");
+  const auto files = write_pattern_files(out.staging(), g.pattern);
+  // The garment on the body: each vertex at its point on the limit surface.
+  Points3 x(g.num_garment_vertices, 3);
+  for (int i = 0; i < g.num_garment_vertices; ++i)
+    x.row(i) = scene->surface->position(g.embedding[i], scene->body.surface.vertices).transpose();
+  write_ply(out.file("garment_embedded.ply"), TriMesh{x, g.garment_triangles});
+  nlohmann::json report;
+  report["scene"] = scene_file;
+  report["pieces"] = g.pattern.pieces.size();
+  report["seams"] = g.pattern.seams.size();
+  report["garment_vertices"] = g.num_garment_vertices;
+  report["pinned_garment_vertices"] = g.pinned.size();
+  if (scene->build) report["build"] = garment_build_report(*scene->build);
+  write_text_atomically(out.file("layout.json"), report.dump(2) + "\n");
+  out.commit();
+  std::printf("tightfit layout: %zu pieces, %zu seams, %d garment vertices\n",
+              g.pattern.pieces.size(), g.pattern.seams.size(), g.num_garment_vertices);
+  for (const auto& f : files) std::printf("  %s/%s\n", out.target().c_str(), f.c_str());
+  std::printf("  %s/garment_embedded.ply\n  %s/layout.json\n", out.target().c_str(),
+              out.target().c_str());
+}
+
+const CommandRegistration kLayout{"layout", [](CLI::App& root) {
+  auto* cmd = root.add_subcommand(
+      "layout",
+      "Flatten the scene's garment layout into pattern pieces (SVG 1:1, tiled and full-size "
+      "PDF, DXF, pieces.json) and embed the garment on the body (garment_embedded.ply), "
+      "without simulating. layout.json reports the flattening distortion per piece.");
+  auto scene = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")->required();
+  cmd->add_option("--out", *out, "Output folder (replaced as a whole when the run succeeds)")->required();
+  cmd->callback([scene, out] { run_layout(*scene, *out); });
+}};
+
+}  // namespace
+}  // namespace tightfit::app
