@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <regex>
+#include <cstdio>
+#include <sstream>
 
 #include "io/support/pattern_fixtures.hpp"
 #include "io/support/pattern_tools.hpp"
@@ -31,11 +32,10 @@ PdfInfo pdf_info(const std::filesystem::path& file) {
   const auto info = run_command(std::string(kPdfInfo) + " " + shell_quote(file));
   EXPECT_EQ(info.exit_code, 0) << info.output;
   PdfInfo out;
-  std::smatch m;
-  if (std::regex_search(info.output, m, std::regex("Pages:\\s+([0-9]+)"))) out.pages = std::stoi(m[1]);
-  if (std::regex_search(info.output, m, std::regex("Page size:\\s+([0-9.]+) x ([0-9.]+) pts"))) {
-    out.width_pt = std::stod(m[1]);
-    out.height_pt = std::stod(m[2]);
+  std::istringstream lines(info.output);
+  for (std::string line; std::getline(lines, line);) {
+    std::sscanf(line.c_str(), "Pages: %d", &out.pages);
+    std::sscanf(line.c_str(), "Page size: %lf x %lf pts", &out.width_pt, &out.height_pt);
   }
   return out;
 }

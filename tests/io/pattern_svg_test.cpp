@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 #include "io/support/pattern_fixtures.hpp"
@@ -35,14 +35,25 @@ TEST(PatternSvg, RootSizedInMillimetresWithOneGroupPerPiece) {
   const std::string svg = read_text(file);
   const auto pieces = draw_pattern_pieces(pattern, {}, "test");
   const PatternLayout layout = layout_pattern(pieces, {});
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(svg, m,
-                                std::regex("<svg[^>]* width=\"([0-9.]+)mm\" height=\"([0-9.]+)mm\" "
-                                           "viewBox=\"0 0 ([0-9.]+) ([0-9.]+)\"")));
-  EXPECT_NEAR(std::stod(m[1]), layout.width_mm, 1e-3);
-  EXPECT_NEAR(std::stod(m[2]), layout.height_mm, 1e-3);
-  EXPECT_EQ(m[1], m[3]);
-  EXPECT_EQ(m[2], m[4]);
+  const std::string root = svg.substr(svg.find("<svg "), svg.find('>', svg.find("<svg ")) - svg.find("<svg "));
+  double width = 0.0;
+  double height = 0.0;
+  double box[4] = {-1.0, -1.0, -1.0, -1.0};
+  const auto attribute = [&](const std::string& name) {
+    const size_t at = root.find(" " + name + "=\"");
+    EXPECT_NE(at, std::string::npos) << name;
+    return at == std::string::npos ? std::string() : root.substr(at + name.size() + 3);
+  };
+  ASSERT_EQ(std::sscanf(attribute("width").c_str(), "%lfmm\"", &width), 1);
+  ASSERT_EQ(std::sscanf(attribute("height").c_str(), "%lfmm\"", &height), 1);
+  ASSERT_EQ(std::sscanf(attribute("viewBox").c_str(), "%lf %lf %lf %lf", &box[0], &box[1], &box[2], &box[3]), 4);
+  EXPECT_NE(attribute("width").find("mm\""), std::string::npos);
+  EXPECT_NEAR(width, layout.width_mm, 1e-3);
+  EXPECT_NEAR(height, layout.height_mm, 1e-3);
+  EXPECT_EQ(box[0], 0.0);
+  EXPECT_EQ(box[1], 0.0);
+  EXPECT_EQ(box[2], width);
+  EXPECT_EQ(box[3], height);
   for (const std::string id : {"piece-front", "piece-back", "piece-sleeve", "test-square"}) {
     EXPECT_NE(svg.find("<g id=\"" + id + "\">"), std::string::npos) << id;
   }
