@@ -10,36 +10,9 @@ namespace tightfit {
 namespace {
 
 /// Pants on the legs body (y up, front +z, left leg +x): waist at 1.0 m, cuffs at 0.15 m,
-/// left/right by the sagittal plane, front/back by a coronal plane.
-const char* kPants4 = R"({
-  "region": [{"name": "waist", "point": [0, 1.0, 0], "normal": [0, -1, 0]},
-             {"name": "ankle", "point": [0, 0.15, 0], "normal": [0, 1, 0]}],
-  "dividers": [{"name": "sagittal", "point": [0, 0, 0], "normal": [1, 0, 0]},
-               {"name": "coronal", "point": [0, 0, 0.01], "normal": [0, 0, 1]}],
-  "panels": [{"name": "left_front", "sides": ["+sagittal", "+coronal"]},
-             {"name": "left_back", "sides": ["+sagittal", "-coronal"]},
-             {"name": "right_front", "sides": ["-sagittal", "+coronal"]},
-             {"name": "right_back", "sides": ["-sagittal", "-coronal"]}],
-  "pinned": [{"name": "waistband", "on_plane": "waist"}, {"name": "cuffs", "on_plane": "ankle"}]
-})";
-
-/// The same with a knee divider: 8 panels.
-const char* kPants8 = R"({
-  "region": [{"name": "waist", "point": [0, 1.0, 0], "normal": [0, -1, 0]},
-             {"name": "ankle", "point": [0, 0.15, 0], "normal": [0, 1, 0]}],
-  "dividers": [{"name": "sagittal", "point": [0, 0, 0], "normal": [1, 0, 0]},
-               {"name": "coronal", "point": [0, 0, 0.01], "normal": [0, 0, 1]},
-               {"name": "knee", "point": [0, 0.5, 0], "normal": [0, 1, 0]}],
-  "panels": [{"name": "left_front_upper", "sides": ["+sagittal", "+coronal", "+knee"]},
-             {"name": "left_back_upper", "sides": ["+sagittal", "-coronal", "+knee"]},
-             {"name": "right_front_upper", "sides": ["-sagittal", "+coronal", "+knee"]},
-             {"name": "right_back_upper", "sides": ["-sagittal", "-coronal", "+knee"]},
-             {"name": "left_front_lower", "sides": ["+sagittal", "+coronal", "-knee"]},
-             {"name": "left_back_lower", "sides": ["+sagittal", "-coronal", "-knee"]},
-             {"name": "right_front_lower", "sides": ["-sagittal", "+coronal", "-knee"]},
-             {"name": "right_back_lower", "sides": ["-sagittal", "-coronal", "-knee"]}],
-  "pinned": [{"name": "waistband", "on_plane": "waist"}, {"name": "cuffs", "on_plane": "ankle"}]
-})";
+/// left/right by the sagittal plane, front/back by a coronal plane; pants8 adds a knee
+/// divider. The specs are in tests/garment/data (examples for `tightfit layout`).
+std::string spec_file(const char* name) { return std::string(TIGHTFIT_SOURCE_DIR) + "/tests/garment/data/" + name; }
 
 class Pants : public ::testing::Test {
  protected:
@@ -52,16 +25,14 @@ class Pants : public ::testing::Test {
     delete body_;
   }
 
-  static GarmentBuild build(const char* text) { return build_on(*body_, *limit_, text); }
+  static GarmentBuild build(const char* spec) { return build_on(*body_, *limit_, spec); }
 
-  static GarmentBuild build_on(const TriMesh& body, const LimitSurface& limit, const char* text) {
-    const auto j = nlohmann::json::parse(text);
-    JsonFields f(j, "pants.json", "");
+  static GarmentBuild build_on(const TriMesh& body, const LimitSurface& limit, const char* spec) {
     PatternOptions options;
     options.edge_length = 0.02;
     options.grain = Vec3::UnitY();
     options.scale = {0.95, 0.77};  // ~30 % stretch around the legs
-    return build_garment(body, limit, parse_layout_spec(f, ""), options);
+    return build_garment(body, limit, read_layout_spec(spec_file(spec)), options);
   }
 
   static void report(const GarmentBuild& b) {
@@ -114,7 +85,7 @@ TriMesh* Pants::body_ = nullptr;
 LimitSurface* Pants::limit_ = nullptr;
 
 TEST_F(Pants, FourPiecesOnTheLegsBody) {
-  const GarmentBuild b = build(kPants4);
+  const GarmentBuild b = build("pants4.json");
   std::printf("4-piece pants on mh_legs_male:\n");
   report(b);
   ASSERT_EQ(b.garment.pattern.pieces.size(), 4u);
@@ -130,7 +101,7 @@ TEST_F(Pants, FourPiecesOnTheLegsBody) {
 }
 
 TEST_F(Pants, EightPiecesWithAKneeDivider) {
-  const GarmentBuild b = build(kPants8);
+  const GarmentBuild b = build("pants8.json");
   std::printf("8-piece pants on mh_legs_male:\n");
   report(b);
   ASSERT_EQ(b.garment.pattern.pieces.size(), 8u);
@@ -145,7 +116,7 @@ TEST_F(Pants, FourPiecesOnTheRemeshedLegsBody) {
   remesh.edge_length = 0.02;
   const TriMesh body = remesh_isotropic(*body_, remesh).mesh;
   const LimitSurface limit(body);
-  const GarmentBuild b = build_on(body, limit, kPants4);
+  const GarmentBuild b = build_on(body, limit, "pants4.json");
   std::printf("4-piece pants on mh_legs_male remeshed at 2 cm (%d faces):\n", body.num_faces());
   report(b);
   ASSERT_EQ(b.garment.pattern.pieces.size(), 4u);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tightfit/body/body.hpp"
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/garment/layout.hpp"
 #include "tightfit/garment/layout_spec.hpp"
@@ -48,5 +49,11 @@ struct GarmentBuild {
 /// layouts (see layout.hpp, pattern_builder.hpp).
 GarmentBuild build_garment(const TriMesh& control, const LimitSurface& limit, const LayoutSpec& spec,
                            const PatternOptions& options);
+
+/// The same on a body: its surface is the control mesh of `limit`.
+inline GarmentBuild build_garment(const Body& body, const LimitSurface& limit, const LayoutSpec& spec,
+                                  const PatternOptions& options) {
+  return build_garment(body.surface, limit, spec, options);
+}
 
 }  // namespace tightfit
