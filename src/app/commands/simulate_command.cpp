@@ -67,7 +67,8 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir) {
   write_text_atomically(out.file("result.json"), result.dump(2) + "\n");
   write_text_atomically(out.file("scene.json"), scene->spec.document.dump(2) + "\n");
   // A cover has one piece per triangle: no pattern to cut.
-  std::vector<std::string> files = {"garment.ply", "body.ply", "result.json"};
+  write_fit_report(out.staging(), make_fit_view(*sim, fit, op, scene->spec.document));
+  std::vector<std::string> files = {"report.html", "fit.glb", "garment.ply", "body.ply", "result.json"};
   if (sim->garment().pattern.pieces.size() <= 64)
     for (const auto& f : write_pattern_files(out.staging(), sim->garment().pattern)) files.push_back(f);
   out.commit();

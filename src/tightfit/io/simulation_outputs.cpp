@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include "tightfit/io/fit_glb.hpp"
+#include "tightfit/io/report_html.hpp"
+
 namespace tightfit {
 namespace {
 
@@ -120,6 +123,41 @@ nlohmann::json newton_report_json(const NewtonReport& r) {
                   {"solve", t_solve},
                   {"line_search", t_ls}};
   return j;
+}
+
+FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, ShapeOperatorKind op,
+                      const nlohmann::json& parameters, const nlohmann::json& history) {
+  FitView view;
+  const int ns = sim.body().num_surface_vertices();
+  view.body = TriMesh{sim.body_positions().topRows(ns), sim.body().surface.faces};
+  view.garment = TriMesh{sim.garment_positions(), sim.garment().garment_triangles};
+  const auto n = static_cast<Eigen::Index>(fit.elements.size());
+  MatX smax(n, 1), smin(n, 1), dir(n, 3), regime(n, 1), force(n, 1);
+  const VecX& p = chosen_pressure(fit, op);
+  for (Eigen::Index e = 0; e < n; ++e) {
+    const auto& el = fit.elements[e];
+    smax(e, 0) = el.stretch[0];
+    smin(e, 0) = el.stretch[1];
+    dir.row(e) = el.direction1.transpose();
+    regime(e, 0) = static_cast<double>(el.regime);
+    force(e, 0) = p[e] * el.deformed_area;
+  }
+  view.garment_fields = {{std::string(fit_fields::kStretchMax), "", smax},
+                         {std::string(fit_fields::kStretchMin), "", smin},
+                         {std::string(fit_fields::kStretchDirection), "", dir},
+                         {std::string(fit_fields::kRegime), "", regime},
+                         {std::string(fit_fields::kPressurePa), "Pa", p},
+                         {std::string(fit_fields::kPressureMmHg), "mmHg", p / kPascalPerMmHg},
+                         {std::string(fit_fields::kNormalForce), "N", force}};
+  view.pattern = sim.garment().pattern;
+  view.parameters = parameters;
+  view.history = history;
+  return view;
+}
+
+void write_fit_report(const std::filesystem::path& folder, const FitView& view) {
+  write_fit_glb(folder / "fit.glb", view);
+  write_report_html(folder / "report.html", view);
 }
 
 void write_fit_meshes(const std::filesystem::path& folder, const GarmentSimulation& sim,

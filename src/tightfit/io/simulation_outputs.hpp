@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/io/fit_view.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit {
@@ -32,6 +33,17 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
 
 /// JSON of a Newton report (iterations, residuals, time split).
 nlohmann::json newton_report_json(const NewtonReport& report);
+
+/// The fit as the report and glTF writers see it: deformed body, garment with the
+/// standard face fields (fit_view.hpp), the pattern, the scene parameters and an
+/// optimization history (may be an empty array).
+FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit,
+                      ShapeOperatorKind pressure_operator, const nlohmann::json& parameters,
+                      const nlohmann::json& history = nlohmann::json::array());
+
+/// Writes fit.glb (garment coloured by max stretch, with the body) and report.html
+/// (three.js viewer, colour maps, pieces, statistics) into `folder`.
+void write_fit_report(const std::filesystem::path& folder, const FitView& view);
 
 /// Writes garment.ply, body.ply (deformed surface; per-vertex displacement in m) into
 /// `folder` (atomic per file).
