@@ -168,6 +168,8 @@ TEST(PatternPdf, TilesReassembleToTheFullSizePage) {
     }
   }
   ASSERT_GT(ink, 1000u);
+  RecordProperty("ink_pixels", std::to_string(ink));
+  RecordProperty("ink_matched", std::to_string(matched));
   EXPECT_GT(static_cast<double>(matched) / static_cast<double>(ink), 0.995) << matched << "/" << ink;
 }
 
@@ -193,6 +195,8 @@ TEST(PatternPdf, FirstPageCarriesTheTestSquareAtTrueSize) {
   const double right = test::ink_centre_x(page, row, px(s.max.x()) - window, px(s.max.x()) + window);
   const double top = test::ink_centre_y(page, col, px(s.min.y()) - window, px(s.min.y()) + window);
   const double bottom = test::ink_centre_y(page, col, px(s.max.y()) - window, px(s.max.y()) + window);
+  RecordProperty("square_width_px", std::to_string(right - left));
+  RecordProperty("square_height_px", std::to_string(bottom - top));
   EXPECT_NEAR(right - left, 100.0 * px_per_mm, 1.0);
   EXPECT_NEAR(bottom - top, 100.0 * px_per_mm, 1.0);
 }

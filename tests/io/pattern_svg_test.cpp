@@ -104,6 +104,8 @@ TEST(PatternSvg, RsvgRendersTheTestSquareAtTrueSize) {
   const double bottom = test::ink_centre_y(image, col, static_cast<int>(s.max.y() * px_per_mm) - window,
                                            static_cast<int>(s.max.y() * px_per_mm) + window);
   const double expected = 100.0 * px_per_mm;  // 377.95 px
+  RecordProperty("square_width_px", std::to_string(right - left));
+  RecordProperty("square_height_px", std::to_string(bottom - top));
   EXPECT_NEAR(right - left, expected, 1.0);
   EXPECT_NEAR(bottom - top, expected, 1.0);
   // The front's cut line (300 mm + 2 × 10 mm wide) is where the layout puts it.
