@@ -121,6 +121,10 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
                               : ShapeOperatorKind::kLimitSurface;
     f->finish();
   }
+  if (root.has("optimize")) {
+    s.optimize = root.raw("optimize");
+    if (!s.optimize.is_object()) root.fail("expected an object", "optimize");
+  }
   root.finish();
   return s;
 }

@@ -51,6 +51,9 @@ struct SceneSpec {
   NewtonOptions newton;
   LimitSurfaceOptions limit;
   ShapeOperatorKind pressure_operator = ShapeOperatorKind::kMidEdge;
+  /// The "optimize" section (objectives, regularizers, optimizer settings), validated by
+  /// the design layer's parser when a command optimizes; null when absent.
+  nlohmann::json optimize;
 };
 
 /// Reads and validates a scene file.
