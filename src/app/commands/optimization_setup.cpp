@@ -1,0 +1,90 @@
+#include "optimization_setup.hpp"
+
+#include <limits>
+
+#include "tightfit/common/json_fields.hpp"
+#include "tightfit/design/regularizer_compactness.hpp"
+#include "tightfit/design/regularizer_edge_lengths.hpp"
+#include "tightfit/design/regularizer_smoothness.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/geometry/mesh_measures.hpp"
+#include "tightfit/objectives/pressure_objective.hpp"
+#include "tightfit/objectives/seam_traction_objective.hpp"
+#include "tightfit/objectives/shape_objective.hpp"
+#include "tightfit/objectives/stretch_objective.hpp"
+
+namespace tightfit::app {
+namespace {
+
+/// The target surface's vertices with their area-weighted normals (unused vertices,
+/// which have no normal, are skipped).
+ImlsSurface shape_target(const ShapeObjectiveSpec& spec) {
+  const TriMesh mesh = read_tri_mesh(spec.target);
+  const Points3 normals = vertex_normals(mesh);
+  std::vector<Eigen::Index> used;
+  for (Eigen::Index i = 0; i < normals.rows(); ++i)
+    if (normals.row(i).squaredNorm() > 0.0) used.push_back(i);
+  if (used.empty()) throw InputError(spec.target.string(), "the shape target has no faces");
+  Points3 points(static_cast<Eigen::Index>(used.size()), 3), n(points.rows(), 3);
+  for (size_t k = 0; k < used.size(); ++k) {
+    points.row(static_cast<Eigen::Index>(k)) = mesh.vertices.row(used[k]);
+    n.row(static_cast<Eigen::Index>(k)) = normals.row(used[k]);
+  }
+  return ImlsSurface(points, n, spec.radius);
+}
+
+}  // namespace
+
+OptimizationScene read_optimization_scene(const std::string& file) {
+  nlohmann::json document = read_json_file(file);
+  if (!document.is_object() || !document.contains("optimize"))
+    throw InputError(file, "/optimize: missing (this command needs an \"optimize\" section)");
+  std::filesystem::path base = std::filesystem::path(file).parent_path();
+  if (base.empty()) base = ".";
+  OptimizationScene s;
+  s.optimization = parse_optimization_spec(document["optimize"], file, "/optimize", base);
+  nlohmann::json scene_only = document;
+  scene_only.erase("optimize");
+  s.scene = parse_scene(scene_only, file, base);
+  s.scene.document = document;
+  return s;
+}
+
+std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
+                                               const GarmentSimulation& sim) {
+  const Garment& g = sim.garment();
+  auto sum = std::make_shared<DesignTermSum>();
+  auto add = [&](double weight, auto make) {
+    if (weight > 0.0) sum->add(make(), weight);
+  };
+  if (spec.stretch)
+    add(spec.stretch->weight, [&] {
+      StretchBounds b;
+      b.min_stretch = spec.stretch->min_stretch;
+      b.max_stretch = spec.stretch->max_stretch.value_or(std::numeric_limits<double>::infinity());
+      return std::make_shared<StretchObjective>(g, b);
+    });
+  if (spec.shape)
+    add(spec.shape->weight, [&] {
+      return std::make_shared<ShapeObjective>(shape_target(*spec.shape), g.num_garment_vertices);
+    });
+  if (spec.pressure)
+    add(spec.pressure->weight, [&] {
+      return std::make_shared<PressureObjective>(g, sim.materials().fabric, spec.pressure->min_pa,
+                                                 spec.pressure->max_pa);
+    });
+  if (spec.seam_traction)
+    add(spec.seam_traction->weight,
+        [&] { return std::make_shared<SeamTractionObjective>(g, sim.materials().fabric); });
+  const RegularizerWeights& w = spec.regularizers;
+  add(w.seam_length,
+      [&] { return std::make_shared<EdgeLengthDifferenceTerm>(seam_length_regularizer(g)); });
+  add(w.boundary_spacing,
+      [&] { return std::make_shared<EdgeLengthDifferenceTerm>(even_spacing_regularizer(g)); });
+  add(w.boundary_smoothness, [&] { return std::make_shared<BoundarySmoothnessRegularizer>(g); });
+  add(w.compactness,
+      [&] { return std::make_shared<CompactnessRegularizer>(g, w.compactness_options); });
+  return sum;
+}
+
+}  // namespace tightfit::app

@@ -1,0 +1,30 @@
+#pragma once
+/// Shared by `tightfit optimize` and `tightfit check-gradient`: reading a scene file
+/// with an "optimize" section and building the weighted design objective from it.
+#include <memory>
+#include <string>
+
+#include "tightfit/design/design_term.hpp"
+#include "tightfit/design/optimization_spec.hpp"
+#include "tightfit/io/scene_spec.hpp"
+#include "tightfit/solve/garment_simulation.hpp"
+
+namespace tightfit::app {
+
+struct OptimizationScene {
+  SceneSpec scene;                ///< the scene without its "optimize" section
+  OptimizationSpec optimization;  ///< the parsed "optimize" section
+};
+
+/// Reads `file`: the "optimize" section is required and parsed by
+/// parse_optimization_spec, the rest by parse_scene (scene.document keeps the whole file).
+OptimizationScene read_optimization_scene(const std::string& file);
+
+/// The objective Σ w_j T_j of the spec for the simulation's garment: objectives first
+/// (stretch, shape, pressure, seam traction), then the regularizers (seam length,
+/// boundary spacing, boundary smoothness, compactness); terms of weight 0 are left out.
+/// The shape target is read here (InputError naming the file).
+std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
+                                               const GarmentSimulation& sim);
+
+}  // namespace tightfit::app

@@ -1,0 +1,169 @@
+/// `tightfit optimize SCENE --out DIR [--resume DIR]`: pattern optimization (paper
+/// Sec. 4) with the scene's "optimize" section (design/optimization_spec.hpp).
+///
+/// DIR is written DURING the run (each file atomically, so a crash leaves the last
+/// complete version of every file): history.json after every iteration, checkpoint.json
+/// every `checkpoint_every` iterations and at the end; at the end also the optimized
+/// pattern (pieces.json, pattern.svg), the fit at the final equilibrium (garment.ply,
+/// body.ply), result.json and scene.json. `--resume DIR` continues from
+/// DIR/checkpoint.json (same scene and objective terms), appending to the history.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "command_registry.hpp"
+#include "optimization_setup.hpp"
+#include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/error.hpp"
+#include "tightfit/design/optimization_checkpoint.hpp"
+#include "tightfit/design/pattern_optimizer.hpp"
+#include "tightfit/io/pattern_json.hpp"
+#include "tightfit/io/pattern_svg.hpp"
+#include "tightfit/io/scene_loader.hpp"
+#include "tightfit/io/simulation_outputs.hpp"
+
+namespace tightfit::app {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void print_iteration(const OptimizationIteration& it, const std::vector<std::string>& names) {
+  std::printf("  it %3d  T %.6e", it.iteration, it.value);
+  for (size_t k = 0; k < names.size() && k < it.term_values.size(); ++k)
+    std::printf("  %s %.4e", names[k].c_str(), it.term_values[k]);
+  std::printf("  |g| %.3e  step %.2e m  newton %d", it.gradient_norm, it.max_point_move,
+              it.newton_iterations);
+  if (it.failed_solves > 0) std::printf(" (failed trials %d)", it.failed_solves);
+  if (it.hessian_shift > 0.0)
+    std::printf("  [adjoint H shifted by %.1e: inexact]", it.hessian_shift);
+  std::printf("  %.1f s\n", it.seconds);
+  std::fflush(stdout);
+}
+
+nlohmann::json history_json(const std::vector<OptimizationIteration>& history,
+                            const std::vector<std::string>& names) {
+  nlohmann::json its = nlohmann::json::array();
+  for (const OptimizationIteration& it : history) its.push_back(iteration_json(it, names));
+  return {{"terms", names}, {"iterations", its}};
+}
+
+void run_optimize(const std::string& scene_file, const std::string& out_dir,
+                  const std::string& resume_dir) {
+  const auto t_start = Clock::now();
+  OptimizationScene input = read_optimization_scene(scene_file);
+  const OptimizationSpec& spec = input.optimization;
+  const fs::path out(out_dir);
+  fs::create_directories(out);
+
+  auto scene = load_scene(input.scene);
+  auto sim = make_simulation(*scene);
+  const auto objective = build_objective(spec, *sim);
+  const std::vector<std::string> names = term_names(*objective);
+  std::printf("tightfit optimize: %d garment vertices, %d triangles, %zu pieces; terms:",
+              sim->garment().num_garment_vertices,
+              static_cast<int>(sim->garment().garment_triangles.rows()),
+              sim->garment().pattern.pieces.size());
+  for (size_t k = 0; k < names.size(); ++k)
+    std::printf(" %s (w %g)", names[k].c_str(), objective->entries()[k].weight);
+  std::printf("\n");
+
+  DesignProblem problem(*sim, objective, spec.problem);
+  PatternOptimizer optimizer(problem, spec.optimizer);
+  if (!resume_dir.empty()) {
+    const fs::path file = fs::path(resume_dir) / "checkpoint.json";
+    optimizer.resume(read_checkpoint(file, names));
+    std::printf("  resuming from %s at iteration %d\n", file.c_str(),
+                optimizer.checkpoint().iteration);
+  } else {
+    std::printf("  initial equilibrium...\n");
+    std::fflush(stdout);
+  }
+  std::printf("  %d design parameters (boundary points of %zu pieces)\n", problem.num_parameters(),
+              sim->garment().pattern.pieces.size());
+
+  const fs::path checkpoint_file = out / "checkpoint.json";
+  const OptimizationResult result = optimizer.run([&](const OptimizationIteration& it) {
+    print_iteration(it, names);
+    write_text_atomically(out / "history.json",
+                          history_json(optimizer.history(), names).dump(2) + "\n");
+    if (it.iteration % spec.checkpoint_every == 0)
+      write_checkpoint(checkpoint_file, optimizer.checkpoint(), names);
+  });
+  write_checkpoint(checkpoint_file, optimizer.checkpoint(), names);
+  std::printf("  stopped: %s\n", result.stop_reason.c_str());
+
+  // The simulation holds the accepted pattern and its equilibrium.
+  const auto t0 = Clock::now();
+  const FitAnalysis fit = sim->analyze();
+  const auto op = input.scene.pressure_operator;
+  write_fit_meshes(out, *sim, fit, op);
+  const PatternExportOptions export_options;
+  write_pieces_json(sim->garment().pattern, export_options, out / "pieces.json");
+  write_pattern_svg(sim->garment().pattern, export_options, out / "pattern.svg");
+  const double t_outputs = seconds_since(t0);
+
+  const std::vector<OptimizationIteration>& history = optimizer.history();
+  nlohmann::json initial_terms, final_terms;
+  for (size_t k = 0; k < names.size(); ++k) {
+    initial_terms[names[k]] = history.front().term_values[k];
+    final_terms[names[k]] = history.back().term_values[k];
+  }
+  nlohmann::json result_json;
+  result_json["scene"] = scene_file;
+  result_json["optimization"] = {{"converged", result.converged},
+                                 {"stop_reason", result.stop_reason},
+                                 {"iterations", result.iterations},
+                                 {"objective_initial", history.front().value},
+                                 {"objective_final", history.back().value},
+                                 {"terms_initial", initial_terms},
+                                 {"terms_final", final_terms},
+                                 {"gradient_norm_initial", history.front().gradient_norm},
+                                 {"gradient_norm_final", history.back().gradient_norm},
+                                 {"design_parameters", problem.num_parameters()},
+                                 {"seconds_optimization", history.back().seconds}};
+  result_json["counts"] = {{"body_vertices", scene->body.num_vertices()},
+                           {"body_tets", scene->body.volume.num_tets()},
+                           {"garment_vertices", sim->garment().num_garment_vertices},
+                           {"garment_triangles", sim->garment().garment_triangles.rows()},
+                           {"pattern_pieces", sim->garment().pattern.pieces.size()},
+                           {"dofs", sim->problem().num_dofs()}};
+  result_json["fit"] = fit_statistics(*sim, fit, op);
+  nlohmann::json seconds;
+  for (const auto& [stage, s] : scene->stage_seconds) seconds[stage] = s;
+  seconds["optimization_this_run"] = result.seconds;
+  seconds["outputs"] = t_outputs;
+  seconds["total_this_run"] = seconds_since(t_start);
+  result_json["seconds"] = seconds;
+  write_text_atomically(out / "result.json", result_json.dump(2) + "\n");
+  write_text_atomically(out / "scene.json", input.scene.document.dump(2) + "\n");
+  std::printf("  objective %.6e -> %.6e in %d iterations (%.1f s)\n", history.front().value,
+              history.back().value, result.iterations, history.back().seconds);
+  std::printf(
+      "  wrote %s/{pieces.json, pattern.svg, garment.ply, body.ply, result.json, "
+      "history.json, checkpoint.json}\n",
+      out.c_str());
+}
+
+const CommandRegistration kOptimize{
+    "optimize", [](CLI::App& root) {
+      auto* cmd = root.add_subcommand(
+          "optimize",
+          "Optimize the pattern boundaries (L-BFGS with adjoint gradients) for the objectives of "
+          "the scene's \"optimize\" section. Writes history.json and checkpoint.json while it "
+          "runs, then pieces.json, pattern.svg, garment.ply, body.ply and result.json.");
+      auto scene = std::make_shared<std::string>();
+      auto out = std::make_shared<std::string>();
+      auto resume = std::make_shared<std::string>();
+      cmd->add_option("scene", *scene, "Scene file with an \"optimize\" section")->required();
+      cmd->add_option("--out", *out, "Output folder (files are replaced one by one)")->required();
+      cmd->add_option("--resume", *resume,
+                      "Continue from DIR/checkpoint.json of an earlier run of the same scene");
+      cmd->callback([scene, out, resume] { run_optimize(*scene, *out, *resume); });
+    }};
+
+}  // namespace
+}  // namespace tightfit::app

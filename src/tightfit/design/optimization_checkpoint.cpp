@@ -1,0 +1,186 @@
+#include "tightfit/design/optimization_checkpoint.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/json_fields.hpp"
+
+namespace tightfit {
+namespace {
+
+constexpr const char* kFormat = "tightfit-optimization-checkpoint";
+constexpr int kVersion = 1;
+
+nlohmann::json vector_json(const VecX& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(v[i]);
+  return a;
+}
+
+/// A flat array of finite numbers at `path` (`length` entries when >= 0).
+VecX read_vector(const nlohmann::json& j, const std::string& source, const std::string& path,
+                 Eigen::Index length = -1) {
+  if (!j.is_array()) throw InputError(source, path + ": expected an array of numbers");
+  if (length >= 0 && static_cast<Eigen::Index>(j.size()) != length)
+    throw InputError(source, path + ": expected " + std::to_string(length) + " numbers, got " +
+                                 std::to_string(j.size()));
+  VecX v(j.size());
+  for (size_t i = 0; i < j.size(); ++i) {
+    if (!j[i].is_number() || !std::isfinite(j[i].get<double>()))
+      throw InputError(source, path + "/" + std::to_string(i) + ": expected a finite number");
+    v[static_cast<Eigen::Index>(i)] = j[i].get<double>();
+  }
+  return v;
+}
+
+/// An array of arrays of numbers (each `width` long when >= 0).
+std::vector<VecX> read_vectors(const nlohmann::json& j, const std::string& source,
+                               const std::string& path, Eigen::Index width = -1) {
+  if (!j.is_array()) throw InputError(source, path + ": expected an array of arrays");
+  std::vector<VecX> out;
+  for (size_t i = 0; i < j.size(); ++i)
+    out.push_back(read_vector(j[i], source, path + "/" + std::to_string(i), width));
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> term_names(const DesignTermSum& objective) {
+  std::vector<std::string> names;
+  for (const DesignTermSum::Entry& e : objective.entries()) {
+    const std::string base = e.term->name();
+    std::string name = base;
+    for (int k = 2; std::find(names.begin(), names.end(), name) != names.end(); ++k)
+      name = base + " " + std::to_string(k);
+    names.push_back(name);
+  }
+  return names;
+}
+
+nlohmann::json iteration_json(const OptimizationIteration& it,
+                              const std::vector<std::string>& term_names) {
+  nlohmann::json terms = nlohmann::json::object();
+  for (size_t k = 0; k < term_names.size() && k < it.term_values.size(); ++k)
+    terms[term_names[k]] = it.term_values[k];
+  return {{"iteration", it.iteration},
+          {"objective", it.value},
+          {"terms", terms},
+          {"gradient_norm", it.gradient_norm},
+          {"step_norm", it.step_norm},
+          {"max_point_move", it.max_point_move},
+          {"step_factor", it.step_factor},
+          {"line_search_trials", it.line_search_trials},
+          {"failed_solves", it.failed_solves},
+          {"newton_iterations", it.newton_iterations},
+          {"hessian_shift", it.hessian_shift},
+          {"seconds", it.seconds}};
+}
+
+OptimizationIteration iteration_from_json(const nlohmann::json& j,
+                                          const std::vector<std::string>& term_names,
+                                          const std::string& source, const std::string& path) {
+  OptimizationIteration it;
+  JsonFields f(j, source, path);
+  it.iteration = f.integer("iteration");
+  it.value = f.number("objective");
+  auto terms = f.object("terms", true);
+  for (const std::string& name : term_names) it.term_values.push_back(terms->number(name));
+  terms->finish();
+  it.gradient_norm = f.number("gradient_norm");
+  it.step_norm = f.number("step_norm");
+  it.max_point_move = f.number("max_point_move");
+  it.step_factor = f.number("step_factor");
+  it.line_search_trials = f.integer("line_search_trials");
+  it.failed_solves = f.integer("failed_solves");
+  it.newton_iterations = f.integer("newton_iterations");
+  it.hessian_shift = f.number("hessian_shift");
+  it.seconds = f.number("seconds");
+  f.finish();
+  return it;
+}
+
+nlohmann::json checkpoint_json(const OptimizationCheckpoint& c,
+                               const std::vector<std::string>& term_names) {
+  nlohmann::json garment = nlohmann::json::array();
+  for (const SurfacePoint& s : c.state.garment) garment.push_back({s.face, s.u, s.v});
+  nlohmann::json body = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < c.state.body.rows(); ++i)
+    body.push_back({c.state.body(i, 0), c.state.body(i, 1), c.state.body(i, 2)});
+  nlohmann::json s = nlohmann::json::array(), y = nlohmann::json::array();
+  for (const VecX& v : c.memory.s) s.push_back(vector_json(v));
+  for (const VecX& v : c.memory.y) y.push_back(vector_json(v));
+  nlohmann::json history = nlohmann::json::array();
+  for (const OptimizationIteration& it : c.history)
+    history.push_back(iteration_json(it, term_names));
+  return {{"format", kFormat},
+          {"version", kVersion},
+          {"iteration", c.iteration},
+          {"terms", term_names},
+          {"parameters", vector_json(c.parameters)},
+          {"state", {{"garment", garment}, {"body", body}}},
+          {"memory", {{"s", s}, {"y", y}}},
+          {"history", history}};
+}
+
+OptimizationCheckpoint checkpoint_from_json(const nlohmann::json& j,
+                                            const std::vector<std::string>& term_names,
+                                            const std::string& source) {
+  OptimizationCheckpoint c;
+  JsonFields f(j, source, "");
+  if (f.string("format") != kFormat) f.fail("not a tightfit optimization checkpoint", "format");
+  if (f.integer("version") != kVersion)
+    f.fail("unsupported version (expected " + std::to_string(kVersion) + ")", "version");
+  c.iteration = f.integer("iteration");
+  if (c.iteration < 0) f.fail("must be >= 0", "iteration");
+  const nlohmann::json& names = f.raw("terms");
+  if (names != nlohmann::json(term_names))
+    f.fail("the checkpoint was written for the objective terms " + names.dump() +
+               ", the scene has " + nlohmann::json(term_names).dump(),
+           "terms");
+  c.parameters = read_vector(f.raw("parameters"), source, "/parameters");
+
+  auto state = f.object("state", true);
+  const nlohmann::json& garment = state->raw("garment");
+  if (!garment.is_array()) state->fail("expected an array of [face, u, v]", "garment");
+  for (size_t i = 0; i < garment.size(); ++i) {
+    const nlohmann::json& e = garment[i];
+    const std::string p = "/state/garment/" + std::to_string(i);
+    if (!e.is_array() || e.size() != 3 || !e[0].is_number_integer() || !e[1].is_number() ||
+        !e[2].is_number())
+      throw InputError(source, p + ": expected [face, u, v]");
+    c.state.garment.push_back({e[0].get<int>(), e[1].get<double>(), e[2].get<double>()});
+  }
+  const std::vector<VecX> body = read_vectors(state->raw("body"), source, "/state/body", 3);
+  c.state.body.resize(static_cast<Eigen::Index>(body.size()), 3);
+  for (size_t i = 0; i < body.size(); ++i)
+    c.state.body.row(static_cast<Eigen::Index>(i)) = body[i].transpose();
+  state->finish();
+
+  auto memory = f.object("memory", true);
+  c.memory.s = read_vectors(memory->raw("s"), source, "/memory/s", c.parameters.size());
+  c.memory.y = read_vectors(memory->raw("y"), source, "/memory/y", c.parameters.size());
+  if (c.memory.s.size() != c.memory.y.size()) memory->fail("s and y differ in length");
+  memory->finish();
+
+  const nlohmann::json& history = f.raw("history");
+  if (!history.is_array() || history.empty())
+    f.fail("expected a non-empty array of iteration records", "history");
+  for (size_t i = 0; i < history.size(); ++i)
+    c.history.push_back(
+        iteration_from_json(history[i], term_names, source, "/history/" + std::to_string(i)));
+  f.finish();
+  return c;
+}
+
+void write_checkpoint(const std::filesystem::path& file, const OptimizationCheckpoint& c,
+                      const std::vector<std::string>& term_names) {
+  write_text_atomically(file, checkpoint_json(c, term_names).dump() + "\n");
+}
+
+OptimizationCheckpoint read_checkpoint(const std::filesystem::path& file,
+                                       const std::vector<std::string>& term_names) {
+  return checkpoint_from_json(read_json_file(file.string()), term_names, file.string());
+}
+
+}  // namespace tightfit

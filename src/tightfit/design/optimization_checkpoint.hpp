@@ -1,0 +1,53 @@
+#pragma once
+/// JSON forms of the optimization records (optimization_state.hpp): the history file
+/// and the checkpoint written during `tightfit optimize` and read by `--resume`.
+///
+/// checkpoint.json: {"format": "tightfit-optimization-checkpoint", "version": 1,
+///   "iteration": k, "parameters": [p...] (m),
+///   "state": {"garment": [[face, u, v], ...], "body": [[x, y, z], ...] (m)},
+///   "memory": {"s": [[...], ...], "y": [[...], ...]}, "history": [iteration records]}
+/// Doubles are written with round-trip precision, so a resumed run continues with
+/// bit-identical numbers.
+///
+/// An iteration record: {"iteration", "objective", "terms": {name: w_j T_j},
+///   "gradient_norm", "step_norm" (m), "max_point_move" (m), "step_factor",
+///   "line_search_trials", "failed_solves", "newton_iterations", "hessian_shift" (N/m),
+///   "seconds"}.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tightfit/design/design_term.hpp"
+#include "tightfit/design/optimization_state.hpp"
+
+namespace tightfit {
+
+/// Names of the objective's entries for records and logs: the term names, made unique
+/// by appending " 2", " 3", ... to repeated ones.
+std::vector<std::string> term_names(const DesignTermSum& objective);
+
+/// One record; `term_names` name the entries of term_values (same length).
+nlohmann::json iteration_json(const OptimizationIteration& it,
+                              const std::vector<std::string>& term_names);
+/// Reads a record written by iteration_json; `source` (file) and `path` (JSON pointer)
+/// name it in InputErrors.
+OptimizationIteration iteration_from_json(const nlohmann::json& j,
+                                          const std::vector<std::string>& term_names,
+                                          const std::string& source, const std::string& path = "");
+
+nlohmann::json checkpoint_json(const OptimizationCheckpoint& c,
+                               const std::vector<std::string>& term_names);
+OptimizationCheckpoint checkpoint_from_json(const nlohmann::json& j,
+                                            const std::vector<std::string>& term_names,
+                                            const std::string& source);
+
+/// Writes the checkpoint atomically (temporary file + rename).
+void write_checkpoint(const std::filesystem::path& file, const OptimizationCheckpoint& c,
+                      const std::vector<std::string>& term_names);
+/// Reads a checkpoint; InputError names the file and what is wrong (also when its
+/// objective terms differ from `term_names`).
+OptimizationCheckpoint read_checkpoint(const std::filesystem::path& file,
+                                       const std::vector<std::string>& term_names);
+
+}  // namespace tightfit

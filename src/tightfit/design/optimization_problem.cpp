@@ -1,0 +1,166 @@
+#include "tightfit/design/optimization_problem.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+VecX signed_areas(const Triangles& triangles, const Points2& rest) {
+  VecX a(triangles.rows());
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    const Vec2 e1 = rest.row(triangles(t, 1)) - rest.row(triangles(t, 0));
+    const Vec2 e2 = rest.row(triangles(t, 2)) - rest.row(triangles(t, 0));
+    a[t] = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+  }
+  return a;
+}
+
+}  // namespace
+
+DesignProblem::DesignProblem(GarmentSimulation& sim, std::shared_ptr<const DesignTermSum> objective,
+                             DesignProblemOptions options)
+    : sim_(sim),
+      objective_(std::move(objective)),
+      options_(options),
+      coordinates_(sim.garment().pattern),
+      adjoint_(options.adjoint) {
+  if (!objective_) throw std::invalid_argument("DesignProblem: null objective");
+  const Garment& g = sim_.garment();
+  initial_rest_ = g.rest_positions();
+  initial_parameters_ = coordinates_.parameters(initial_rest_);
+  initial_areas_ = signed_areas(g.pattern_triangles, initial_rest_);
+  double sum = 0.0;
+  int count = 0;
+  for (const PatternPiece& piece : g.pattern.pieces)
+    for (size_t k = 0; k < piece.boundary.size(); ++k, ++count)
+      sum += (piece.rest.row(piece.boundary[k]) -
+              piece.rest.row(piece.boundary[(k + 1) % piece.boundary.size()]))
+                 .norm();
+  mean_boundary_edge_ = count > 0 ? sum / count : 0.0;
+  accepted_p_ = initial_parameters_;
+  current_p_ = initial_parameters_;
+  accepted_state_ = sim_.problem().state();
+}
+
+Points2 DesignProblem::rest_positions(const VecX& p) const {
+  if (p.size() != num_parameters())
+    throw std::invalid_argument("DesignProblem: parameter vector has the wrong length");
+  return initial_rest_ + coordinates_.rest_positions(VecX(p - initial_parameters_));
+}
+
+double DesignProblem::min_area_ratio(const VecX& p) const {
+  const VecX a = signed_areas(sim_.garment().pattern_triangles, rest_positions(p));
+  double ratio = std::numeric_limits<double>::infinity();
+  for (Eigen::Index t = 0; t < a.size(); ++t) ratio = std::min(ratio, a[t] / initial_areas_[t]);
+  return ratio;
+}
+
+DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
+  DesignEvaluation ev;
+  last_ok_ = false;
+  const auto t0 = Clock::now();
+  const Points2 rest = rest_positions(p);
+  if (!p.allFinite()) {
+    ev.failure = "the parameters are not finite";
+    return ev;
+  }
+  if (const double ratio = min_area_ratio(p); ratio < options_.min_area_ratio) {
+    ev.failure = "a pattern triangle " + std::string(ratio <= 0.0 ? "flipped" : "degenerated") +
+                 " (area ratio " + std::to_string(ratio) + ")";
+    return ev;
+  }
+  current_p_ = p;
+  try {
+    sim_.set_state(accepted_state_);
+    sim_.set_rest_positions(rest);
+    const NewtonReport report = sim_.solve();
+    ev.newton_iterations = report.iterations;
+    ev.force_residual = report.final_force_norm;
+    if (!report.converged) {
+      ev.failure = "forward solve: " + report.message;
+      return ev;
+    }
+  } catch (const InputError& e) {
+    ev.failure = std::string("pattern rejected: ") + e.what();
+    return ev;
+  } catch (const SolverError& e) {
+    ev.failure = std::string("forward solve: ") + e.what();
+    return ev;
+  }
+  ev.seconds_forward = seconds_since(t0);
+
+  const SimulationDesignState ds(sim_);
+  try {
+    ev.term_values = objective_->weighted_values(ds.view());
+  } catch (const SolverError& e) {
+    ev.failure = std::string("design objective: ") + e.what();
+    return ev;
+  }
+  ev.value = 0.0;
+  for (double v : ev.term_values) ev.value += v;
+  if (!std::isfinite(ev.value)) {
+    ev.failure = "the design objective is not finite";
+    return ev;
+  }
+  ev.ok = true;
+  last_ok_ = true;
+  if (with_gradient) add_gradient(ev);
+  return ev;
+}
+
+bool DesignProblem::add_gradient(DesignEvaluation& ev) {
+  if (!last_ok_ || !ev.ok)
+    throw std::logic_error("DesignProblem::add_gradient: no successful evaluation to complete");
+  const auto t0 = Clock::now();
+  try {
+    const AdjointResult r = adjoint_.rest_gradient(sim_, *objective_);
+    ev.gradient = coordinates_.pull_back(r.rest_gradient);
+    ev.hessian_shift = r.hessian_shift;
+    ev.adjoint_residual = r.adjoint_residual;
+  } catch (const SolverError& e) {
+    ev.ok = false;
+    ev.failure = std::string("adjoint: ") + e.what();
+    last_ok_ = false;
+  }
+  ev.seconds_adjoint = seconds_since(t0);
+  return ev.ok;
+}
+
+void DesignProblem::accept() {
+  if (!last_ok_)
+    throw std::logic_error("DesignProblem::accept: the last evaluation did not succeed");
+  accepted_p_ = current_p_;
+  accepted_state_ = sim_.problem().state();
+}
+
+void DesignProblem::restore_accepted() {
+  sim_.set_rest_positions(rest_positions(accepted_p_));
+  sim_.set_state(accepted_state_);
+  current_p_ = accepted_p_;
+  last_ok_ = false;
+}
+
+void DesignProblem::set_accepted(const VecX& p, const EmbeddedState& state) {
+  if (p.size() != num_parameters())
+    throw InputError("checkpoint", "it has " + std::to_string(p.size()) +
+                                       " design parameters, the garment needs " +
+                                       std::to_string(num_parameters()));
+  if (static_cast<int>(state.garment.size()) != sim_.garment().num_garment_vertices ||
+      state.body.rows() != sim_.body().volume.vertices.rows())
+    throw InputError("checkpoint", "its state does not match the garment and body");
+  accepted_p_ = p;
+  accepted_state_ = state;
+  restore_accepted();
+}
+
+}  // namespace tightfit

@@ -1,0 +1,113 @@
+#pragma once
+/// The reduced design problem of paper Eq. 21: minimize T(x(q(p)), Xbar(p)) over the
+/// design parameters p, the 2D positions (m) of every piece's boundary vertices in
+/// BiharmonicCoordinates' layout. The rest positions follow as
+///   Xbar(p) = Xbar0 + W (p − p0)
+/// (Xbar0, p0: the initial pattern): the paper's Xbar = W p applied to the boundary
+/// DISPLACEMENT, so the mesher's interior vertices are kept at p0 instead of jumping to
+/// their biharmonic positions; dXbar/dp = W either way, and both agree for affine
+/// boundary changes (W reproduces affine maps).
+///
+/// Evaluating at p sets the simulation's rest positions to W p and solves for the
+/// equilibrium, warm-started from the last ACCEPTED equilibrium (never from a rejected
+/// trial); the gradient comes from the adjoint (adjoint_gradient.hpp) and the
+/// biharmonic pull-back, dT/dp = Wᵀ dT/dXbar. A trial fails, without throwing, when
+///  * a rest triangle flips or shrinks below `min_area_ratio` of its initial area,
+///  * the rest-dependent energies reject the rest shape (InputError),
+///  * the forward Newton solve does not converge (SolverError or report),
+///  * T or its gradient is not finite;
+/// the optimizer then backtracks. After a failure the simulation holds an unspecified
+/// state until the next evaluate() or restore_accepted().
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tightfit/design/adjoint_gradient.hpp"
+#include "tightfit/design/biharmonic_coordinates.hpp"
+#include "tightfit/design/design_term.hpp"
+#include "tightfit/solve/garment_simulation.hpp"
+
+namespace tightfit {
+
+struct DesignProblemOptions {
+  /// A trial pattern is rejected when a rest triangle's signed area falls below this
+  /// fraction of its initial signed area (a flipped triangle has a negative ratio).
+  double min_area_ratio = 0.05;
+  AdjointOptions adjoint;
+};
+
+/// One evaluation of the design problem at parameters p.
+struct DesignEvaluation {
+  bool ok = false;                  ///< converged equilibrium, valid pattern, finite T
+  std::string failure;              ///< why not (empty when ok)
+  double value = 0.0;               ///< T = Σ w_j T_j (only when ok)
+  std::vector<double> term_values;  ///< w_j T_j per objective entry (only when ok)
+  VecX gradient;                    ///< dT/dp (only when ok and requested)
+  double hessian_shift = 0.0;       ///< adjoint Hessian shift (0: exact gradient)
+  double adjoint_residual = 0.0;    ///< relative residual of the adjoint solve
+  int newton_iterations = 0;        ///< of the forward solve
+  double force_residual = 0.0;      ///< N, final force norm of the forward solve
+  double seconds_forward = 0.0;
+  double seconds_adjoint = 0.0;
+};
+
+class DesignProblem {
+ public:
+  /// `sim` (outlives this object) holds the initial garment; its current state is the
+  /// first warm start. `objective` is the weighted sum of design terms (for THIS
+  /// garment topology). Throws InputError/SolverError when the biharmonic coordinates
+  /// cannot be built.
+  DesignProblem(GarmentSimulation& sim, std::shared_ptr<const DesignTermSum> objective,
+                DesignProblemOptions options = {});
+
+  GarmentSimulation& simulation() { return sim_; }
+  const GarmentSimulation& simulation() const { return sim_; }
+  const DesignTermSum& objective() const { return *objective_; }
+  const BiharmonicCoordinates& coordinates() const { return coordinates_; }
+  int num_parameters() const { return coordinates_.num_parameters(); }
+  /// p of the garment's rest positions at construction.
+  const VecX& initial_parameters() const { return initial_parameters_; }
+
+  /// Evaluates T (and dT/dp when `with_gradient`) at p; see the header comment.
+  DesignEvaluation evaluate(const VecX& p, bool with_gradient = true);
+  /// Adds dT/dp to `ev`, the result of the last evaluate() (successful, without
+  /// gradient), at the simulation's current state. On an adjoint failure sets ev.ok =
+  /// false and ev.failure and returns false.
+  bool add_gradient(DesignEvaluation& ev);
+
+  /// Makes the simulation's current state (the last successful evaluate()) and its p
+  /// the accepted point: the warm start of every later evaluation.
+  void accept();
+  /// Puts the simulation back to the accepted parameters and equilibrium.
+  void restore_accepted();
+  /// Sets the accepted point directly (resuming from a checkpoint); the simulation is
+  /// put there too. Throws InputError when sizes do not match this problem.
+  void set_accepted(const VecX& p, const EmbeddedState& state);
+
+  const VecX& accepted_parameters() const { return accepted_p_; }
+  const EmbeddedState& accepted_state() const { return accepted_state_; }
+
+  /// Xbar(p) (n_p×2, m). Throws std::invalid_argument for a wrong length.
+  Points2 rest_positions(const VecX& p) const;
+  /// Smallest signed rest-area ratio (current / initial) over all triangles at p.
+  double min_area_ratio(const VecX& p) const;
+  /// Mean length (m) of the initial boundary edges (a natural step scale for p).
+  double mean_boundary_edge() const { return mean_boundary_edge_; }
+
+ private:
+  GarmentSimulation& sim_;
+  std::shared_ptr<const DesignTermSum> objective_;
+  DesignProblemOptions options_;
+  BiharmonicCoordinates coordinates_;
+  AdjointSolver adjoint_;
+  Points2 initial_rest_;
+  VecX initial_parameters_;
+  VecX initial_areas_;  // signed rest areas of the pattern triangles
+  double mean_boundary_edge_ = 0.0;
+  VecX accepted_p_;
+  EmbeddedState accepted_state_;
+  VecX current_p_;  // parameters the simulation's rest positions are set to
+  bool last_ok_ = false;
+};
+
+}  // namespace tightfit

@@ -1,0 +1,127 @@
+#include "tightfit/design/optimization_spec.hpp"
+
+#include "tightfit/common/json_fields.hpp"
+
+namespace tightfit {
+namespace {
+
+double weight(JsonFields& f) { return f.positive("weight", 1.0, true); }
+
+StretchObjectiveSpec parse_stretch(JsonFields f) {
+  StretchObjectiveSpec s;
+  s.weight = weight(f);
+  s.min_stretch = f.positive("min", 1.0);
+  if (f.has("max")) {
+    s.max_stretch = f.positive("max");
+    if (*s.max_stretch < s.min_stretch) f.fail("must be >= \"min\"", "max");
+  }
+  f.finish();
+  return s;
+}
+
+ShapeObjectiveSpec parse_shape(JsonFields f, const std::filesystem::path& base_dir) {
+  ShapeObjectiveSpec s;
+  s.weight = weight(f);
+  const std::string target = f.string("target");
+  if (target.empty()) f.fail("must name a mesh file", "target");
+  s.target = std::filesystem::path(target);
+  if (s.target.is_relative()) s.target = base_dir / s.target;
+  s.radius = f.positive("radius", 0.01);
+  f.finish();
+  return s;
+}
+
+PressureObjectiveSpec parse_pressure(JsonFields f) {
+  PressureObjectiveSpec s;
+  s.weight = weight(f);
+  const bool pa = f.has("min_pa") || f.has("max_pa");
+  const bool mmhg = f.has("min_mmhg") || f.has("max_mmhg");
+  if (pa == mmhg) f.fail("give the range either as min_pa/max_pa or as min_mmhg/max_mmhg");
+  if (pa) {
+    s.min_pa = f.number("min_pa");
+    s.max_pa = f.number("max_pa");
+  } else {
+    s.min_pa = f.number("min_mmhg") * kPascalPerMmHg;
+    s.max_pa = f.number("max_mmhg") * kPascalPerMmHg;
+  }
+  if (s.max_pa < s.min_pa) f.fail("the maximum pressure is below the minimum");
+  f.finish();
+  return s;
+}
+
+void parse_lbfgs(JsonFields f, PatternOptimizerOptions& o) {
+  o.memory = f.integer("memory", o.memory);
+  if (o.memory < 1) f.fail("must be >= 1", "memory");
+  o.gradient_tolerance = f.positive("gradient_tolerance", o.gradient_tolerance, true);
+  o.relative_gradient_tolerance =
+      f.positive("relative_gradient_tolerance", o.relative_gradient_tolerance, true);
+  o.value_tolerance = f.number("value_tolerance", o.value_tolerance);
+  o.relative_decrease_tolerance =
+      f.positive("relative_decrease_tolerance", o.relative_decrease_tolerance, true);
+  o.stall_iterations = f.integer("stall_iterations", o.stall_iterations);
+  if (o.stall_iterations < 1) f.fail("must be >= 1", "stall_iterations");
+  o.max_step = f.positive("max_step", o.max_step, true);
+  o.max_step_fraction = f.positive("max_step_fraction", o.max_step_fraction);
+  o.armijo = f.positive("armijo", o.armijo);
+  if (o.armijo >= 0.5) f.fail("must be in (0, 0.5)", "armijo");
+  o.max_line_search = f.integer("max_line_search", o.max_line_search);
+  if (o.max_line_search < 1) f.fail("must be >= 1", "max_line_search");
+  f.finish();
+}
+
+}  // namespace
+
+OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const std::string& file,
+                                         const std::string& path,
+                                         const std::filesystem::path& base_dir) {
+  OptimizationSpec spec;
+  spec.optimizer.max_iterations = 50;
+  JsonFields f(section, file, path);
+  if (auto objectives = f.object("objectives")) {
+    if (auto o = objectives->object("stretch")) spec.stretch = parse_stretch(*o);
+    if (auto o = objectives->object("shape")) spec.shape = parse_shape(*o, base_dir);
+    if (auto o = objectives->object("pressure")) spec.pressure = parse_pressure(*o);
+    if (auto o = objectives->object("seam_traction")) {
+      SeamTractionObjectiveSpec s;
+      s.weight = weight(*o);
+      o->finish();
+      spec.seam_traction = s;
+    }
+    objectives->finish();
+  }
+  if (auto r = f.object("regularizers")) {
+    RegularizerWeights& w = spec.regularizers;
+    w.seam_length = r->positive("seam_length", 0.0, true);
+    w.boundary_spacing = r->positive("boundary_spacing", 0.0, true);
+    w.boundary_smoothness = r->positive("boundary_smoothness", 0.0, true);
+    if (auto c = r->object("compactness")) {
+      w.compactness = weight(*c);
+      w.compactness_options.min_ratio = c->positive("min_ratio", w.compactness_options.min_ratio);
+      if (w.compactness_options.min_ratio > 1.0) c->fail("must be in (0, 1]", "min_ratio");
+      w.compactness_options.pair_stride =
+          c->integer("pair_stride", w.compactness_options.pair_stride);
+      if (w.compactness_options.pair_stride < 1) c->fail("must be >= 1", "pair_stride");
+      c->finish();
+    }
+    r->finish();
+  }
+  spec.optimizer.max_iterations = f.integer("max_iterations", spec.optimizer.max_iterations);
+  if (spec.optimizer.max_iterations < 0) f.fail("must be >= 0", "max_iterations");
+  spec.checkpoint_every = f.integer("checkpoint_every", spec.checkpoint_every);
+  if (spec.checkpoint_every < 1) f.fail("must be >= 1", "checkpoint_every");
+  spec.problem.min_area_ratio = f.positive("min_area_ratio", spec.problem.min_area_ratio);
+  if (spec.problem.min_area_ratio >= 1.0) f.fail("must be in (0, 1)", "min_area_ratio");
+  if (auto l = f.object("lbfgs")) parse_lbfgs(*l, spec.optimizer);
+  f.finish();
+
+  const RegularizerWeights& w = spec.regularizers;
+  const bool any = (spec.stretch && spec.stretch->weight > 0) ||
+                   (spec.shape && spec.shape->weight > 0) ||
+                   (spec.pressure && spec.pressure->weight > 0) ||
+                   (spec.seam_traction && spec.seam_traction->weight > 0) || w.seam_length > 0 ||
+                   w.boundary_spacing > 0 || w.boundary_smoothness > 0 || w.compactness > 0;
+  if (!any) f.fail("no objective or regularizer with a positive weight");
+  return spec;
+}
+
+}  // namespace tightfit

@@ -1,0 +1,88 @@
+#pragma once
+/// The "optimize" section of a scene file (read strictly with JsonFields: unknown keys
+/// and wrong types are InputErrors naming the file and JSON path). SI units; stretches
+/// are principal STRETCHES (1.3 = 30 % stretch), not Cauchy-Green eigenvalues.
+///
+///   "optimize": {
+///     "objectives": {                       // at least one objective or regularizer
+///       "stretch":  {"weight": 1, "min": 1.05, "max": 1.3},   // "max" optional (none)
+///       "shape":    {"weight": 1, "target": "target.obj", "radius": 0.01},
+///       "pressure": {"weight": 1, "min_mmhg": 15, "max_mmhg": 25},  // or min_pa/max_pa
+///       "seam_traction": {"weight": 1}
+///     },
+///     "regularizers": {                     // weights, all optional (default 0 = off)
+///       "seam_length": 1, "boundary_spacing": 0.1, "boundary_smoothness": 1e-4,
+///       "compactness": {"weight": 1, "min_ratio": 0.1, "pair_stride": 1}
+///     },
+///     "max_iterations": 50,                 // L-BFGS iterations (default 50)
+///     "checkpoint_every": 5,                // iterations between checkpoints (default 5)
+///     "min_area_ratio": 0.05,               // trial patterns with smaller triangles fail
+///     "lbfgs": {"memory": 8, "gradient_tolerance": 0, "relative_gradient_tolerance": 1e-6,
+///               "value_tolerance": 0, "relative_decrease_tolerance": 1e-9,
+///               "stall_iterations": 3, "max_step": 0, "max_step_fraction": 0.5,
+///               "armijo": 1e-4, "max_line_search": 30}
+///   }
+///
+/// Units of the terms (see each term's header): stretch m², shape m², pressure Pa²·m²,
+/// seam traction N, seam length and boundary spacing m², boundary smoothness 1/m,
+/// compactness dimensionless. Weights are >= 0; weight 0 switches a term off.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "tightfit/design/optimization_problem.hpp"
+#include "tightfit/design/pattern_optimizer.hpp"
+#include "tightfit/design/regularizer_compactness.hpp"
+
+namespace tightfit {
+
+struct StretchObjectiveSpec {
+  double weight = 1.0;
+  double min_stretch = 1.0;
+  std::optional<double> max_stretch;  ///< none: no upper bound
+};
+
+struct ShapeObjectiveSpec {
+  double weight = 1.0;
+  std::filesystem::path target;  ///< target surface mesh (resolved against the scene folder)
+  double radius = 0.01;          ///< IMLS kernel radius h (m)
+};
+
+struct PressureObjectiveSpec {
+  double weight = 1.0;
+  double min_pa = 0.0;  ///< Pa (min_mmhg converted)
+  double max_pa = 0.0;  ///< Pa
+};
+
+struct SeamTractionObjectiveSpec {
+  double weight = 1.0;
+};
+
+struct RegularizerWeights {
+  double seam_length = 0.0;
+  double boundary_spacing = 0.0;
+  double boundary_smoothness = 0.0;
+  double compactness = 0.0;
+  CompactnessOptions compactness_options;
+};
+
+struct OptimizationSpec {
+  std::optional<StretchObjectiveSpec> stretch;
+  std::optional<ShapeObjectiveSpec> shape;
+  std::optional<PressureObjectiveSpec> pressure;
+  std::optional<SeamTractionObjectiveSpec> seam_traction;
+  RegularizerWeights regularizers;
+  int checkpoint_every = 5;
+  PatternOptimizerOptions optimizer;  ///< max_iterations default 50 here
+  DesignProblemOptions problem;
+};
+
+/// Parses `section` (the value of "optimize") of scene `file`; `path` is its JSON
+/// pointer, `base_dir` resolves the shape target. Throws InputError on any problem,
+/// including a section that switches every term off.
+OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const std::string& file,
+                                         const std::string& path,
+                                         const std::filesystem::path& base_dir);
+
+}  // namespace tightfit

@@ -1,0 +1,240 @@
+#include "tightfit/design/pattern_optimizer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+PatternOptimizer::PatternOptimizer(DesignProblem& problem, PatternOptimizerOptions options)
+    : problem_(problem), options_(options) {
+  if (options_.max_iterations < 0 || options_.memory < 1 || options_.max_line_search < 1 ||
+      options_.stall_iterations < 1)
+    throw std::invalid_argument("PatternOptimizer: iteration counts must be positive");
+  if (!(options_.armijo > 0.0 && options_.armijo < 0.5))
+    throw std::invalid_argument("PatternOptimizer: armijo must be in (0, 0.5)");
+  if (!(options_.max_step >= 0.0) || !(options_.max_step_fraction > 0.0) ||
+      !(options_.gradient_tolerance >= 0.0) || !(options_.relative_gradient_tolerance >= 0.0) ||
+      !(options_.relative_decrease_tolerance >= 0.0) || std::isnan(options_.value_tolerance))
+    throw std::invalid_argument("PatternOptimizer: tolerances and step limits must be >= 0");
+}
+
+double PatternOptimizer::max_point_move(const VecX& d) {
+  double m = 0.0;
+  for (Eigen::Index i = 0; i + 1 < d.size(); i += 2) m = std::max(m, std::hypot(d[i], d[i + 1]));
+  return m;
+}
+
+VecX PatternOptimizer::direction(const VecX& g) const {
+  const int m = static_cast<int>(memory_.s.size());
+  if (m == 0) return -g;
+  VecX q = g;
+  std::vector<double> alpha(m), rho(m);
+  for (int i = m - 1; i >= 0; --i) {
+    rho[i] = 1.0 / memory_.y[i].dot(memory_.s[i]);
+    alpha[i] = rho[i] * memory_.s[i].dot(q);
+    q -= alpha[i] * memory_.y[i];
+  }
+  const double gamma = memory_.s[m - 1].dot(memory_.y[m - 1]) / memory_.y[m - 1].squaredNorm();
+  q *= gamma;
+  for (int i = 0; i < m; ++i) {
+    const double beta = rho[i] * memory_.y[i].dot(q);
+    q += (alpha[i] - beta) * memory_.s[i];
+  }
+  return -q;
+}
+
+void PatternOptimizer::push_pair(const VecX& s, const VecX& y) {
+  if (!(s.dot(y) > 1e-12 * s.norm() * y.norm())) return;
+  memory_.s.push_back(s);
+  memory_.y.push_back(y);
+  if (static_cast<int>(memory_.s.size()) > options_.memory) {
+    memory_.s.erase(memory_.s.begin());
+    memory_.y.erase(memory_.y.begin());
+  }
+}
+
+void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
+  const Eigen::Index n = problem_.num_parameters();
+  if (checkpoint.history.empty())
+    throw InputError("checkpoint", "it has no history (not even the initial iteration)");
+  if (checkpoint.memory.s.size() != checkpoint.memory.y.size())
+    throw InputError("checkpoint", "its L-BFGS memory has unequal s and y counts");
+  for (size_t k = 0; k < checkpoint.memory.s.size(); ++k)
+    if (checkpoint.memory.s[k].size() != n || checkpoint.memory.y[k].size() != n)
+      throw InputError("checkpoint", "its L-BFGS memory does not match the design parameters");
+  problem_.set_accepted(checkpoint.parameters, checkpoint.state);
+  memory_ = checkpoint.memory;
+  while (static_cast<int>(memory_.s.size()) > options_.memory) {
+    memory_.s.erase(memory_.s.begin());
+    memory_.y.erase(memory_.y.begin());
+  }
+  history_ = checkpoint.history;
+  iteration_ = checkpoint.iteration;
+  seconds_before_ = history_.back().seconds;
+  resumed_ = true;
+}
+
+OptimizationCheckpoint PatternOptimizer::checkpoint() const {
+  OptimizationCheckpoint c;
+  c.iteration = iteration_;
+  c.parameters = problem_.accepted_parameters();
+  c.state = problem_.accepted_state();
+  c.memory = memory_;
+  c.history = history_;
+  return c;
+}
+
+OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) {
+  const auto t_start = Clock::now();
+  auto elapsed = [&] { return seconds_before_ + seconds_since(t_start); };
+  OptimizationResult result;
+
+  VecX p = problem_.accepted_parameters();
+  DesignEvaluation current = problem_.evaluate(p, true);
+  if (!current.ok)
+    throw SolverError("optimizer: the starting pattern cannot be evaluated: " + current.failure);
+  problem_.accept();
+  if (!resumed_) {
+    history_.clear();
+    memory_ = {};
+    iteration_ = 0;
+    OptimizationIteration first;
+    first.value = current.value;
+    first.term_values = current.term_values;
+    first.gradient_norm = current.gradient.norm();
+    first.line_search_trials = 1;
+    first.newton_iterations = current.newton_iterations;
+    first.hessian_shift = current.hessian_shift;
+    first.seconds = elapsed();
+    history_.push_back(first);
+    if (on_iteration) on_iteration(first);
+  }
+  resumed_ = true;  // a second run() continues this one
+  result.initial_value = history_.front().value;
+
+  const double gradient_stop =
+      std::max(options_.gradient_tolerance,
+               options_.relative_gradient_tolerance * history_.front().gradient_norm);
+  const double max_step = options_.max_step > 0.0
+                              ? options_.max_step
+                              : options_.max_step_fraction * problem_.mean_boundary_edge();
+  int stalled = 0;
+  std::ostringstream reason;
+  for (;;) {
+    const double gnorm = current.gradient.norm();
+    if (gnorm <= gradient_stop) {
+      reason << "gradient norm " << gnorm << " <= " << gradient_stop;
+      result.converged = true;
+      break;
+    }
+    if (current.value <= options_.value_tolerance) {
+      reason << "objective " << current.value << " <= " << options_.value_tolerance;
+      result.converged = true;
+      break;
+    }
+    if (stalled >= options_.stall_iterations) {
+      reason << "relative decrease below " << options_.relative_decrease_tolerance << " for "
+             << stalled << " iterations";
+      result.converged = true;
+      break;
+    }
+    if (iteration_ >= options_.max_iterations) {
+      reason << "iteration limit " << options_.max_iterations << " reached";
+      break;
+    }
+
+    OptimizationIteration rec;
+    DesignEvaluation trial;
+    VecX d;
+    double alpha = 0.0;
+    bool accepted = false;
+    for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
+      if (attempt == 1) {
+        if (memory_.s.empty()) break;  // steepest descent already failed
+        memory_ = {};
+      }
+      d = direction(current.gradient);
+      double slope = current.gradient.dot(d);
+      if (!(slope < 0.0)) {  // not a descent direction: drop the memory
+        memory_ = {};
+        d = -current.gradient;
+        slope = -gnorm * gnorm;
+      }
+      const double move = max_point_move(d);
+      if (!(move > 0.0)) break;
+      alpha = memory_.s.empty() || move > max_step ? max_step / move : 1.0;
+      for (int t = 0; t < options_.max_line_search; ++t) {
+        ++rec.line_search_trials;
+        trial = problem_.evaluate(p + alpha * d, false);
+        rec.newton_iterations += trial.newton_iterations;
+        if (!trial.ok) {
+          ++rec.failed_solves;
+          alpha *= 0.5;
+          continue;
+        }
+        if (trial.value <= current.value + options_.armijo * alpha * slope) {
+          if (problem_.add_gradient(trial)) {
+            accepted = true;
+            break;
+          }
+          ++rec.failed_solves;
+          alpha *= 0.5;
+          continue;
+        }
+        // Minimizer of the quadratic through T(0), T'(0) and T(α), kept in [0.1, 0.5]·α.
+        const double curvature = 2.0 * (trial.value - current.value - alpha * slope);
+        const double next = curvature > 0.0 ? -slope * alpha * alpha / curvature : 0.5 * alpha;
+        alpha = std::clamp(next, 0.1 * alpha, 0.5 * alpha);
+      }
+    }
+    if (!accepted) {
+      problem_.restore_accepted();
+      reason << "line search failed (no decrease of the objective; last trial: "
+             << (trial.ok ? "no sufficient decrease" : trial.failure) << ")";
+      break;
+    }
+
+    const VecX step = alpha * d;
+    push_pair(step, trial.gradient - current.gradient);
+    problem_.accept();
+    p += step;
+    const double decrease = current.value - trial.value;
+    stalled = decrease <= options_.relative_decrease_tolerance * std::abs(current.value)
+                  ? stalled + 1
+                  : 0;
+    current = std::move(trial);
+    ++iteration_;
+
+    rec.iteration = iteration_;
+    rec.value = current.value;
+    rec.term_values = current.term_values;
+    rec.gradient_norm = current.gradient.norm();
+    rec.step_norm = step.norm();
+    rec.max_point_move = max_point_move(step);
+    rec.step_factor = alpha;
+    rec.hessian_shift = current.hessian_shift;
+    rec.seconds = elapsed();
+    history_.push_back(rec);
+    if (on_iteration) on_iteration(rec);
+  }
+  result.stop_reason = reason.str();
+  result.iterations = iteration_;
+  result.final_value = current.value;
+  result.seconds = seconds_since(t_start);
+  return result;
+}
+
+}  // namespace tightfit

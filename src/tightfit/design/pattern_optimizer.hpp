@@ -1,0 +1,99 @@
+#pragma once
+/// L-BFGS on the pattern design parameters (paper Sec. 4: "L-BFGS and line search for
+/// robustness") over a DesignProblem.
+///
+/// Why our own loop rather than LBFGSpp: every function evaluation is a full forward
+/// equilibrium solve that can fail (SolverError, flipped rest triangles) and must
+/// never be accepted unconverged; LBFGSpp's line searches expect a finite f(x) at every
+/// trial and throw on their own failures. The loop also has to (a) warm-start each trial
+/// from the last ACCEPTED equilibrium and commit only accepted ones, (b) report every
+/// accepted iteration (progress, history, checkpoints), and (c) save and restore its
+/// curvature memory for --resume; LBFGSpp exposes none of these.
+///
+/// Iteration k: d = −H_k ∇T (two-loop recursion over the last `memory` pairs, initial
+/// scaling γ = sᵀy / yᵀy; steepest descent when the memory is empty), capped so that no
+/// boundary point moves more than `max_step` (m). Backtracking line search on α ∈ (0, 1]
+/// with the Armijo condition T(p + α d) ≤ T(p) + c α ∇T·d (c = `armijo`), shrinking α
+/// by quadratic interpolation clamped to [0.1, 0.5]·α; a trial whose forward solve
+/// fails or whose pattern is rejected counts as "too far" and is halved. Accepted steps
+/// therefore decrease T strictly (monotone). A pair (s, y) enters the memory only when
+/// sᵀy > 1e-12 ‖s‖‖y‖ (no Wolfe condition is enforced, so curvature is checked). When the
+/// line search fails along an L-BFGS direction the memory is cleared and steepest
+/// descent is tried once more before giving up.
+///
+/// Stopping (checked on each accepted point): ‖∇T‖ ≤ max(gradient_tolerance,
+/// relative_gradient_tolerance·‖∇T_0‖); T ≤ value_tolerance (range objectives reach 0
+/// exactly); `stall_iterations` consecutive steps with relative decrease below
+/// relative_decrease_tolerance; max_iterations; or a failed line search.
+#include <functional>
+#include <string>
+
+#include "tightfit/design/optimization_problem.hpp"
+#include "tightfit/design/optimization_state.hpp"
+
+namespace tightfit {
+
+struct PatternOptimizerOptions {
+  int max_iterations = 100;
+  int memory = 8;                             ///< L-BFGS pairs kept
+  double gradient_tolerance = 0.0;            ///< absolute, units of T per m
+  double relative_gradient_tolerance = 1e-6;  ///< relative to the initial gradient norm
+  double value_tolerance = 0.0;               ///< stop once T ≤ this
+  double relative_decrease_tolerance = 1e-9;  ///< per-iteration (T_k−1 − T_k) / T_k−1
+  int stall_iterations = 3;
+  /// Largest move of one boundary point per iteration (m); 0 → max_step_fraction × the
+  /// mean initial boundary edge length.
+  double max_step = 0.0;
+  double max_step_fraction = 0.5;
+  double armijo = 1e-4;
+  int max_line_search = 30;  ///< trials per line search
+};
+
+struct OptimizationResult {
+  bool converged = false;  ///< stopped by a tolerance (not by the iteration limit/failure)
+  std::string stop_reason;
+  int iterations = 0;  ///< last accepted iteration
+  double initial_value = 0.0;
+  double final_value = 0.0;
+  double seconds = 0.0;  ///< wall time of this run (s)
+};
+
+/// Called after each accepted iteration (and for iteration 0, the initial pattern, when
+/// a run starts fresh). The optimizer's checkpoint() is current during the call.
+using IterationCallback = std::function<void(const OptimizationIteration&)>;
+
+class PatternOptimizer {
+ public:
+  /// Throws std::invalid_argument for invalid options.
+  PatternOptimizer(DesignProblem& problem, PatternOptimizerOptions options = {});
+
+  /// Continues from a checkpoint instead of the problem's initial parameters (puts the
+  /// simulation at the saved equilibrium). Call before run().
+  void resume(const OptimizationCheckpoint& checkpoint);
+
+  /// Runs until a stopping criterion (see the header comment). Throws SolverError when
+  /// the starting point itself cannot be evaluated.
+  OptimizationResult run(const IterationCallback& on_iteration = {});
+
+  /// The state after the last accepted iteration.
+  OptimizationCheckpoint checkpoint() const;
+  const std::vector<OptimizationIteration>& history() const { return history_; }
+  const PatternOptimizerOptions& options() const { return options_; }
+
+  /// Largest 2D move of one parameter point for a step d over p (m).
+  static double max_point_move(const VecX& d);
+
+ private:
+  VecX direction(const VecX& g) const;
+  void push_pair(const VecX& s, const VecX& y);
+
+  DesignProblem& problem_;
+  PatternOptimizerOptions options_;
+  LbfgsMemory memory_;
+  std::vector<OptimizationIteration> history_;
+  int iteration_ = 0;
+  double seconds_before_ = 0.0;  // wall time of earlier runs (resume)
+  bool resumed_ = false;
+};
+
+}  // namespace tightfit

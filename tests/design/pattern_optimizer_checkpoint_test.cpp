@@ -1,0 +1,128 @@
+/// Checkpoints of the pattern optimizer: exact JSON round trip, strict reading, and a
+/// resumed run that continues exactly like an uninterrupted one.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "adjoint_test_scene.hpp"
+#include "tightfit/common/error.hpp"
+#include "tightfit/design/optimization_checkpoint.hpp"
+#include "tightfit/design/pattern_optimizer.hpp"
+
+namespace tightfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::shared_ptr<DesignTermSum> target_objective(GarmentSimulation& sim) {
+  auto objective = std::make_shared<DesignTermSum>();
+  objective->add(
+      std::make_shared<test::TargetPositionTerm>(test::turned_targets(sim, 0.0175, 0.002)), 1.0);
+  for (const auto& r : test::regularizers(sim.garment())) objective->add(r, 1e-4);
+  return objective;
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("tightfit_checkpoint_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+TEST(OptimizationCheckpoint, JsonRoundTripIsExact) {
+  OptimizationCheckpoint c;
+  c.iteration = 2;
+  c.parameters = VecX::LinSpaced(6, 0.1, 0.7) / 3.0;
+  c.state.garment = {{3, 1.0 / 3.0, 0.2}, {7, 0.0, 0.999999999999}};
+  c.state.body = Points3::Random(4, 3);
+  c.memory.s = {VecX::Random(6)};
+  c.memory.y = {VecX::Random(6)};
+  OptimizationIteration it;
+  it.iteration = 2;
+  it.value = 1.0 / 7.0;
+  it.term_values = {0.1, 1.0 / 7.0 - 0.1};
+  it.gradient_norm = 3e-9;
+  it.seconds = 1.25;
+  c.history = {it, it};
+  const std::vector<std::string> names{"stretch", "seam length"};
+  const fs::path file = scratch("roundtrip.json");
+  write_checkpoint(file, c, names);
+  const OptimizationCheckpoint r = read_checkpoint(file, names);
+  EXPECT_EQ(r.iteration, 2);
+  EXPECT_EQ(r.parameters, c.parameters);
+  ASSERT_EQ(r.state.garment.size(), 2u);
+  EXPECT_EQ(r.state.garment[0].u, 1.0 / 3.0);
+  EXPECT_EQ(r.state.garment[1].face, 7);
+  EXPECT_EQ(r.state.body, c.state.body);
+  EXPECT_EQ(r.memory.s[0], c.memory.s[0]);
+  EXPECT_EQ(r.memory.y[0], c.memory.y[0]);
+  ASSERT_EQ(r.history.size(), 2u);
+  EXPECT_EQ(r.history[1].term_values, it.term_values);
+  EXPECT_EQ(r.history[1].value, it.value);
+
+  EXPECT_THROW(read_checkpoint(file, {"stretch"}), InputError);  // other objective
+  std::ofstream(file) << R"({"format": "something else"})";
+  try {
+    read_checkpoint(file, names);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/format"), std::string::npos) << e.what();
+  }
+  fs::remove_all(file.parent_path());
+}
+
+TEST(OptimizationCheckpoint, TermNamesAreMadeUnique) {
+  auto scene = test::make_sleeve_scene();
+  const auto regs = test::regularizers(scene->sim->garment());
+  DesignTermSum sum;
+  sum.add(regs[0], 1.0);
+  sum.add(regs[0], 2.0);
+  sum.add(regs[1], 1.0);
+  EXPECT_EQ(term_names(sum),
+            (std::vector<std::string>{"seam length", "seam length 2", "boundary spacing"}));
+}
+
+TEST(PatternOptimizerResume, ContinuesExactlyLikeAnUninterruptedRun) {
+  PatternOptimizerOptions options;
+  options.max_iterations = 6;
+  VecX straight;
+  {
+    auto scene = test::make_sleeve_scene();
+    scene->sim->solve();
+    DesignProblem problem(*scene->sim, target_objective(*scene->sim));
+    PatternOptimizer optimizer(problem, options);
+    optimizer.run();
+    ASSERT_EQ(optimizer.history().size(), 7u);
+    straight = problem.accepted_parameters();
+  }
+  const fs::path file = scratch("resume.json");
+  std::vector<std::string> names;
+  {
+    auto scene = test::make_sleeve_scene();
+    scene->sim->solve();
+    auto objective = target_objective(*scene->sim);
+    names = term_names(*objective);
+    DesignProblem problem(*scene->sim, objective);
+    PatternOptimizerOptions first = options;
+    first.max_iterations = 3;
+    PatternOptimizer optimizer(problem, first);
+    optimizer.run([&](const OptimizationIteration&) {
+      write_checkpoint(file, optimizer.checkpoint(), names);
+    });
+  }
+  auto scene = test::make_sleeve_scene();
+  scene->sim->solve();
+  DesignProblem problem(*scene->sim, target_objective(*scene->sim));
+  PatternOptimizer optimizer(problem, options);
+  optimizer.resume(read_checkpoint(file, names));
+  EXPECT_EQ(optimizer.history().size(), 4u);
+  optimizer.run();
+  ASSERT_EQ(optimizer.history().size(), 7u);
+  EXPECT_LT((problem.accepted_parameters() - straight).norm(), 1e-12 * straight.norm());
+  fs::remove_all(file.parent_path());
+}
+
+}  // namespace
+}  // namespace tightfit

@@ -1,0 +1,159 @@
+/// Runs the built `tightfit optimize` and `tightfit check-gradient` (TIGHTFIT_CLI) on a
+/// small sleeve with the real stretch objective (the objectives layer sits above this
+/// one, so these end-to-end runs are where the stretch objective meets the optimizer).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace tightfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+CliRun run_cli(const std::string& args) {
+  const fs::path log =
+      fs::temp_directory_path() / ("tightfit_optimize_cli_" + std::to_string(::getpid()) + ".log");
+  const std::string command =
+      std::string(TIGHTFIT_CLI) + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  fs::remove(log);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+nlohmann::json read_json(const fs::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+/// A sleeve 10 % short around (hoop stretch 1.11) on a rigid cylinder; the objective
+/// wants principal stretches in [1.02, 1.06].
+nlohmann::json stretch_scene(int max_iterations) {
+  nlohmann::json scene = nlohmann::json::parse(R"({
+    "body": {"generator": "cylinder", "radius": 0.05, "length": 0.16, "edge_length": 0.014},
+    "garment": {"sleeve": {"radius": 0.05, "axial_begin": -0.04, "axial_end": 0.04,
+                           "hoop_scale": 0.9, "axial_scale": 0.95, "edge_length": 0.016,
+                           "jitter": 0.3, "pin_first_ring": true, "pin_last_ring": true}},
+    "body_material": {"rigid": true},
+    "optimize": {"objectives": {"stretch": {"weight": 1, "min": 1.02, "max": 1.06}},
+                 "regularizers": {"seam_length": 1},
+                 "checkpoint_every": 2}
+  })");
+  scene["optimize"]["max_iterations"] = max_iterations;
+  return scene;
+}
+
+class OptimizeCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("tightfit_optimize_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path write_scene(const std::string& name, const nlohmann::json& scene) {
+    std::ofstream(dir_ / name) << scene.dump(2);
+    return dir_ / name;
+  }
+  fs::path dir_;
+};
+
+TEST_F(OptimizeCli, StretchRunBringsEveryElementIntoRange) {
+  const fs::path scene = write_scene("scene.json", stretch_scene(60));
+  const fs::path out = dir_ / "out";
+  const CliRun r = run_cli("optimize " + scene.string() + " --out " + out.string());
+  std::printf("%s", r.output.c_str());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"history.json", "checkpoint.json", "pieces.json", "pattern.svg",
+                        "garment.ply", "body.ply", "result.json", "scene.json"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const nlohmann::json history = read_json(out / "history.json");
+  const auto& its = history["iterations"];
+  ASSERT_GE(its.size(), 2u);
+  for (size_t k = 1; k < its.size(); ++k)
+    EXPECT_LT(its[k]["objective"].get<double>(), its[k - 1]["objective"].get<double>());
+  const nlohmann::json result = read_json(out / "result.json");
+  const auto& fit = result["fit"];
+  const double smax = fit["stretch_max"]["max"].get<double>();
+  const double smin = fit["stretch_min"]["min"].get<double>();
+  std::printf("principal stretches after optimization: [%.5f, %.5f] (wanted [1.02, 1.06])\n", smin,
+              smax);
+  // The penalty is quadratic outside the range, so the optimum is approached from
+  // outside: allow 0.1 % of stretch.
+  EXPECT_LE(smax, 1.06 + 1e-3);
+  EXPECT_GE(smin, 1.02 - 1e-3);
+  EXPECT_LT(result["optimization"]["objective_final"].get<double>(),
+            1e-3 * result["optimization"]["objective_initial"].get<double>());
+}
+
+TEST_F(OptimizeCli, ResumeContinuesFromTheCheckpoint) {
+  const fs::path first = write_scene("first.json", stretch_scene(2));
+  const fs::path out = dir_ / "out";
+  CliRun r = run_cli("optimize " + first.string() + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_json(out / "checkpoint.json")["iteration"].get<int>(), 2);
+  const fs::path second = write_scene("second.json", stretch_scene(4));
+  r = run_cli("optimize " + second.string() + " --out " + out.string() + " --resume " +
+              out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("resuming"), std::string::npos) << r.output;
+  const auto its = read_json(out / "history.json")["iterations"];
+  ASSERT_EQ(its.size(), 5u);
+  for (size_t k = 0; k < its.size(); ++k) EXPECT_EQ(its[k]["iteration"].get<size_t>(), k);
+  for (size_t k = 1; k < its.size(); ++k)
+    EXPECT_LT(its[k]["objective"].get<double>(), its[k - 1]["objective"].get<double>());
+}
+
+TEST_F(OptimizeCli, CheckGradientAgreesWithFiniteDifferences) {
+  nlohmann::json s = stretch_scene(1);
+  s["optimize"]["regularizers"] = {{"seam_length", 1},
+                                   {"boundary_spacing", 0.1},
+                                   {"boundary_smoothness", 1e-6},
+                                   {"compactness", {{"weight", 1}, {"min_ratio", 0.5}}}};
+  const fs::path scene = write_scene("scene.json", s);
+  const CliRun r = run_cli("check-gradient " + scene.string() +
+                           " --directions 2 --perturb 0.1 --max-error 1e-5");
+  std::printf("%s", r.output.c_str());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  for (const char* term : {"total", "stretch", "seam length", "boundary spacing",
+                           "boundary smoothness", "compactness"})
+    EXPECT_NE(r.output.find(std::string("  ") + term + " "), std::string::npos) << term;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex("largest relative error: ([0-9.e+-]+)")));
+  EXPECT_LT(std::stod(m[1]), 1e-5);
+}
+
+TEST_F(OptimizeCli, SceneWithoutOptimizeSectionIsAnInputError) {
+  nlohmann::json s = stretch_scene(1);
+  s.erase("optimize");
+  const fs::path scene = write_scene("scene.json", s);
+  const CliRun r = run_cli("optimize " + scene.string() + " --out " + (dir_ / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("/optimize"), std::string::npos) << r.output;
+  s = stretch_scene(1);
+  s["optimize"]["objectives"]["stretch"]["mni"] = 1.0;
+  const CliRun bad = run_cli("check-gradient " + write_scene("bad.json", s).string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("/optimize/objectives/stretch/mni"), std::string::npos) << bad.output;
+}
+
+}  // namespace
+}  // namespace tightfit
