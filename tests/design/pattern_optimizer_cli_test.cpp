@@ -82,8 +82,9 @@ TEST_F(OptimizeCli, StretchRunBringsEveryElementIntoRange) {
   const CliRun r = run_cli("optimize " + scene.string() + " --out " + out.string());
   std::printf("%s", r.output.c_str());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* f : {"history.json", "checkpoint.json", "pieces.json", "pattern.svg",
-                        "garment.ply", "body.ply", "result.json", "scene.json"})
+  for (const char* f :
+       {"history.json", "checkpoint.json", "pieces.json", "pattern.svg", "pattern.dxf",
+        "report.html", "fit.glb", "garment.ply", "body.ply", "result.json", "scene.json"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const nlohmann::json history = read_json(out / "history.json");
   const auto& its = history["iterations"];

@@ -4,8 +4,9 @@
 /// DIR is written DURING the run (each file atomically, so a crash leaves the last
 /// complete version of every file): history.json after every iteration, checkpoint.json
 /// every `checkpoint_every` iterations and at the end; at the end also the optimized
-/// pattern (pieces.json, pattern.svg), the fit at the final equilibrium (garment.ply,
-/// body.ply), result.json and scene.json. `--resume DIR` continues from
+/// pattern files (pattern.svg, pattern_*.pdf, pattern.dxf, pieces.json), the fit at
+/// the final equilibrium (report.html with the objective history, fit.glb,
+/// garment.ply, body.ply), result.json and scene.json. `--resume DIR` continues from
 /// DIR/checkpoint.json (same scene and objective terms), appending to the history.
 #include <chrono>
 #include <cstdio>
@@ -17,8 +18,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
-#include "tightfit/io/pattern_json.hpp"
-#include "tightfit/io/pattern_svg.hpp"
+#include "tightfit/io/pattern_outputs.hpp"
 #include "tightfit/io/scene_loader.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
 
@@ -96,15 +96,16 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
   write_checkpoint(checkpoint_file, optimizer.checkpoint(), names);
   std::printf("  stopped: %s\n", result.stop_reason.c_str());
 
-  // The simulation holds the accepted pattern and its equilibrium.
+  // The simulation holds the accepted pattern and its equilibrium. The report comes
+  // last: it needs the viewer's npm packages, and its failure must not cost the rest.
   const auto t0 = Clock::now();
   const FitAnalysis fit = sim->analyze();
   const auto op = input.scene.pressure_operator;
   write_fit_meshes(out, *sim, fit, op);
-  const PatternExportOptions export_options;
-  write_pieces_json(sim->garment().pattern, export_options, out / "pieces.json");
-  write_pattern_svg(sim->garment().pattern, export_options, out / "pattern.svg");
-  const double t_outputs = seconds_since(t0);
+  std::vector<std::string> files = {"garment.ply", "body.ply"};
+  // As in simulate: a cover has one piece per triangle, no pattern to cut.
+  if (sim->garment().pattern.pieces.size() <= 64)
+    for (const auto& f : write_pattern_files(out, sim->garment().pattern)) files.push_back(f);
 
   const std::vector<OptimizationIteration>& history = optimizer.history();
   nlohmann::json initial_terms, final_terms;
@@ -135,17 +136,20 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
   nlohmann::json seconds;
   for (const auto& [stage, s] : scene->stage_seconds) seconds[stage] = s;
   seconds["optimization_this_run"] = result.seconds;
-  seconds["outputs"] = t_outputs;
+  seconds["outputs"] = seconds_since(t0);
   seconds["total_this_run"] = seconds_since(t_start);
   result_json["seconds"] = seconds;
   write_text_atomically(out / "result.json", result_json.dump(2) + "\n");
   write_text_atomically(out / "scene.json", input.scene.document.dump(2) + "\n");
+  for (const char* f : {"result.json", "scene.json", "history.json", "checkpoint.json"})
+    files.push_back(f);
   std::printf("  objective %.6e -> %.6e in %d iterations (%.1f s)\n", history.front().value,
               history.back().value, result.iterations, history.back().seconds);
-  std::printf(
-      "  wrote %s/{pieces.json, pattern.svg, garment.ply, body.ply, result.json, "
-      "history.json, checkpoint.json}\n",
-      out.c_str());
+  const nlohmann::json records = history_json(history, names)["iterations"];
+  write_fit_report(out, make_fit_view(*sim, fit, op, input.scene.document, records));
+  files.push_back("report.html");
+  files.push_back("fit.glb");
+  for (const auto& f : files) std::printf("  %s\n", (out / f).c_str());
 }
 
 const CommandRegistration kOptimize{
@@ -154,7 +158,8 @@ const CommandRegistration kOptimize{
           "optimize",
           "Optimize the pattern boundaries (L-BFGS with adjoint gradients) for the objectives of "
           "the scene's \"optimize\" section. Writes history.json and checkpoint.json while it "
-          "runs, then pieces.json, pattern.svg, garment.ply, body.ply and result.json.");
+          "runs, then the pattern files (SVG, PDF, DXF, pieces.json), report.html, fit.glb, "
+          "garment.ply, body.ply and result.json.");
       auto scene = std::make_shared<std::string>();
       auto out = std::make_shared<std::string>();
       auto resume = std::make_shared<std::string>();
