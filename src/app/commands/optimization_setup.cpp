@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "tightfit/common/json_fields.hpp"
+#include "tightfit/common/error.hpp"
 #include "tightfit/design/regularizer_compactness.hpp"
 #include "tightfit/design/regularizer_edge_lengths.hpp"
 #include "tightfit/design/regularizer_smoothness.hpp"
@@ -36,17 +36,11 @@ ImlsSurface shape_target(const ShapeObjectiveSpec& spec) {
 }  // namespace
 
 OptimizationScene read_optimization_scene(const std::string& file) {
-  nlohmann::json document = read_json_file(file);
-  if (!document.is_object() || !document.contains("optimize"))
-    throw InputError(file, "/optimize: missing (this command needs an \"optimize\" section)");
-  std::filesystem::path base = std::filesystem::path(file).parent_path();
-  if (base.empty()) base = ".";
   OptimizationScene s;
-  s.optimization = parse_optimization_spec(document["optimize"], file, "/optimize", base);
-  nlohmann::json scene_only = document;
-  scene_only.erase("optimize");
-  s.scene = parse_scene(scene_only, file, base);
-  s.scene.document = document;
+  s.scene = read_scene(file);
+  if (s.scene.optimize.is_null())
+    throw InputError(file, "/optimize: missing (this command needs an \"optimize\" section)");
+  s.optimization = parse_optimization_spec(s.scene.optimize, file, "/optimize", s.scene.base_dir);
   return s;
 }
 

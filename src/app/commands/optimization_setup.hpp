@@ -12,12 +12,12 @@
 namespace tightfit::app {
 
 struct OptimizationScene {
-  SceneSpec scene;                ///< the scene without its "optimize" section
+  SceneSpec scene;                ///< the scene (scene.optimize: the raw section)
   OptimizationSpec optimization;  ///< the parsed "optimize" section
 };
 
-/// Reads `file`: the "optimize" section is required and parsed by
-/// parse_optimization_spec, the rest by parse_scene (scene.document keeps the whole file).
+/// Reads the scene `file` (read_scene); its "optimize" section is required and parsed
+/// by parse_optimization_spec.
 OptimizationScene read_optimization_scene(const std::string& file);
 
 /// The objective Σ w_j T_j of the spec for the simulation's garment: objectives first
