@@ -142,6 +142,36 @@ TEST_F(OptimizeCli, CheckGradientAgreesWithFiniteDifferences) {
   EXPECT_LT(std::stod(m[1]), 1e-5);
 }
 
+TEST_F(OptimizeCli, CheckGradientOfShapePressureAndSeamTraction) {
+  // Shape target: a plane x = 0.05 + 0.2 z (as an OBJ grid) that the sleeve crosses.
+  std::ofstream obj(dir_ / "plane.obj");
+  const int n = 13;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double y = -0.06 + 0.01 * i, z = -0.06 + 0.01 * j;
+      obj << "v " << 0.05 + 0.2 * z << " " << y << " " << z << "\n";
+    }
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i + 1, b = a + 1, c = a + n + 1, d = a + n;
+      obj << "f " << a << " " << b << " " << c << "\nf " << a << " " << c << " " << d << "\n";
+    }
+  obj.close();
+  nlohmann::json s = stretch_scene(1);
+  s["optimize"]["objectives"] = {
+      {"shape", {{"weight", 1}, {"target", "plane.obj"}, {"radius", 0.02}}},
+      {"pressure", {{"weight", 1e-9}, {"min_mmhg", 3}, {"max_mmhg", 5}}},
+      {"seam_traction", {{"weight", 1e-3}}}};
+  s["optimize"].erase("regularizers");
+  const fs::path scene = write_scene("scene.json", s);
+  const CliRun r = run_cli("check-gradient " + scene.string() +
+                           " --directions 2 --perturb 0.1 --max-error 1e-5");
+  std::printf("%s", r.output.c_str());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  for (const char* term : {"shape", "pressure", "seam traction"})
+    EXPECT_NE(r.output.find(std::string("  ") + term + " "), std::string::npos) << term;
+}
+
 TEST_F(OptimizeCli, SceneWithoutOptimizeSectionIsAnInputError) {
   nlohmann::json s = stretch_scene(1);
   s.erase("optimize");
