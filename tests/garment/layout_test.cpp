@@ -129,6 +129,8 @@ TEST(Layout, RejectsClosedSeamsAndEmptyPanels) {
       "panels": [{"name": "ghost", "sides": ["+far"]}, {"name": "all", "sides": ["-far"]}]})"));
   });
   EXPECT_NE(empty.find("panel \"ghost\" is empty"), std::string::npos) << empty;
+  const std::string whole = expect_input_error([&] { layout_from_rules(sphere, spec_from(R"({"panels": [{"name": "all"}]})")); });
+  EXPECT_NE(whole.find("panel \"all\" is not a disc: it is closed"), std::string::npos) << whole;
 }
 
 TEST(Layout, RejectsPinnedBoundariesThatDoNotExist) {
