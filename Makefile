@@ -26,6 +26,7 @@ test: build
 # Fast tests only (names ending in Slow are skipped) under AddressSanitizer + UBSan.
 test-asan: build-asan
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
 	  ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS) -E 'Slow'
 
 demo: build
