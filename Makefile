@@ -17,13 +17,15 @@ build: deps
 
 build-asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O1 \
-	  -DTIGHTFIT_SANITIZE=ON -DTIGHTFIT_BUILD_BENCH=OFF -DTIGHTFIT_WERROR=$(WERROR)
+	  -DTIGHTFIT_SANITIZE=ON -DTIGHTFIT_BUILD_BENCH=OFF -DTIGHTFIT_WERROR=OFF
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 # Fast tests only (names ending in Slow are skipped) under AddressSanitizer + UBSan.
+# Warnings are not errors in this build: GCC 12 gives false -Wmaybe-uninitialized and
+# -Wrestrict positives at -O1 with sanitizers; the Release build enforces -Werror.
 test-asan: build-asan
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
