@@ -123,6 +123,14 @@ TEST_F(OptimizeCli, ResumeContinuesFromTheCheckpoint) {
   for (size_t k = 0; k < its.size(); ++k) EXPECT_EQ(its[k]["iteration"].get<size_t>(), k);
   for (size_t k = 1; k < its.size(); ++k)
     EXPECT_LT(its[k]["objective"].get<double>(), its[k - 1]["objective"].get<double>());
+
+  // A checkpoint of another garment (finer mesh) is an input error naming the file.
+  nlohmann::json finer = stretch_scene(4);
+  finer["garment"]["sleeve"]["edge_length"] = 0.012;
+  r = run_cli("optimize " + write_scene("finer.json", finer).string() + " --out " +
+              (dir_ / "out2").string() + " --resume " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("checkpoint.json"), std::string::npos) << r.output;
 }
 
 TEST_F(OptimizeCli, CheckGradientAgreesWithFiniteDifferences) {

@@ -75,7 +75,12 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
   PatternOptimizer optimizer(problem, spec.optimizer);
   if (!resume_dir.empty()) {
     const fs::path file = fs::path(resume_dir) / "checkpoint.json";
-    optimizer.resume(read_checkpoint(file, names));
+    try {
+      optimizer.resume(read_checkpoint(file, names));
+    } catch (const InputError& e) {
+      if (e.source() == file.string()) throw;
+      throw InputError(file.string(), e.what());  // e.g. a checkpoint of another garment
+    }
     std::printf("  resuming from %s at iteration %d\n", file.c_str(),
                 optimizer.checkpoint().iteration);
   } else {

@@ -68,6 +68,10 @@ void PatternOptimizer::push_pair(const VecX& s, const VecX& y) {
 
 void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
   const Eigen::Index n = problem_.num_parameters();
+  if (checkpoint.parameters.size() != n)
+    throw InputError("checkpoint", "it has " + std::to_string(checkpoint.parameters.size()) +
+                                       " design parameters, the garment needs " +
+                                       std::to_string(n) + " (another garment or mesh?)");
   if (checkpoint.history.empty())
     throw InputError("checkpoint", "it has no history (not even the initial iteration)");
   if (checkpoint.memory.s.size() != checkpoint.memory.y.size())
