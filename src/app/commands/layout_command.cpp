@@ -3,9 +3,8 @@
 #include <cstdio>
 
 #include "command_registry.hpp"
-#include "tightfit/common/atomic_file.hpp"
+#include "run_outputs.hpp"
 #include "tightfit/common/output_directory.hpp"
-#include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/pattern_outputs.hpp"
 #include "tightfit/io/scene_loader.hpp"
 
@@ -16,29 +15,25 @@ void run_layout(const std::string& scene_file, const std::string& out_dir) {
   OutputDirectory out(out_dir);
   auto scene = load_scene(read_scene(scene_file));
   const Garment& g = scene->garment;
-  if (g.pattern.pieces.size() > 64)
+  if (g.pattern.pieces.size() > kMaxPatternPieces)
     throw InputError(scene_file, "this garment has one piece per triangle (a cover); it has no "
                                  "pattern to lay out");
-  const auto files = write_pattern_files(out.staging(), g.pattern);
-  // The garment on the body: each vertex at its point on the limit surface.
-  Points3 x(g.num_garment_vertices, 3);
-  for (int i = 0; i < g.num_garment_vertices; ++i)
-    x.row(i) = scene->surface->position(g.embedding[i], scene->body.surface.vertices).transpose();
-  write_ply(out.file("garment_embedded.ply"), TriMesh{x, g.garment_triangles});
-  nlohmann::json report;
+  // Nothing is simulated: the state is the embedding and the body at rest.
+  RunState state =
+      make_run_state("layout", scene->spec, g, {g.embedding, scene->body.volume.vertices});
+  nlohmann::json& report = state.result;
   report["scene"] = scene_file;
   report["pieces"] = g.pattern.pieces.size();
   report["seams"] = g.pattern.seams.size();
   report["garment_vertices"] = g.num_garment_vertices;
   report["pinned_garment_vertices"] = g.pinned.size();
   if (scene->build) report["build"] = garment_build_report(*scene->build);
-  write_text_atomically(out.file("layout.json"), report.dump(2) + "\n");
+  const auto files = write_layout_run_outputs(out.staging(), g, *scene->surface,
+                                              scene->body.surface.vertices, state);
   out.commit();
   std::printf("tightfit layout: %zu pieces, %zu seams, %d garment vertices\n",
               g.pattern.pieces.size(), g.pattern.seams.size(), g.num_garment_vertices);
   for (const auto& f : files) std::printf("  %s/%s\n", out.target().c_str(), f.c_str());
-  std::printf("  %s/garment_embedded.ply\n  %s/layout.json\n", out.target().c_str(),
-              out.target().c_str());
 }
 
 const CommandRegistration kLayout{"layout", [](CLI::App& root) {
@@ -46,7 +41,8 @@ const CommandRegistration kLayout{"layout", [](CLI::App& root) {
       "layout",
       "Flatten the scene's garment layout into pattern pieces (SVG 1:1, tiled and full-size "
       "PDF, DXF, pieces.json) and embed the garment on the body (garment_embedded.ply), "
-      "without simulating. layout.json reports the flattening distortion per piece.");
+      "without simulating. layout.json reports the flattening distortion per piece; "
+      "state.json is the run state for `tightfit export`.");
   auto scene = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")->required();

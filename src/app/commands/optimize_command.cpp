@@ -6,7 +6,8 @@
 /// every `checkpoint_every` iterations and at the end; at the end also the optimized
 /// pattern files (pattern.svg, pattern_*.pdf, pattern.dxf, pieces.json), the fit at
 /// the final equilibrium (report.html with the objective history, fit.glb,
-/// garment.ply, body.ply), result.json and scene.json. `--resume DIR` continues from
+/// garment.ply, body.ply), result.json, scene.json and state.json (the run state that
+/// `tightfit export` regenerates these files from). `--resume DIR` continues from
 /// DIR/checkpoint.json (same scene and objective terms), appending to the history.
 #include <chrono>
 #include <cstdio>
@@ -14,11 +15,11 @@
 
 #include "command_registry.hpp"
 #include "optimization_setup.hpp"
+#include "run_outputs.hpp"
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
-#include "tightfit/io/pattern_outputs.hpp"
 #include "tightfit/io/scene_loader.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
 
@@ -42,13 +43,6 @@ void print_iteration(const OptimizationIteration& it, const std::vector<std::str
     std::printf("  [adjoint H shifted by %.1e: inexact]", it.hessian_shift);
   std::printf("  %.1f s\n", it.seconds);
   std::fflush(stdout);
-}
-
-nlohmann::json history_json(const std::vector<OptimizationIteration>& history,
-                            const std::vector<std::string>& names) {
-  nlohmann::json its = nlohmann::json::array();
-  for (const OptimizationIteration& it : history) its.push_back(iteration_json(it, names));
-  return {{"terms", names}, {"iterations", its}};
 }
 
 void run_optimize(const std::string& scene_file, const std::string& out_dir,
@@ -106,19 +100,16 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
   const auto t0 = Clock::now();
   const FitAnalysis fit = sim->analyze();
   const auto op = input.scene.pressure_operator;
-  write_fit_meshes(out, *sim, fit, op);
-  std::vector<std::string> files = {"garment.ply", "body.ply"};
-  // As in simulate: a cover has one piece per triangle, no pattern to cut.
-  if (sim->garment().pattern.pieces.size() <= 64)
-    for (const auto& f : write_pattern_files(out, sim->garment().pattern)) files.push_back(f);
-
   const std::vector<OptimizationIteration>& history = optimizer.history();
+  RunState state = make_run_state("optimize", input.scene, sim->garment(), sim->problem().state());
+  state.term_names = names;
+  state.history = history;
   nlohmann::json initial_terms, final_terms;
   for (size_t k = 0; k < names.size(); ++k) {
     initial_terms[names[k]] = history.front().term_values[k];
     final_terms[names[k]] = history.back().term_values[k];
   }
-  nlohmann::json result_json;
+  nlohmann::json& result_json = state.result;
   result_json["scene"] = scene_file;
   result_json["optimization"] = {{"converged", result.converged},
                                  {"stop_reason", result.stop_reason},
@@ -137,23 +128,16 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
                            {"garment_triangles", sim->garment().garment_triangles.rows()},
                            {"pattern_pieces", sim->garment().pattern.pieces.size()},
                            {"dofs", sim->problem().num_dofs()}};
-  result_json["fit"] = fit_statistics(*sim, fit, op);
   nlohmann::json seconds;
   for (const auto& [stage, s] : scene->stage_seconds) seconds[stage] = s;
   seconds["optimization_this_run"] = result.seconds;
-  seconds["outputs"] = seconds_since(t0);
+  seconds["analysis"] = seconds_since(t0);
   seconds["total_this_run"] = seconds_since(t_start);
   result_json["seconds"] = seconds;
-  write_text_atomically(out / "result.json", result_json.dump(2) + "\n");
-  write_text_atomically(out / "scene.json", input.scene.document.dump(2) + "\n");
-  for (const char* f : {"result.json", "scene.json", "history.json", "checkpoint.json"})
-    files.push_back(f);
   std::printf("  objective %.6e -> %.6e in %d iterations (%.1f s)\n", history.front().value,
               history.back().value, result.iterations, history.back().seconds);
-  const nlohmann::json records = history_json(history, names)["iterations"];
-  write_fit_report(out, make_fit_view(*sim, fit, op, input.scene.document, records));
-  files.push_back("report.html");
-  files.push_back("fit.glb");
+  std::vector<std::string> files = write_fit_run_outputs(out, *sim, fit, op, state);
+  files.push_back("checkpoint.json");
   for (const auto& f : files) std::printf("  %s\n", (out / f).c_str());
 }
 
@@ -164,7 +148,8 @@ const CommandRegistration kOptimize{
           "Optimize the pattern boundaries (L-BFGS with adjoint gradients) for the objectives of "
           "the scene's \"optimize\" section. Writes history.json and checkpoint.json while it "
           "runs, then the pattern files (SVG, PDF, DXF, pieces.json), report.html, fit.glb, "
-          "garment.ply, body.ply and result.json.");
+          "garment.ply, body.ply, result.json and state.json (the run state for "
+          "`tightfit export`).");
       auto scene = std::make_shared<std::string>();
       auto out = std::make_shared<std::string>();
       auto resume = std::make_shared<std::string>();

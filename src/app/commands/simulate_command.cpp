@@ -3,9 +3,8 @@
 #include <cstdio>
 
 #include "command_registry.hpp"
-#include "tightfit/common/atomic_file.hpp"
+#include "run_outputs.hpp"
 #include "tightfit/common/output_directory.hpp"
-#include "tightfit/io/pattern_outputs.hpp"
 #include "tightfit/io/scene_loader.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
 
@@ -38,12 +37,12 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir) {
   const double t_analysis = seconds_since(t0);
 
   const auto op = scene->spec.pressure_operator;
-  write_fit_meshes(out.staging(), *sim, fit, op);
   const Points3& x = sim->garment_positions();
   const VecX xf = Eigen::Map<const VecX>(x.data(), x.size());
   const Points3& y = sim->body_positions();
   const VecX yf = Eigen::Map<const VecX>(y.data(), y.size());
-  nlohmann::json result;
+  RunState state = make_run_state("simulate", scene->spec, sim->garment(), sim->problem().state());
+  nlohmann::json& result = state.result;
   result["scene"] = scene_file;
   result["counts"] = {{"body_vertices", scene->body.num_vertices()},
                       {"body_tets", scene->body.volume.num_tets()},
@@ -57,20 +56,13 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir) {
                           {"seams", energy_of(sim->seams(), xf)},
                           {"body", sim->body_energy().value(yf)}};
   result["newton"] = newton_report_json(report);
-  result["fit"] = fit_statistics(*sim, fit, op);
   nlohmann::json seconds;
   for (const auto& [stage, s] : scene->stage_seconds) seconds[stage] = s;
   seconds["solve"] = t_solve;
   seconds["analysis"] = t_analysis;
   seconds["total"] = seconds_since(t_start);
   result["seconds"] = seconds;
-  write_text_atomically(out.file("result.json"), result.dump(2) + "\n");
-  write_text_atomically(out.file("scene.json"), scene->spec.document.dump(2) + "\n");
-  // A cover has one piece per triangle: no pattern to cut.
-  write_fit_report(out.staging(), make_fit_view(*sim, fit, op, scene->spec.document));
-  std::vector<std::string> files = {"report.html", "fit.glb", "garment.ply", "body.ply", "result.json"};
-  if (sim->garment().pattern.pieces.size() <= 64)
-    for (const auto& f : write_pattern_files(out.staging(), sim->garment().pattern)) files.push_back(f);
+  const auto files = write_fit_run_outputs(out.staging(), *sim, fit, op, state);
   out.commit();
   const auto& pr = result["fit"]["pressure_mmhg"];
   std::printf("  pressure %.1f / %.1f / %.1f mmHg (min / median / max)\n", pr["min"].get<double>(),
@@ -83,7 +75,9 @@ const CommandRegistration kSimulate{"simulate", [](CLI::App& root) {
       "simulate",
       "Static equilibrium of a garment on a body (Newton on the coupled cloth-body system). "
       "Writes garment.ply and body.ply (per-face stretch, regime, pressure; per-vertex force) "
-      "and result.json (energies, residual, iterations, time split, pressure statistics).");
+      "and result.json (energies, residual, iterations, time split, pressure statistics), "
+      "report.html, fit.glb, the pattern files, and state.json (the run state for "
+      "`tightfit export`).");
   auto scene = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")

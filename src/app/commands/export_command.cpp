@@ -1,0 +1,112 @@
+/// `tightfit export DIR [--out OUT]`: regenerates the output files of a `simulate`,
+/// `layout` or `optimize` run from DIR/state.json without solving again.
+///
+/// The scene is rebuilt from the document saved in the state (body, limit surface,
+/// garment); the saved pattern, garment embedding and body positions are installed in
+/// the simulation and checked against the rebuilt garment (InputError on a mismatch).
+/// For equilibrium runs the force residual of the saved state is recomputed and printed.
+/// OUT (default DIR) is replaced as a whole when the export succeeds; when OUT is DIR,
+/// files that export does not regenerate (e.g. checkpoint.json) are kept.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include "command_registry.hpp"
+#include "run_outputs.hpp"
+#include "tightfit/common/error.hpp"
+#include "tightfit/common/output_directory.hpp"
+#include "tightfit/io/run_state.hpp"
+#include "tightfit/io/scene_loader.hpp"
+
+namespace tightfit::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Regenerates the fit of a simulate/optimize state into `folder`; returns the files.
+std::vector<std::string> export_fit(const LoadedScene& scene, RunState& state,
+                                    const fs::path& folder) {
+  auto sim = make_simulation(scene);
+  sim->set_rest_positions(stacked_rest_positions(state));
+  sim->set_state(state.state);
+  EmbeddedEquilibrium& problem = sim->problem();
+  const double residual = problem.force_norm(problem.gradient());
+  const NewtonOptions& newton = scene.spec.newton;
+  const double tolerance = std::max(newton.absolute_force_tolerance,
+                                    newton.relative_force_tolerance * problem.force_scale());
+  std::printf("  force residual of the saved state %.3e N (tolerance %.3e N): %s\n", residual,
+              tolerance,
+              residual <= tolerance ? "an equilibrium"
+                                    : "NOT an equilibrium (the scene, its files or tightfit "
+                                      "changed since the run?)");
+  const FitAnalysis fit = sim->analyze();
+  return write_fit_run_outputs(folder, *sim, fit, scene.spec.pressure_operator, state);
+}
+
+/// Regenerates the outputs of a layout state into `folder`; returns the files.
+std::vector<std::string> export_layout(const LoadedScene& scene, const RunState& state,
+                                       const fs::path& folder) {
+  Garment garment = scene.garment;
+  garment.set_rest_positions(stacked_rest_positions(state));
+  garment.embedding = state.state.garment;
+  const Points3 control = state.state.body.topRows(scene.body.num_surface_vertices());
+  return write_layout_run_outputs(folder, garment, *scene.surface, control, state);
+}
+
+/// Copies the entries of `from` that `to` does not have (files export does not make).
+std::vector<std::string> keep_other_files(const fs::path& from, const fs::path& to) {
+  std::vector<std::string> kept;
+  for (const fs::directory_entry& e : fs::directory_iterator(from)) {
+    const fs::path target = to / e.path().filename();
+    if (fs::exists(target)) continue;
+    fs::copy(e.path(), target, fs::copy_options::recursive);
+    kept.push_back(e.path().filename().string());
+  }
+  std::sort(kept.begin(), kept.end());
+  return kept;
+}
+
+void run_export(const std::string& dir, const std::string& out_option) {
+  const fs::path state_file = fs::path(dir) / "state.json";
+  const std::string source = state_file.string();
+  // Everything is read and checked before the output folder is touched.
+  RunState state = read_run_state(state_file);
+  std::printf("tightfit export: %s run of %s\n", state.command.c_str(), state.scene_file.c_str());
+  std::fflush(stdout);
+  auto scene = load_scene(run_state_scene(state, source));
+  check_run_state(state, scene->garment, scene->body, scene->surface->num_faces(), source);
+  if (state.command == "layout" && scene->garment.pattern.pieces.size() > kMaxPatternPieces)
+    throw InputError(source, "/command: a layout run of a garment without a pattern");
+
+  const fs::path out_dir = out_option.empty() ? fs::path(dir) : fs::path(out_option);
+  const bool in_place = fs::exists(out_dir) && fs::equivalent(out_dir, dir);
+  OutputDirectory out(out_dir);
+  const std::vector<std::string> files = state.command == "layout"
+                                             ? export_layout(*scene, state, out.staging())
+                                             : export_fit(*scene, state, out.staging());
+  const std::vector<std::string> kept =
+      in_place ? keep_other_files(dir, out.staging()) : std::vector<std::string>{};
+  out.commit();
+  for (const auto& f : files) std::printf("  %s\n", (out.target() / f).c_str());
+  for (const auto& f : kept) std::printf("  %s (kept)\n", (out.target() / f).c_str());
+}
+
+const CommandRegistration kExport{"export", [](CLI::App& root) {
+  auto* cmd = root.add_subcommand(
+      "export",
+      "Regenerate the outputs of a simulate, layout or optimize run from DIR/state.json "
+      "without solving again: the pattern files, and for simulate/optimize runs report.html "
+      "(with the objective history of optimize runs), fit.glb, garment.ply, body.ply, "
+      "result.json; for layout runs garment_embedded.ply and layout.json. Prints the force "
+      "residual of the saved state.");
+  auto dir = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  cmd->add_option("dir", *dir, "Output folder of an earlier run (holds state.json)")->required();
+  cmd->add_option("--out", *out,
+                  "Folder to write (default DIR; replaced as a whole when the export succeeds, "
+                  "files of DIR that export does not make are kept)");
+  cmd->callback([dir, out] { run_export(*dir, *out); });
+}};
+
+}  // namespace
+}  // namespace tightfit::app

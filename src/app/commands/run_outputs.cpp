@@ -1,0 +1,53 @@
+#include "run_outputs.hpp"
+
+#include "tightfit/common/atomic_file.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/io/pattern_outputs.hpp"
+#include "tightfit/io/simulation_outputs.hpp"
+
+namespace tightfit::app {
+
+std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& folder,
+                                               const GarmentSimulation& sim,
+                                               const FitAnalysis& fit,
+                                               ShapeOperatorKind pressure_operator,
+                                               RunState& state) {
+  std::vector<std::string> files = {"garment.ply", "body.ply"};
+  write_fit_meshes(folder, sim, fit, pressure_operator);
+  if (sim.garment().pattern.pieces.size() <= kMaxPatternPieces)
+    for (const auto& f : write_pattern_files(folder, sim.garment().pattern)) files.push_back(f);
+  state.result["fit"] = fit_statistics(sim, fit, pressure_operator);
+  write_text_atomically(folder / "result.json", state.result.dump(2) + "\n");
+  write_text_atomically(folder / "scene.json", state.scene.dump(2) + "\n");
+  files.insert(files.end(), {"result.json", "scene.json"});
+  nlohmann::json records = nlohmann::json::array();
+  if (state.command == "optimize") {
+    const nlohmann::json history = history_json(state.history, state.term_names);
+    write_text_atomically(folder / "history.json", history.dump(2) + "\n");
+    files.push_back("history.json");
+    records = history["iterations"];
+  }
+  write_run_state(folder / "state.json", state);
+  files.push_back("state.json");
+  write_fit_report(folder, make_fit_view(sim, fit, pressure_operator, state.scene, records));
+  files.insert(files.end(), {"report.html", "fit.glb"});
+  return files;
+}
+
+std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& folder,
+                                                  const Garment& garment,
+                                                  const LimitSurface& surface,
+                                                  const Points3& control,
+                                                  const RunState& state) {
+  std::vector<std::string> files = write_pattern_files(folder, garment.pattern);
+  Points3 x(garment.num_garment_vertices, 3);
+  for (int i = 0; i < garment.num_garment_vertices; ++i)
+    x.row(i) = surface.position(garment.embedding[i], control).transpose();
+  write_ply(folder / "garment_embedded.ply", TriMesh{x, garment.garment_triangles});
+  write_text_atomically(folder / "layout.json", state.result.dump(2) + "\n");
+  write_run_state(folder / "state.json", state);
+  files.insert(files.end(), {"garment_embedded.ply", "layout.json", "state.json"});
+  return files;
+}
+
+}  // namespace tightfit::app

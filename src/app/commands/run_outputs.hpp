@@ -1,0 +1,43 @@
+#pragma once
+/// The output files of a run, written the same way by the command that ran it
+/// (`simulate`, `optimize`, `layout`) and by `tightfit export`, which regenerates them
+/// from the run's state.json (io/run_state.hpp).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tightfit/io/run_state.hpp"
+#include "tightfit/solve/garment_simulation.hpp"
+#include "tightfit/subdiv/limit_surface.hpp"
+
+namespace tightfit::app {
+
+/// Garments with more pieces than this (covers: one piece per triangle) get no pattern
+/// files: there is nothing to cut.
+constexpr size_t kMaxPatternPieces = 64;
+
+/// Writes the outputs of a run that ended at an equilibrium into `folder`, in this
+/// order (each file atomically; the report comes last because it needs the viewer's
+/// npm packages and its failure must not cost the rest): garment.ply, body.ply, the
+/// pattern files, result.json (`state.result` with "fit" set to the fit statistics),
+/// scene.json, history.json (optimize runs), state.json, report.html (with the
+/// objective history of optimize runs), fit.glb. `state` is the run's state with the
+/// simulation's pattern and equilibrium; its result gets the "fit" member. Returns the
+/// names of the files written.
+std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& folder,
+                                               const GarmentSimulation& sim,
+                                               const FitAnalysis& fit,
+                                               ShapeOperatorKind pressure_operator,
+                                               RunState& state);
+
+/// Writes the outputs of a layout run into `folder`: the pattern files of `garment`,
+/// garment_embedded.ply (each garment vertex at its limit-surface point over the
+/// control points `control`, n×3 m), layout.json (`state.result`) and state.json.
+/// Returns the names of the files written.
+std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& folder,
+                                                  const Garment& garment,
+                                                  const LimitSurface& surface,
+                                                  const Points3& control,
+                                                  const RunState& state);
+
+}  // namespace tightfit::app
