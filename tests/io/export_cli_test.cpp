@@ -213,8 +213,13 @@ TEST_F(ExportCli, LayoutRunIsRegeneratedExactly) {
   EXPECT_EQ(r.output.find("force residual"), std::string::npos) << r.output;
 }
 
-TEST_F(ExportCli, SimulatedLayoutIsRegeneratedExactly) {
-  const fs::path original = run("simulate", layout_scene());
+TEST_F(ExportCli, SimulatedLayoutOnSoftBodyIsRegeneratedExactly) {
+  nlohmann::json scene = layout_scene();
+  scene.erase("body_material");
+  scene["body"]["core"] = {{"soft_tissue", 0.02}};
+  const fs::path original = run("simulate", scene);
+  // The body is deformed: its saved positions are not the rest positions.
+  EXPECT_GT(read_json(original / "result.json")["energies_j"]["body"].get<double>(), 0.0);
   const fs::path copy = dir_ / "copy";
   const CliRun r = run_cli("export " + original.string() + " --out " + copy.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
