@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -180,6 +181,30 @@ TEST_F(OptimizeCli, CheckGradientOfShapePressureAndSeamTraction) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   for (const char* term : {"shape", "pressure", "seam traction"})
     EXPECT_NE(r.output.find(std::string("  ") + term + " "), std::string::npos) << term;
+}
+
+TEST_F(OptimizeCli, CheckGradientOfTheDirectionalStretch) {
+  // The sleeve's grain runs along the axis: across the grain is the hoop (stretch 1.11,
+  // above the range), along it the axis (1.05, below the range).
+  nlohmann::json s = stretch_scene(1);
+  s["optimize"]["objectives"] = {
+      {"directional_stretch",
+       {{"weight", 1}, {"direction", "across_grain"}, {"min", 1.07}, {"max", 1.09}}}};
+  s["optimize"].erase("regularizers");
+  // The only term: check-gradient prints it as the total.
+  for (const char* direction : {"across_grain", "along_grain"}) {
+    s["optimize"]["objectives"]["directional_stretch"]["direction"] = direction;
+    const CliRun r = run_cli("check-gradient " + write_scene("scene.json", s).string() +
+                             " --directions 2 --perturb 0.1 --max-error 1e-5");
+    std::printf("%s", r.output.c_str());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.output, m, std::regex("total +0 +([0-9.e+-]+)")));
+    EXPECT_GT(std::abs(std::stod(m[1])), 0.0) << direction;
+    ASSERT_TRUE(
+        std::regex_search(r.output, m, std::regex("largest relative error: ([0-9.e+-]+)")));
+    EXPECT_LT(std::stod(m[1]), 1e-5) << direction;
+  }
 }
 
 TEST_F(OptimizeCli, SceneWithoutOptimizeSectionIsAnInputError) {

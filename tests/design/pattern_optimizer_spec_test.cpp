@@ -38,6 +38,7 @@ TEST(OptimizationSpec, ReadsObjectivesRegularizersAndSettings) {
   EXPECT_EQ(s.shape->weight, 1.0);
   EXPECT_EQ(s.shape->target, std::filesystem::path("/scenes/t.obj"));
   EXPECT_EQ(s.shape->radius, 0.02);
+  EXPECT_FALSE(s.shape->skip_pinned);
   ASSERT_TRUE(s.pressure);
   EXPECT_NEAR(s.pressure->min_pa, 15 * 133.322387415, 1e-9);
   EXPECT_NEAR(s.pressure->max_pa, 25 * 133.322387415, 1e-9);
@@ -61,6 +62,40 @@ TEST(OptimizationSpec, DefaultsAndOpenUpperStretchBound) {
   EXPECT_EQ(s.optimizer.max_iterations, 50);
   EXPECT_EQ(s.checkpoint_every, 5);
   EXPECT_FALSE(s.shape);
+}
+
+TEST(OptimizationSpec, ShapeObjectiveCanSkipThePinnedVertices) {
+  const OptimizationSpec s = parse(
+      R"({"objectives": {"shape": {"target": "t.obj", "vertices": "unpinned"}}})");
+  EXPECT_TRUE(s.shape->skip_pinned);
+  EXPECT_NE(error_of(R"({"objectives": {"shape": {"target": "t.obj", "vertices": "some"}}})")
+                .find("/optimize/objectives/shape/vertices"),
+            std::string::npos);
+}
+
+TEST(OptimizationSpec, ReadsADirectionalStretchObjective) {
+  const OptimizationSpec s = parse(R"({"objectives": {"directional_stretch":
+      {"weight": 3, "direction": "across_grain", "min": 1.28, "max": 1.32}}})");
+  ASSERT_TRUE(s.directional_stretch);
+  EXPECT_TRUE(s.directional_stretch->across_grain);
+  EXPECT_EQ(s.directional_stretch->bounds.weight, 3.0);
+  EXPECT_EQ(s.directional_stretch->bounds.min_stretch, 1.28);
+  EXPECT_EQ(*s.directional_stretch->bounds.max_stretch, 1.32);
+  const OptimizationSpec along = parse(
+      R"({"objectives": {"directional_stretch": {"direction": "along_grain", "min": 1.1}}})");
+  EXPECT_FALSE(along.directional_stretch->across_grain);
+  EXPECT_FALSE(along.directional_stretch->bounds.max_stretch);
+  EXPECT_NE(error_of(R"({"objectives": {"directional_stretch": {"min": 1.3}}})")
+                .find("/optimize/objectives/directional_stretch"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"objectives": {"directional_stretch":
+                {"direction": "bias", "min": 1.3}}})")
+                .find("/optimize/objectives/directional_stretch/direction"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"objectives": {"directional_stretch":
+                {"direction": "along_grain", "min": 1.3, "max": 1.2}}})")
+                .find("/optimize/objectives/directional_stretch/max"),
+            std::string::npos);
 }
 
 TEST(OptimizationSpec, RejectsBadInputNamingThePath) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -159,6 +160,29 @@ TEST(ShapeObjective, ValueAndGradientOnASleeve) {
   const ShapeObjective sub(ImlsSurface(pts, nrm, 0.008), s.garment.num_garment_vertices, {0, 5, 7});
   EXPECT_NEAR(sub.value({x, rest}), f[0] * f[0] + f[5] * f[5] + f[7] * f[7], 1e-15);
   EXPECT_THROW(ShapeObjective(ImlsSurface(pts, nrm, 0.008), 3, {3}), std::invalid_argument);
+}
+
+TEST(ShapeObjective, UnpinnedVerticesLeaveThePinnedRingsOut) {
+  test::GarmentState s = test::sleeve(7, 4, 0.05, 0.3, 0.1, 0.0, 1);
+  // Pin the bottom ring (pattern row 0; the seam welds its two ends into one vertex).
+  std::vector<int> ring;
+  for (int i = 0; i < 7; ++i) ring.push_back(s.garment.pattern_to_garment[i]);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  s.garment.pinned = ring;
+  const std::vector<int> free = unpinned_vertices(s.garment);
+  EXPECT_EQ(free.size() + ring.size(), static_cast<size_t>(s.garment.num_garment_vertices));
+  for (int v : ring) EXPECT_FALSE(std::binary_search(free.begin(), free.end(), v));
+  EXPECT_TRUE(std::is_sorted(free.begin(), free.end()));
+  // Moving a pinned vertex changes the full objective but not the unpinned one.
+  const ImlsSurface plane = plane_target(0.05);
+  const ShapeObjective all(plane, s.garment.num_garment_vertices);
+  const ShapeObjective unpinned(plane, s.garment.num_garment_vertices, free);
+  const Points2 rest = s.garment.rest_positions();
+  VecX moved = s.x;
+  moved[3 * ring[0] + 2] += 0.01;
+  EXPECT_NE(all.value({moved, rest}), all.value({s.x, rest}));
+  EXPECT_EQ(unpinned.value({moved, rest}), unpinned.value({s.x, rest}));
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "tightfit/design/regularizer_smoothness.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
+#include "tightfit/objectives/directional_stretch_objective.hpp"
 #include "tightfit/objectives/pressure_objective.hpp"
 #include "tightfit/objectives/seam_traction_objective.hpp"
 #include "tightfit/objectives/shape_objective.hpp"
@@ -58,9 +59,28 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
       b.max_stretch = spec.stretch->max_stretch.value_or(std::numeric_limits<double>::infinity());
       return std::make_shared<StretchObjective>(g, b);
     });
+  if (spec.directional_stretch)
+    add(spec.directional_stretch->bounds.weight, [&] {
+      const StretchObjectiveSpec& s = spec.directional_stretch->bounds;
+      StretchBounds b;
+      b.min_stretch = s.min_stretch;
+      b.max_stretch = s.max_stretch.value_or(std::numeric_limits<double>::infinity());
+      return std::make_shared<DirectionalStretchObjective>(
+          g, spec.directional_stretch->across_grain ? FabricDirection::across_grain
+                                                    : FabricDirection::along_grain,
+          b);
+    });
   if (spec.shape)
     add(spec.shape->weight, [&] {
-      return std::make_shared<ShapeObjective>(shape_target(*spec.shape), g.num_garment_vertices);
+      std::vector<int> vertices;  // empty: all
+      if (spec.shape->skip_pinned) {
+        vertices = unpinned_vertices(g);
+        if (vertices.empty())
+          throw InputError(spec.shape->target.string(),
+                           "the shape objective has no unpinned garment vertex to act on");
+      }
+      return std::make_shared<ShapeObjective>(shape_target(*spec.shape), g.num_garment_vertices,
+                                              vertices);
     });
   if (spec.pressure)
     add(spec.pressure->weight, [&] {

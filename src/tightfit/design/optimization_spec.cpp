@@ -7,7 +7,7 @@ namespace {
 
 double weight(JsonFields& f) { return f.positive("weight", 1.0, true); }
 
-StretchObjectiveSpec parse_stretch(JsonFields f) {
+StretchObjectiveSpec parse_stretch_bounds(JsonFields& f) {
   StretchObjectiveSpec s;
   s.weight = weight(f);
   s.min_stretch = f.positive("min", 1.0);
@@ -15,6 +15,19 @@ StretchObjectiveSpec parse_stretch(JsonFields f) {
     s.max_stretch = f.positive("max");
     if (*s.max_stretch < s.min_stretch) f.fail("must be >= \"min\"", "max");
   }
+  return s;
+}
+
+StretchObjectiveSpec parse_stretch(JsonFields f) {
+  const StretchObjectiveSpec s = parse_stretch_bounds(f);
+  f.finish();
+  return s;
+}
+
+DirectionalStretchObjectiveSpec parse_directional_stretch(JsonFields f) {
+  DirectionalStretchObjectiveSpec s;
+  s.bounds = parse_stretch_bounds(f);
+  s.across_grain = f.choice("direction", {"across_grain", "along_grain"}) == "across_grain";
   f.finish();
   return s;
 }
@@ -27,6 +40,7 @@ ShapeObjectiveSpec parse_shape(JsonFields f, const std::filesystem::path& base_d
   s.target = std::filesystem::path(target);
   if (s.target.is_relative()) s.target = base_dir / s.target;
   s.radius = f.positive("radius", 0.01);
+  s.skip_pinned = f.choice("vertices", {"all", "unpinned"}, "all") == "unpinned";
   f.finish();
   return s;
 }
@@ -79,6 +93,8 @@ OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const st
   JsonFields f(section, file, path);
   if (auto objectives = f.object("objectives")) {
     if (auto o = objectives->object("stretch")) spec.stretch = parse_stretch(*o);
+    if (auto o = objectives->object("directional_stretch"))
+      spec.directional_stretch = parse_directional_stretch(*o);
     if (auto o = objectives->object("shape")) spec.shape = parse_shape(*o, base_dir);
     if (auto o = objectives->object("pressure")) spec.pressure = parse_pressure(*o);
     if (auto o = objectives->object("seam_traction")) {
@@ -116,6 +132,7 @@ OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const st
 
   const RegularizerWeights& w = spec.regularizers;
   const bool any = (spec.stretch && spec.stretch->weight > 0) ||
+                   (spec.directional_stretch && spec.directional_stretch->bounds.weight > 0) ||
                    (spec.shape && spec.shape->weight > 0) ||
                    (spec.pressure && spec.pressure->weight > 0) ||
                    (spec.seam_traction && spec.seam_traction->weight > 0) || w.seam_length > 0 ||

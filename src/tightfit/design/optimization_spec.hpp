@@ -6,7 +6,10 @@
 ///   "optimize": {
 ///     "objectives": {                       // at least one objective or regularizer
 ///       "stretch":  {"weight": 1, "min": 1.05, "max": 1.3},   // "max" optional (none)
-///       "shape":    {"weight": 1, "target": "target.obj", "radius": 0.01},
+///       "directional_stretch": {"weight": 1, "direction": "across_grain",  // or along_grain
+///                               "min": 1.3, "max": 1.3},                // "max" optional
+///       "shape":    {"weight": 1, "target": "target.obj", "radius": 0.01,
+///                    "vertices": "all"},    // or "unpinned": skip pinned boundary vertices
 ///       "pressure": {"weight": 1, "min_mmhg": 15, "max_mmhg": 25},  // or min_pa/max_pa
 ///       "seam_traction": {"weight": 1}
 ///     },
@@ -23,7 +26,7 @@
 ///               "armijo": 1e-4, "max_line_search": 30}
 ///   }
 ///
-/// Units of the terms (see each term's header): stretch m², shape m², pressure Pa²·m²,
+/// Units of the terms (see each term's header): stretch and directional stretch m², shape m², pressure Pa²·m²,
 /// seam traction N, seam length and boundary spacing m², boundary smoothness 1/m,
 /// compactness dimensionless. Weights are >= 0; weight 0 switches a term off.
 #include <filesystem>
@@ -43,10 +46,20 @@ struct StretchObjectiveSpec {
   std::optional<double> max_stretch;  ///< none: no upper bound
 };
 
+/// Stretch bounds on one fabric direction of every piece (DirectionalStretchObjective).
+struct DirectionalStretchObjectiveSpec {
+  StretchObjectiveSpec bounds;   ///< weight and stretch range
+  bool across_grain = true;      ///< false: along the grain
+};
+
 struct ShapeObjectiveSpec {
   double weight = 1.0;
   std::filesystem::path target;  ///< target surface mesh (resolved against the scene folder)
   double radius = 0.01;          ///< IMLS kernel radius h (m)
+  /// Leave the pinned boundary vertices (Garment::pinned) out of the sum: their place
+  /// on the body is prescribed by the designer (paper Sec. 4.1, "Forces on Boundary"),
+  /// so only the free garment is asked to follow the target.
+  bool skip_pinned = false;
 };
 
 struct PressureObjectiveSpec {
@@ -69,6 +82,7 @@ struct RegularizerWeights {
 
 struct OptimizationSpec {
   std::optional<StretchObjectiveSpec> stretch;
+  std::optional<DirectionalStretchObjectiveSpec> directional_stretch;
   std::optional<ShapeObjectiveSpec> shape;
   std::optional<PressureObjectiveSpec> pressure;
   std::optional<SeamTractionObjectiveSpec> seam_traction;

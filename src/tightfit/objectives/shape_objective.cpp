@@ -1,5 +1,6 @@
 #include "tightfit/objectives/shape_objective.hpp"
 
+#include <algorithm>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -48,6 +49,13 @@ void ShapeObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& /*d
     const ImlsSurface::Evaluation ev = target_.evaluate(state.x.segment<3>(3 * v));
     d_x.segment<3>(3 * v) += 2.0 * ev.value * ev.gradient;
   }
+}
+
+std::vector<int> unpinned_vertices(const Garment& garment) {
+  std::vector<int> out;
+  for (int v = 0; v < garment.num_garment_vertices; ++v)
+    if (!std::binary_search(garment.pinned.begin(), garment.pinned.end(), v)) out.push_back(v);
+  return out;
 }
 
 }  // namespace tightfit

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tightfit/design/design_term.hpp"
+#include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/imls_surface.hpp"
 
 namespace tightfit {
@@ -34,5 +35,9 @@ class ShapeObjective : public DesignTerm {
   int num_garment_ = 0;
   std::vector<int> vertices_;
 };
+
+/// The garment vertices not on a pinned boundary (not in Garment::pinned), ascending:
+/// the vertex set of a shape objective that leaves the prescribed boundary places alone.
+std::vector<int> unpinned_vertices(const Garment& garment);
 
 }  // namespace tightfit
