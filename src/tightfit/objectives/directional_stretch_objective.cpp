@@ -65,8 +65,8 @@ DirectionalStretchObjective::DirectionalStretchObjective(const Garment& garment,
   }
   directions_.reserve(static_cast<size_t>(triangles_.rows()));
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e)
-    directions_.push_back(piece_direction.at(static_cast<size_t>(garment.triangle_piece.at(
-        static_cast<size_t>(e)))));
+    directions_.push_back(
+        piece_direction.at(static_cast<size_t>(garment.triangle_piece.at(static_cast<size_t>(e)))));
 }
 
 void DirectionalStretchObjective::check(const DesignState& state) const {

@@ -49,8 +49,8 @@ class DirectionalStretchObjective : public DesignTerm {
  private:
   void check(const DesignState& state) const;
 
-  Triangles triangles_;             // over pattern vertices
-  std::vector<Vec2> directions_;    // unit rest direction per triangle
+  Triangles triangles_;           // over pattern vertices
+  std::vector<Vec2> directions_;  // unit rest direction per triangle
   std::vector<int> pattern_to_garment_;
   int num_garment_ = 0;
   int num_pattern_ = 0;
