@@ -13,8 +13,16 @@ mkdir -p "$out"
 scene="$here/examples/sleeve_two_panels.json"
 "$bin" layout "$scene" --out "$out/layout"
 "$bin" simulate "$scene" --out "$out/fit"
+# Pattern optimization, the quickest of the paper's examples (Fig. 3b: two rectangular
+# pieces on a soft cylinder, shape objective towards a tapered cylinder), cut short
+# after a few L-BFGS iterations so the demo stays around a minute; the full run is
+# `tightfit optimize examples/optimize_cylinder_tapered.json --out DIR` (150 iterations).
+"$bin" optimize "$here/examples/optimize_cylinder_tapered.json" --out "$out/optimize" \
+  --max-iterations 8
 echo
 echo "demo results:"
 echo "  patterns:  $out/fit/pattern.svg  $out/fit/pattern_a4.pdf  $out/fit/pattern.dxf  $out/fit/pieces.json"
 echo "  fit:       $out/fit/garment.ply  $out/fit/body.ply  $out/fit/result.json"
 if [ -f "$out/fit/report.html" ]; then echo "  report:    $out/fit/report.html"; fi
+echo "  optimized: $out/optimize/pattern.svg  $out/optimize/history.json  $out/optimize/result.json"
+if [ -f "$out/optimize/report.html" ]; then echo "  report:    $out/optimize/report.html"; fi

@@ -207,6 +207,22 @@ TEST_F(OptimizeCli, CheckGradientOfTheDirectionalStretch) {
   }
 }
 
+TEST_F(OptimizeCli, MaxIterationsOptionOverridesTheScene) {
+  const fs::path scene = write_scene("scene.json", stretch_scene(40));
+  const fs::path out = dir_ / "out";
+  const CliRun r =
+      run_cli("optimize " + scene.string() + " --out " + out.string() + " --max-iterations 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json result = read_json(out / "result.json");
+  EXPECT_EQ(result["optimization"]["iterations"].get<int>(), 2);
+  EXPECT_NE(result["optimization"]["stop_reason"].get<std::string>().find("iteration limit 2"),
+            std::string::npos);
+  const CliRun bad = run_cli("optimize " + scene.string() + " --out " + (dir_ / "bad").string() +
+                             " --max-iterations -1");
+  EXPECT_NE(bad.exit_code, 0) << bad.output;
+  EXPECT_FALSE(fs::exists(dir_ / "bad" / "result.json"));
+}
+
 TEST_F(OptimizeCli, SceneWithoutOptimizeSectionIsAnInputError) {
   nlohmann::json s = stretch_scene(1);
   s.erase("optimize");

@@ -1,5 +1,6 @@
-/// `tightfit optimize SCENE --out DIR [--resume DIR]`: pattern optimization (paper
-/// Sec. 4) with the scene's "optimize" section (design/optimization_spec.hpp).
+/// `tightfit optimize SCENE --out DIR [--resume DIR] [--max-iterations N]`: pattern
+/// optimization (paper Sec. 4) with the scene's "optimize" section
+/// (design/optimization_spec.hpp); --max-iterations overrides its max_iterations.
 ///
 /// DIR is written DURING the run (each file atomically, so a crash leaves the last
 /// complete version of every file): history.json after every iteration, checkpoint.json
@@ -46,9 +47,10 @@ void print_iteration(const OptimizationIteration& it, const std::vector<std::str
 }
 
 void run_optimize(const std::string& scene_file, const std::string& out_dir,
-                  const std::string& resume_dir) {
+                  const std::string& resume_dir, int max_iterations) {
   const auto t_start = Clock::now();
   OptimizationScene input = read_optimization_scene(scene_file);
+  if (max_iterations >= 0) input.optimization.optimizer.max_iterations = max_iterations;
   const OptimizationSpec& spec = input.optimization;
   const fs::path out(out_dir);
   fs::create_directories(out);
@@ -157,7 +159,14 @@ const CommandRegistration kOptimize{
       cmd->add_option("--out", *out, "Output folder (files are replaced one by one)")->required();
       cmd->add_option("--resume", *resume,
                       "Continue from DIR/checkpoint.json of an earlier run of the same scene");
-      cmd->callback([scene, out, resume] { run_optimize(*scene, *out, *resume); });
+      auto max_iterations = std::make_shared<int>(-1);
+      cmd->add_option("--max-iterations", *max_iterations,
+                      "Stop after this many L-BFGS iterations (overrides the scene's "
+                      "optimize/max_iterations)")
+          ->check(CLI::NonNegativeNumber);
+      cmd->callback([scene, out, resume, max_iterations] {
+        run_optimize(*scene, *out, *resume, *max_iterations);
+      });
     }};
 
 }  // namespace
