@@ -31,6 +31,7 @@ struct SleeveSceneOptions {
   double hoop_scale = 0.9;     ///< rest circumference / body circumference
   double axial_scale = 0.95;   ///< rest length / sleeve length (< 1: axially taut)
   double edge_length = 0.016;  ///< sleeve rest edge (m)
+  double jitter = 0.3;         ///< irregularity of the sleeve mesh (SleeveParams::jitter)
   double relative_force_tolerance = 1e-12;
 };
 
@@ -56,7 +57,7 @@ inline std::unique_ptr<SleeveScene> make_sleeve_scene(const SleeveSceneOptions& 
   sleeve.hoop_scale = o.hoop_scale;
   sleeve.axial_scale = o.axial_scale;
   sleeve.edge_length = o.edge_length;
-  sleeve.jitter = 0.3;
+  sleeve.jitter = o.jitter;
   sleeve.pin_first_ring = sleeve.pin_last_ring = true;
   Garment garment = make_sleeve(sleeve, *scene->surface, scene->body.surface.vertices);
   SimulationMaterials materials;

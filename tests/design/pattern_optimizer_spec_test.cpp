@@ -98,6 +98,28 @@ TEST(OptimizationSpec, ReadsADirectionalStretchObjective) {
             std::string::npos);
 }
 
+TEST(OptimizationSpec, RemeshOptionsHaveDefaultsAndAreRead) {
+  const OptimizationSpec d = parse(R"({"objectives": {"stretch": {}}})");
+  EXPECT_TRUE(d.problem.remesh.enabled);
+  EXPECT_EQ(d.problem.remesh.min_angle_deg, 10.0);
+  EXPECT_EQ(d.problem.remesh.min_area_fraction, 0.1);
+  EXPECT_EQ(d.problem.remesh.edge_length, 0.0);
+  const OptimizationSpec s = parse(R"({"objectives": {"stretch": {}},
+    "remesh": {"enabled": false, "min_angle_deg": 20, "min_area_fraction": 0.05,
+               "edge_length": 0.01, "smoothing_iterations": 3}})");
+  EXPECT_FALSE(s.problem.remesh.enabled);
+  EXPECT_EQ(s.problem.remesh.min_angle_deg, 20.0);
+  EXPECT_EQ(s.problem.remesh.min_area_fraction, 0.05);
+  EXPECT_EQ(s.problem.remesh.edge_length, 0.01);
+  EXPECT_EQ(s.problem.remesh.smoothing_iterations, 3);
+  EXPECT_NE(error_of(R"({"objectives": {"stretch": {}}, "remesh": {"min_angle_deg": 70}})")
+                .find("/optimize/remesh/min_angle_deg"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"objectives": {"stretch": {}}, "remesh": {"angle": 10}})")
+                .find("unknown key \"angle\""),
+            std::string::npos);
+}
+
 TEST(OptimizationSpec, RejectsBadInputNamingThePath) {
   EXPECT_NE(error_of(R"({"objectives": {"stretch": {"min": 1.1, "max": 1.0}}})")
                 .find("/optimize/objectives/stretch/max"),

@@ -43,6 +43,17 @@ void print_iteration(const OptimizationIteration& it, const std::vector<std::str
   if (it.hessian_shift > 0.0)
     std::printf("  [adjoint H shifted by %.1e: inexact]", it.hessian_shift);
   std::printf("  %.1f s\n", it.seconds);
+  if (const auto& r = it.remesh) {
+    std::string pieces;
+    for (const std::string& p : r->pieces) pieces += (pieces.empty() ? "" : ", ") + p;
+    if (r->failure.empty())
+      std::printf("    remeshed %s (min angle %.1f -> %.1f deg): T %.6e, %d design parameters, "
+                  "%d garment vertices, newton %d, %.1f s\n",
+                  pieces.c_str(), r->min_angle_before, r->min_angle_after, r->value, r->parameters,
+                  r->garment_vertices, r->newton_iterations, r->seconds);
+    else
+      std::printf("    remeshing %s failed and was undone: %s\n", pieces.c_str(), r->failure.c_str());
+  }
   std::fflush(stdout);
 }
 
@@ -67,7 +78,8 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
     std::printf(" %s (w %g)", names[k].c_str(), objective->entries()[k].weight);
   std::printf("\n");
 
-  DesignProblem problem(*sim, objective, spec.problem);
+  DesignProblem problem(*sim, objective, spec.problem,
+                        [&spec](const GarmentSimulation& s) { return build_objective(spec, s); });
   PatternOptimizer optimizer(problem, spec.optimizer);
   if (!resume_dir.empty()) {
     const fs::path file = fs::path(resume_dir) / "checkpoint.json";

@@ -169,6 +169,32 @@ BiharmonicCoordinates::BiharmonicCoordinates(const Pattern& pattern) {
   }
 }
 
+BiharmonicCoordinates::BiharmonicCoordinates(const Pattern& pattern,
+                                             const BiharmonicCoordinates& previous,
+                                             const std::vector<bool>& reuse) {
+  if (reuse.size() != pattern.pieces.size() ||
+      previous.num_pieces() != static_cast<int>(pattern.pieces.size()))
+    throw std::invalid_argument("BiharmonicCoordinates: one reuse flag per piece is needed");
+  offset_.push_back(0);
+  parameter_offset_.push_back(0);
+  pieces_.reserve(pattern.pieces.size());
+  for (size_t k = 0; k < pattern.pieces.size(); ++k) {
+    const PatternPiece& piece = pattern.pieces[k];
+    if (reuse[k]) {
+      const PieceBiharmonicCoordinates& old = previous.piece(static_cast<int>(k));
+      if (old.num_vertices() != piece.rest.rows() || old.boundary() != piece.boundary)
+        throw std::invalid_argument("BiharmonicCoordinates: reused piece " + piece.name +
+                                    " has another mesh");
+      pieces_.push_back(old);
+    } else {
+      pieces_.emplace_back(piece);
+    }
+    for (int v : piece.boundary) parameter_vertices_.push_back(offset_.back() + v);
+    offset_.push_back(offset_.back() + static_cast<int>(piece.rest.rows()));
+    parameter_offset_.push_back(static_cast<int>(parameter_vertices_.size()));
+  }
+}
+
 VecX BiharmonicCoordinates::parameters(const Points2& rest) const {
   if (rest.rows() != num_pattern_vertices())
     throw std::invalid_argument("BiharmonicCoordinates::parameters: expected " +

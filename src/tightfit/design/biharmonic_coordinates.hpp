@@ -67,6 +67,12 @@ class BiharmonicCoordinates {
   /// Builds every piece's coordinates from the pattern's current rest meshes (see
   /// PieceBiharmonicCoordinates for the errors).
   explicit BiharmonicCoordinates(const Pattern& pattern);
+  /// The same after remeshing some pieces: piece k with reuse[k] keeps the coordinates
+  /// (and so the factorization work) of `previous`.piece(k), the others are built from
+  /// their new meshes. Throws std::invalid_argument when a reused piece's vertex count
+  /// or boundary loop differs from the previous one, or `reuse` has the wrong length.
+  BiharmonicCoordinates(const Pattern& pattern, const BiharmonicCoordinates& previous,
+                        const std::vector<bool>& reuse);
 
   int num_pieces() const { return static_cast<int>(pieces_.size()); }
   const PieceBiharmonicCoordinates& piece(int k) const { return pieces_[k]; }

@@ -58,12 +58,61 @@ std::vector<std::string> term_names(const DesignTermSum& objective) {
   return names;
 }
 
+namespace {
+
+nlohmann::json terms_json(const std::vector<double>& values,
+                          const std::vector<std::string>& term_names) {
+  nlohmann::json terms = nlohmann::json::object();
+  for (size_t k = 0; k < term_names.size() && k < values.size(); ++k)
+    terms[term_names[k]] = values[k];
+  return terms;
+}
+
+nlohmann::json remesh_json(const RemeshRecord& r, const std::vector<std::string>& term_names) {
+  nlohmann::json j = {{"pieces", r.pieces},
+                      {"objective", r.value},
+                      {"terms", terms_json(r.term_values, term_names)},
+                      {"gradient_norm", r.gradient_norm},
+                      {"parameters", r.parameters},
+                      {"garment_vertices", r.garment_vertices},
+                      {"min_angle_before_deg", r.min_angle_before},
+                      {"min_angle_after_deg", r.min_angle_after},
+                      {"newton_iterations", r.newton_iterations},
+                      {"seconds", r.seconds}};
+  if (!r.failure.empty()) j["failure"] = r.failure;
+  return j;
+}
+
+RemeshRecord remesh_from_json(JsonFields f, const std::vector<std::string>& term_names) {
+  RemeshRecord r;
+  const nlohmann::json& pieces = f.raw("pieces");
+  if (!pieces.is_array()) f.fail("expected an array of piece names", "pieces");
+  for (const nlohmann::json& name : pieces) {
+    if (!name.is_string()) f.fail("expected an array of piece names", "pieces");
+    r.pieces.push_back(name.get<std::string>());
+  }
+  r.value = f.number("objective");
+  auto terms = f.object("terms", true);
+  for (const std::string& name : term_names) r.term_values.push_back(terms->number(name));
+  terms->finish();
+  r.gradient_norm = f.number("gradient_norm");
+  r.parameters = f.integer("parameters");
+  r.garment_vertices = f.integer("garment_vertices");
+  r.min_angle_before = f.number("min_angle_before_deg");
+  r.min_angle_after = f.number("min_angle_after_deg");
+  r.newton_iterations = f.integer("newton_iterations");
+  r.seconds = f.number("seconds");
+  r.failure = f.string("failure", "");
+  f.finish();
+  return r;
+}
+
+}  // namespace
+
 nlohmann::json iteration_json(const OptimizationIteration& it,
                               const std::vector<std::string>& term_names) {
-  nlohmann::json terms = nlohmann::json::object();
-  for (size_t k = 0; k < term_names.size() && k < it.term_values.size(); ++k)
-    terms[term_names[k]] = it.term_values[k];
-  return {{"iteration", it.iteration},
+  const nlohmann::json terms = terms_json(it.term_values, term_names);
+  nlohmann::json j = {{"iteration", it.iteration},
           {"objective", it.value},
           {"terms", terms},
           {"gradient_norm", it.gradient_norm},
@@ -74,7 +123,12 @@ nlohmann::json iteration_json(const OptimizationIteration& it,
           {"failed_solves", it.failed_solves},
           {"newton_iterations", it.newton_iterations},
           {"hessian_shift", it.hessian_shift},
-          {"seconds", it.seconds}};
+          {"seconds", it.seconds},
+          {"seconds_forward", it.seconds_forward},
+          {"seconds_objective", it.seconds_objective},
+          {"seconds_adjoint", it.seconds_adjoint}};
+  if (it.remesh) j["remesh"] = remesh_json(*it.remesh, term_names);
+  return j;
 }
 
 OptimizationIteration iteration_from_json(const nlohmann::json& j,
@@ -96,6 +150,10 @@ OptimizationIteration iteration_from_json(const nlohmann::json& j,
   it.newton_iterations = f.integer("newton_iterations");
   it.hessian_shift = f.number("hessian_shift");
   it.seconds = f.number("seconds");
+  it.seconds_forward = f.number("seconds_forward", 0.0);
+  it.seconds_objective = f.number("seconds_objective", 0.0);
+  it.seconds_adjoint = f.number("seconds_adjoint", 0.0);
+  if (auto r = f.object("remesh")) it.remesh = remesh_from_json(*r, term_names);
   f.finish();
   return it;
 }

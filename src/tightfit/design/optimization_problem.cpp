@@ -28,13 +28,27 @@ VecX signed_areas(const Triangles& triangles, const Points2& rest) {
 }  // namespace
 
 DesignProblem::DesignProblem(GarmentSimulation& sim, std::shared_ptr<const DesignTermSum> objective,
-                             DesignProblemOptions options)
+                             DesignProblemOptions options, ObjectiveFactory make_objective)
     : sim_(sim),
       objective_(std::move(objective)),
       options_(options),
       coordinates_(sim.garment().pattern),
-      adjoint_(options.adjoint) {
+      adjoint_(options.adjoint),
+      make_objective_(std::move(make_objective)) {
   if (!objective_) throw std::invalid_argument("DesignProblem: null objective");
+  if (options_.remesh.edge_length < 0.0 || !(options_.remesh.min_area_fraction >= 0.0) ||
+      !(options_.remesh.min_angle_deg >= 0.0 && options_.remesh.min_angle_deg < 60.0) ||
+      options_.remesh.smoothing_iterations < 0)
+    throw std::invalid_argument("DesignProblem: invalid remesh options");
+  for (const PatternPiece& piece : sim_.garment().pattern.pieces) {
+    target_edge_.push_back(options_.remesh.edge_length > 0.0 ? options_.remesh.edge_length
+                                                             : mean_edge_length(piece));
+    fresh_.push_back(piece_quality(piece));
+  }
+  reset_reference();
+}
+
+void DesignProblem::reset_reference() {
   const Garment& g = sim_.garment();
   initial_rest_ = g.rest_positions();
   initial_parameters_ = coordinates_.parameters(initial_rest_);
@@ -50,6 +64,108 @@ DesignProblem::DesignProblem(GarmentSimulation& sim, std::shared_ptr<const Desig
   accepted_p_ = initial_parameters_;
   current_p_ = initial_parameters_;
   accepted_state_ = sim_.problem().state();
+  last_ok_ = false;
+}
+
+std::vector<int> DesignProblem::degraded_pieces() const {
+  const PatternRemeshOptions& o = options_.remesh;
+  Pattern pattern = sim_.garment().pattern;
+  std::vector<int> out;
+  const Points2 rest = rest_positions(accepted_p_);
+  int row = 0;
+  for (size_t k = 0; k < pattern.pieces.size(); ++k) {
+    PatternPiece& piece = pattern.pieces[k];
+    piece.rest = rest.middleRows(row, piece.rest.rows());
+    row += static_cast<int>(piece.rest.rows());
+    const PieceQuality q = piece_quality(piece);
+    const double h = target_edge_[k];
+    const double angle_floor = std::min(o.min_angle_deg, 0.75 * fresh_[k].min_angle_deg);
+    const double area_floor =
+        std::min(o.min_area_fraction * std::sqrt(3.0) / 4.0 * h * h, 0.75 * fresh_[k].min_area);
+    if (q.min_area <= 0.0 || q.min_angle_deg < angle_floor || q.min_area < area_floor)
+      out.push_back(static_cast<int>(k));
+  }
+  return out;
+}
+
+RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
+  if (!make_objective_) throw std::logic_error("DesignProblem::remesh: no objective factory");
+  const auto t0 = Clock::now();
+  RemeshOutcome out;
+  restore_accepted();
+  const Garment old_garment = sim_.garment();
+  const EmbeddedState old_state = accepted_state_;
+  const Points3 positions = sim_.garment_positions();
+  out.parameters_before = num_parameters();
+  out.garment_vertices_before = old_garment.num_garment_vertices;
+
+  PatternRemeshResult r;
+  try {
+    r = remesh_garment(old_garment, old_state, positions, sim_.surface(), pieces, target_edge_,
+                       options_.remesh.smoothing_iterations);
+  } catch (const InputError& e) {
+    out.failure = std::string("remeshing: ") + e.what();
+    out.seconds = seconds_since(t0);
+    return out;
+  }
+  out.pieces = r.remeshed;
+  out.min_angle_before = 180.0;
+  out.min_angle_after = 180.0;
+  std::vector<PieceQuality> fresh = fresh_;
+  for (int k : r.remeshed) {
+    out.min_angle_before = std::min(out.min_angle_before,
+                                    piece_quality(old_garment.pattern.pieces[static_cast<size_t>(k)]).min_angle_deg);
+    fresh[static_cast<size_t>(k)] = piece_quality(r.garment.pattern.pieces[static_cast<size_t>(k)]);
+    out.min_angle_after = std::min(out.min_angle_after, fresh[static_cast<size_t>(k)].min_angle_deg);
+  }
+
+  // Keep everything needed to undo.
+  const std::shared_ptr<const DesignTermSum> old_objective = objective_;
+  const BiharmonicCoordinates old_coordinates = coordinates_;
+  const Points2 old_initial_rest = initial_rest_;
+  const VecX old_initial_parameters = initial_parameters_, old_initial_areas = initial_areas_;
+  const double old_mean_boundary_edge = mean_boundary_edge_;
+  const VecX old_accepted_p = accepted_p_;
+  auto undo = [&](const std::string& why) {
+    out.ok = false;
+    out.failure = why;
+    sim_.replace_garment(old_garment, old_state);
+    objective_ = old_objective;
+    coordinates_ = old_coordinates;
+    initial_rest_ = old_initial_rest;
+    initial_parameters_ = old_initial_parameters;
+    initial_areas_ = old_initial_areas;
+    mean_boundary_edge_ = old_mean_boundary_edge;
+    accepted_p_ = old_accepted_p;
+    accepted_state_ = old_state;
+    restore_accepted();
+    out.seconds = seconds_since(t0);
+    return out;
+  };
+
+  try {
+    sim_.replace_garment(r.garment, r.state);
+    coordinates_ = BiharmonicCoordinates(sim_.garment().pattern, old_coordinates, r.unchanged);
+    auto objective = make_objective_(sim_);
+    if (!objective || objective->entries().size() != old_objective->entries().size())
+      throw std::invalid_argument("the objective factory built other terms after remeshing");
+    objective_ = std::move(objective);
+  } catch (const InputError& e) {
+    return undo(std::string("remeshing: ") + e.what());
+  } catch (const SolverError& e) {
+    return undo(std::string("remeshing: ") + e.what());
+  }
+  reset_reference();
+  out.evaluation = evaluate(initial_parameters_, true);
+  if (!out.evaluation.ok) return undo("re-solve after remeshing: " + out.evaluation.failure);
+  accept();
+  fresh_ = std::move(fresh);
+  out.ok = true;
+  out.parameters_after = num_parameters();
+  out.garment_vertices_after = sim_.garment().num_garment_vertices;
+  out.triangles_after = static_cast<int>(sim_.garment().pattern_triangles.rows());
+  out.seconds = seconds_since(t0);
+  return out;
 }
 
 Points2 DesignProblem::rest_positions(const VecX& p) const {
@@ -99,6 +215,7 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
   }
   ev.seconds_forward = seconds_since(t0);
 
+  const auto t1 = Clock::now();
   const SimulationDesignState ds(sim_);
   try {
     ev.term_values = objective_->weighted_values(ds.view());
@@ -106,6 +223,7 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
     ev.failure = std::string("design objective: ") + e.what();
     return ev;
   }
+  ev.seconds_objective = seconds_since(t1);
   ev.value = 0.0;
   for (double v : ev.term_values) ev.value += v;
   if (!std::isfinite(ev.value)) {

@@ -18,6 +18,15 @@
 ///  * T or its gradient is not finite;
 /// the optimizer then backtracks. After a failure the simulation holds an unspecified
 /// state until the next evaluate() or restore_accepted().
+///
+/// Remeshing (remesh(), pattern_remesh.hpp). When a piece's accepted rest mesh degrades
+/// (degraded_pieces()), remesh() replaces the garment by a remeshed one with the
+/// embedding transferred, rebuilds the simulation's energies, the objective (through
+/// the ObjectiveFactory: terms hold index sets of one topology) and the biharmonic
+/// coordinates (pieces left unchanged keep theirs), makes the remeshed pattern the new
+/// reference (initial parameters, areas), and solves the equilibrium from the
+/// transferred state. If that solve fails, everything is put back as it was.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,6 +34,7 @@
 #include "tightfit/design/adjoint_gradient.hpp"
 #include "tightfit/design/biharmonic_coordinates.hpp"
 #include "tightfit/design/design_term.hpp"
+#include "tightfit/design/pattern_remesh.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit {
@@ -34,7 +44,14 @@ struct DesignProblemOptions {
   /// fraction of its initial signed area (a flipped triangle has a negative ratio).
   double min_area_ratio = 0.05;
   AdjointOptions adjoint;
+  PatternRemeshOptions remesh;
 };
+
+/// Builds the design objective for the simulation's current garment (called again
+/// after every remeshing; must return the same terms in the same order).
+using ObjectiveFactory =
+    std::function<std::shared_ptr<const DesignTermSum>(const GarmentSimulation&)>;
+
 
 /// One evaluation of the design problem at parameters p.
 struct DesignEvaluation {
@@ -47,8 +64,25 @@ struct DesignEvaluation {
   double adjoint_residual = 0.0;    ///< relative residual of the adjoint solve
   int newton_iterations = 0;        ///< of the forward solve
   double force_residual = 0.0;      ///< N, final force norm of the forward solve
-  double seconds_forward = 0.0;
-  double seconds_adjoint = 0.0;
+  double seconds_forward = 0.0;    ///< forward Newton solve (s)
+  double seconds_objective = 0.0;  ///< evaluating T at the equilibrium (s)
+  double seconds_adjoint = 0.0;    ///< dT/dp: term gradients, adjoint solve, pull-back (s)
+};
+
+/// What one remeshing did.
+struct RemeshOutcome {
+  bool ok = false;
+  std::string failure;             ///< why it was undone (when !ok)
+  std::vector<int> pieces;         ///< remeshed pieces (the degraded ones and their seam partners)
+  double min_angle_before = 0.0;   ///< degrees, smallest angle over those pieces before
+  double min_angle_after = 0.0;    ///< and after remeshing
+  int parameters_before = 0;
+  int parameters_after = 0;
+  int garment_vertices_before = 0;
+  int garment_vertices_after = 0;
+  int triangles_after = 0;         ///< pattern triangles of the new garment
+  double seconds = 0.0;            ///< wall time of remeshing, transfer and re-solve (s)
+  DesignEvaluation evaluation;     ///< at the remeshed pattern, with gradient (when ok)
 };
 
 class DesignProblem {
@@ -57,12 +91,15 @@ class DesignProblem {
   /// first warm start. `objective` is the weighted sum of design terms (for THIS
   /// garment topology). Throws InputError/SolverError when the biharmonic coordinates
   /// cannot be built.
+  /// `make_objective` (optional) rebuilds the objective after remeshing; without it
+  /// remesh() is not available.
   DesignProblem(GarmentSimulation& sim, std::shared_ptr<const DesignTermSum> objective,
-                DesignProblemOptions options = {});
+                DesignProblemOptions options = {}, ObjectiveFactory make_objective = {});
 
   GarmentSimulation& simulation() { return sim_; }
   const GarmentSimulation& simulation() const { return sim_; }
   const DesignTermSum& objective() const { return *objective_; }
+  const DesignProblemOptions& options() const { return options_; }
   const BiharmonicCoordinates& coordinates() const { return coordinates_; }
   int num_parameters() const { return coordinates_.num_parameters(); }
   /// p of the garment's rest positions at construction.
@@ -94,7 +131,26 @@ class DesignProblem {
   /// Mean length (m) of the initial boundary edges (a natural step scale for p).
   double mean_boundary_edge() const { return mean_boundary_edge_; }
 
+  /// True when an objective factory was given (remesh() can rebuild the objective).
+  bool can_remesh() const { return static_cast<bool>(make_objective_); }
+  /// Target edge length (m) of every piece's new meshes: options().remesh.edge_length,
+  /// or the piece's mean rest edge length at construction.
+  const std::vector<double>& target_edge_lengths() const { return target_edge_; }
+  /// Pieces whose rest mesh at the accepted parameters is degraded by the criteria of
+  /// options().remesh: an inverted triangle; a smallest angle below min_angle_deg; a
+  /// triangle smaller than min_area_fraction × the equilateral area of the target edge
+  /// length. A piece whose fresh mesh already misses a criterion (e.g. a sharp corner
+  /// of its outline) is held to 0.75 × its fresh value instead, so remeshing it does
+  /// not repeat forever.
+  std::vector<int> degraded_pieces() const;
+  /// Remeshes `pieces` (see the header comment) at the accepted point; on success the
+  /// accepted point is the remeshed pattern's equilibrium. Throws std::logic_error
+  /// without an objective factory.
+  RemeshOutcome remesh(const std::vector<int>& pieces);
+
  private:
+  void reset_reference();  // the garment's current rest shape becomes the reference
+
   GarmentSimulation& sim_;
   std::shared_ptr<const DesignTermSum> objective_;
   DesignProblemOptions options_;
@@ -104,6 +160,9 @@ class DesignProblem {
   VecX initial_parameters_;
   VecX initial_areas_;  // signed rest areas of the pattern triangles
   double mean_boundary_edge_ = 0.0;
+  ObjectiveFactory make_objective_;
+  std::vector<double> target_edge_;     // per piece (m)
+  std::vector<PieceQuality> fresh_;     // per piece: quality of its last fresh mesh
   VecX accepted_p_;
   EmbeddedState accepted_state_;
   VecX current_p_;  // parameters the simulation's rest positions are set to

@@ -83,6 +83,17 @@ void parse_lbfgs(JsonFields f, PatternOptimizerOptions& o) {
   f.finish();
 }
 
+void parse_remesh(JsonFields f, PatternRemeshOptions& o) {
+  o.enabled = f.boolean("enabled", o.enabled);
+  o.min_angle_deg = f.positive("min_angle_deg", o.min_angle_deg, true);
+  if (o.min_angle_deg >= 60.0) f.fail("must be below 60 degrees", "min_angle_deg");
+  o.min_area_fraction = f.positive("min_area_fraction", o.min_area_fraction, true);
+  o.edge_length = f.positive("edge_length", o.edge_length, true);
+  o.smoothing_iterations = f.integer("smoothing_iterations", o.smoothing_iterations);
+  if (o.smoothing_iterations < 0) f.fail("must be >= 0", "smoothing_iterations");
+  f.finish();
+}
+
 }  // namespace
 
 OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const std::string& file,
@@ -128,6 +139,7 @@ OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const st
   spec.problem.min_area_ratio = f.positive("min_area_ratio", spec.problem.min_area_ratio);
   if (spec.problem.min_area_ratio >= 1.0) f.fail("must be in (0, 1)", "min_area_ratio");
   if (auto l = f.object("lbfgs")) parse_lbfgs(*l, spec.optimizer);
+  if (auto r = f.object("remesh")) parse_remesh(*r, spec.problem.remesh);
   f.finish();
 
   const RegularizerWeights& w = spec.regularizers;

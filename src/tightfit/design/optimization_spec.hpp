@@ -23,7 +23,13 @@
 ///     "lbfgs": {"memory": 8, "gradient_tolerance": 0, "relative_gradient_tolerance": 1e-6,
 ///               "value_tolerance": 0, "relative_decrease_tolerance": 1e-9,
 ///               "stall_iterations": 3, "max_step": 0, "max_step_fraction": 0.5,
-///               "armijo": 1e-4, "max_line_search": 30}
+///               "armijo": 1e-4, "max_line_search": 30},
+///     "remesh": {"enabled": true,          // remesh pieces whose rest mesh degrades:
+///                "min_angle_deg": 10,      //   smallest angle below this (degrees),
+///                "min_area_fraction": 0.1, //   a triangle below this × the equilateral
+///                                          //   area of the target edge, or inverted
+///                "edge_length": 0,         // target edge (m); 0: each piece's initial mean
+///                "smoothing_iterations": 10}
 ///   }
 ///
 /// Units of the terms (see each term's header): stretch and directional stretch m², shape m², pressure Pa²·m²,

@@ -1,6 +1,7 @@
 #pragma once
 /// Records of a pattern optimization run: one entry per accepted L-BFGS iteration, the
 /// L-BFGS memory, and the checkpoint that lets a run continue where it stopped.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,25 @@
 #include "tightfit/solve/embedded_equilibrium.hpp"
 
 namespace tightfit {
+
+/// A remeshing of degraded pieces after an accepted iteration (design/pattern_remesh.hpp).
+/// The objective is evaluated again on the new meshes: its value may differ a little
+/// from the iteration's (another discretization); the next iteration starts here.
+struct RemeshRecord {
+  std::vector<std::string> pieces;  ///< names of the remeshed pieces
+  double value = 0.0;               ///< T on the remeshed pattern's equilibrium
+  std::vector<double> term_values;  ///< w_j T_j there
+  double gradient_norm = 0.0;       ///< ‖dT/dp‖₂ there
+  int parameters = 0;               ///< design parameters after remeshing
+  int garment_vertices = 0;         ///< after remeshing
+  double min_angle_before = 0.0;    ///< degrees, over the remeshed pieces
+  double min_angle_after = 0.0;     ///< degrees
+  int newton_iterations = 0;        ///< of the equilibrium solve from the transferred state
+  double seconds = 0.0;             ///< wall time of remeshing, transfer and re-solve (s)
+  /// Non-empty when the remeshing failed and was undone (the run goes on with the old
+  /// meshes; value, term_values, gradient_norm and counts are then the old ones).
+  std::string failure;
+};
 
 /// One accepted iteration (iteration 0 is the initial pattern).
 struct OptimizationIteration {
@@ -23,6 +43,13 @@ struct OptimizationIteration {
   int newton_iterations = 0;        ///< forward Newton iterations of this iteration
   double hessian_shift = 0.0;       ///< adjoint Hessian shift (0: exact gradient)
   double seconds = 0.0;             ///< wall time since the run started (s)
+  /// Time split of this iteration (s), summed over its line-search trials: forward
+  /// Newton solves, objective evaluations at the equilibria, and the gradient (term
+  /// gradients, adjoint solve, pull-back).
+  double seconds_forward = 0.0;
+  double seconds_objective = 0.0;
+  double seconds_adjoint = 0.0;
+  std::optional<RemeshRecord> remesh;  ///< set when pieces were remeshed after this step
 };
 
 /// L-BFGS curvature pairs, oldest first: s_k = p_{k+1} − p_k (m), y_k = ∇T_{k+1} − ∇T_k.

@@ -16,6 +16,9 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+/// Iterations without a new attempt after a remeshing that had to be undone.
+constexpr int kRemeshRetryGap = 5;
+
 }  // namespace
 
 PatternOptimizer::PatternOptimizer(DesignProblem& problem, PatternOptimizerOptions options)
@@ -67,6 +70,12 @@ void PatternOptimizer::push_pair(const VecX& s, const VecX& y) {
 }
 
 void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
+  for (const OptimizationIteration& it : checkpoint.history)
+    if (it.remesh && it.remesh->failure.empty())
+      throw InputError("checkpoint",
+                       "the run remeshed pieces after iteration " + std::to_string(it.iteration) +
+                           "; --resume cannot continue after a remeshing (the checkpoint does "
+                           "not hold the new meshes): start a new run");
   const Eigen::Index n = problem_.num_parameters();
   if (checkpoint.parameters.size() != n)
     throw InputError("checkpoint", "it has " + std::to_string(checkpoint.parameters.size()) +
@@ -122,6 +131,9 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
     first.line_search_trials = 1;
     first.newton_iterations = current.newton_iterations;
     first.hessian_shift = current.hessian_shift;
+    first.seconds_forward = current.seconds_forward;
+    first.seconds_objective = current.seconds_objective;
+    first.seconds_adjoint = current.seconds_adjoint;
     first.seconds = elapsed();
     history_.push_back(first);
     if (on_iteration) on_iteration(first);
@@ -132,10 +144,8 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
   const double gradient_stop =
       std::max(options_.gradient_tolerance,
                options_.relative_gradient_tolerance * history_.front().gradient_norm);
-  const double max_step = options_.max_step > 0.0
-                              ? options_.max_step
-                              : options_.max_step_fraction * problem_.mean_boundary_edge();
   int stalled = 0;
+  int remesh_blocked_until = -1;  // no new attempt right after a failed remeshing
   std::ostringstream reason;
   for (;;) {
     const double gnorm = current.gradient.norm();
@@ -160,6 +170,9 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
       break;
     }
 
+    const double max_step = options_.max_step > 0.0
+                                ? options_.max_step
+                                : options_.max_step_fraction * problem_.mean_boundary_edge();
     OptimizationIteration rec;
     DesignEvaluation trial;
     VecX d;
@@ -182,7 +195,10 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
       alpha = memory_.s.empty() || move > max_step ? max_step / move : 1.0;
       for (int t = 0; t < options_.max_line_search; ++t) {
         ++rec.line_search_trials;
+        const auto t_trial = Clock::now();
         trial = problem_.evaluate(p + alpha * d, false);
+        rec.seconds_forward += seconds_since(t_trial) - trial.seconds_objective;
+        rec.seconds_objective += trial.seconds_objective;
         rec.newton_iterations += trial.newton_iterations;
         if (!trial.ok) {
           ++rec.failed_solves;
@@ -190,7 +206,10 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
           continue;
         }
         if (trial.value <= current.value + options_.armijo * alpha * slope) {
-          if (problem_.add_gradient(trial)) {
+          const auto t_gradient = Clock::now();
+          const bool gradient_ok = problem_.add_gradient(trial);
+          rec.seconds_adjoint += seconds_since(t_gradient);
+          if (gradient_ok) {
             accepted = true;
             break;
           }
@@ -230,6 +249,41 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
     rec.max_point_move = max_point_move(step);
     rec.step_factor = alpha;
     rec.hessian_shift = current.hessian_shift;
+
+    if (problem_.options().remesh.enabled && problem_.can_remesh() &&
+        iteration_ > remesh_blocked_until) {
+      const std::vector<int> degraded = problem_.degraded_pieces();
+      if (!degraded.empty()) {
+        RemeshOutcome o = problem_.remesh(degraded);
+        RemeshRecord r;
+        for (int k : o.pieces.empty() ? degraded : o.pieces)
+          r.pieces.push_back(problem_.simulation().garment().pattern.pieces[static_cast<size_t>(k)].name);
+        r.min_angle_before = o.min_angle_before;
+        r.min_angle_after = o.min_angle_after;
+        r.newton_iterations = o.evaluation.newton_iterations;
+        r.seconds = o.seconds;
+        r.failure = o.failure;
+        if (o.ok) {
+          current = std::move(o.evaluation);
+          p = problem_.accepted_parameters();
+          memory_ = {};
+          stalled = 0;
+          r.value = current.value;
+          r.term_values = current.term_values;
+          r.gradient_norm = current.gradient.norm();
+          r.parameters = o.parameters_after;
+          r.garment_vertices = o.garment_vertices_after;
+        } else {
+          remesh_blocked_until = iteration_ + kRemeshRetryGap;
+          r.value = current.value;
+          r.term_values = current.term_values;
+          r.gradient_norm = current.gradient.norm();
+          r.parameters = o.parameters_before;
+          r.garment_vertices = o.garment_vertices_before;
+        }
+        rec.remesh = std::move(r);
+      }
+    }
     rec.seconds = elapsed();
     history_.push_back(rec);
     if (on_iteration) on_iteration(rec);

@@ -21,6 +21,14 @@
 /// line search fails along an L-BFGS direction the memory is cleared and steepest
 /// descent is tried once more before giving up.
 ///
+/// Remeshing: after each accepted step, when the problem has an objective factory and
+/// options().remesh.enabled, pieces whose rest mesh degraded
+/// (DesignProblem::degraded_pieces) are remeshed (DesignProblem::remesh): the run
+/// continues from the remeshed pattern's equilibrium with an empty L-BFGS memory, and
+/// the iteration's record carries a RemeshRecord. A remeshing that fails is undone
+/// (recorded with its failure) and not tried again for 5 iterations. A checkpoint
+/// written after a remeshing cannot be resumed (resume() throws InputError).
+///
 /// Stopping (checked on each accepted point): ‖∇T‖ ≤ max(gradient_tolerance,
 /// relative_gradient_tolerance·‖∇T_0‖); T ≤ value_tolerance (range objectives reach 0
 /// exactly); `stall_iterations` consecutive steps with relative decrease below
@@ -68,7 +76,8 @@ class PatternOptimizer {
   PatternOptimizer(DesignProblem& problem, PatternOptimizerOptions options = {});
 
   /// Continues from a checkpoint instead of the problem's initial parameters (puts the
-  /// simulation at the saved equilibrium). Call before run().
+  /// simulation at the saved equilibrium). Call before run(). Throws InputError when
+  /// the checkpoint does not fit the problem or was written after a remeshing.
   void resume(const OptimizationCheckpoint& checkpoint);
 
   /// Runs until a stopping criterion (see the header comment). Throws SolverError when

@@ -1,6 +1,7 @@
 #pragma once
 /// Barycentric weights and closest points on single triangles (2D and 3D).
 #include <Eigen/Core>
+#include <Eigen/LU>  // determinant(), inverse()
 
 #include "tightfit/common/types.hpp"
 

@@ -31,18 +31,9 @@ GarmentSimulation::GarmentSimulation(const Body& body, const LimitSurface& surfa
     throw InputError("garment", "the garment is not embedded on the body");
   if (surface_.num_control_vertices() != body_.num_surface_vertices())
     throw InputError("body", "the limit surface does not belong to the body surface");
-  const Points2 rest = garment_.rest_positions();
-  cloth_ = std::make_unique<ClothEnergy>(garment_.pattern_triangles, rest,
-                                         garment_.pattern_to_garment,
-                                         garment_.num_garment_vertices, materials_.fabric);
-  const auto seam_edges = garment_.seam_edges();
-  if (materials_.seam.youngs_modulus > 0.0 && !seam_edges.empty())
-    seams_ = std::make_unique<SeamSpringEnergy>(seam_edges, rest, garment_.pattern_to_garment,
-                                                garment_.num_garment_vertices, materials_.seam);
+  build_garment_energies();
   body_energy_ = std::make_unique<NeoHookeanEnergy>(body_.volume.vertices, body_.volume.tets,
                                                     materials_.body);
-  force_scale_ = materials_.fabric.youngs_modulus * materials_.fabric.thickness *
-                 mean_rest_edge_length(garment_.pattern_triangles, rest);
   EmbeddedState state;
   state.garment = garment_.embedding;
   state.body = body_.volume.vertices;
@@ -50,6 +41,30 @@ GarmentSimulation::GarmentSimulation(const Body& body, const LimitSurface& surfa
 }
 
 GarmentSimulation::~GarmentSimulation() = default;
+
+void GarmentSimulation::build_garment_energies() {
+  const Points2 rest = garment_.rest_positions();
+  cloth_ = std::make_unique<ClothEnergy>(garment_.pattern_triangles, rest,
+                                         garment_.pattern_to_garment,
+                                         garment_.num_garment_vertices, materials_.fabric);
+  seams_.reset();
+  const auto seam_edges = garment_.seam_edges();
+  if (materials_.seam.youngs_modulus > 0.0 && !seam_edges.empty())
+    seams_ = std::make_unique<SeamSpringEnergy>(seam_edges, rest, garment_.pattern_to_garment,
+                                                garment_.num_garment_vertices, materials_.seam);
+  force_scale_ = materials_.fabric.youngs_modulus * materials_.fabric.thickness *
+                 mean_rest_edge_length(garment_.pattern_triangles, rest);
+}
+
+void GarmentSimulation::replace_garment(Garment garment, const EmbeddedState& state) {
+  if (static_cast<int>(state.garment.size()) != garment.num_garment_vertices ||
+      state.body.rows() != body_.volume.vertices.rows())
+    throw InputError("garment", "the replacement state does not match the garment and body");
+  garment_ = std::move(garment);
+  garment_.embedding = state.garment;
+  build_garment_energies();
+  rebuild_problem(state);
+}
 
 void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
   EmbeddedSystemSetup setup;

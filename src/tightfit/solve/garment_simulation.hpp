@@ -73,6 +73,12 @@ class GarmentSimulation {
   void set_rest_positions(const Points2& rest);
   /// Replaces the state (e.g. to restore a checkpoint).
   void set_state(const EmbeddedState& state);
+  /// Replaces the garment by another one on the same body (a remeshed pattern, with
+  /// other vertex counts and triangles) at `state` (one surface point per garment
+  /// vertex of `garment`, one position per body vertex): rebuilds the cloth and seam
+  /// energies, the force scale and the equilibrium problem; materials and Newton
+  /// options are kept. Throws InputError when the sizes do not match.
+  void replace_garment(Garment garment, const EmbeddedState& state);
 
   /// Analyses the fit at the current state.
   FitAnalysis analyze() const;
@@ -82,6 +88,7 @@ class GarmentSimulation {
 
  private:
   void rebuild_problem(const EmbeddedState& state);
+  void build_garment_energies();
 
   const Body& body_;
   const LimitSurface& surface_;
