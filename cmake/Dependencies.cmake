@@ -1,6 +1,5 @@
 # Every dependency is a Debian bookworm package installed by scripts/install-deps.sh.
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
-find_package(fmt REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CGAL REQUIRED)
 find_package(Threads REQUIRED)

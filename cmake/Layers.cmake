@@ -11,6 +11,20 @@ if(TIGHTFIT_SANITIZE)
   target_link_options(tightfit_options INTERFACE -fsanitize=address,undefined)
 endif()
 
+# Precompiled headers: the standard, Eigen and JSON headers that nearly every source
+# file parses (about 2 s of CPU per file otherwise). One PCH per target; a CI run builds
+# twice (Release and sanitizers), so this is most of the build time saved. Off with
+# -DTIGHTFIT_PCH=OFF (e.g. when a compiler cache is used).
+option(TIGHTFIT_PCH "Precompile the common standard/Eigen/JSON headers" ON)
+set(TIGHTFIT_PCH_HEADERS <algorithm> <array> <cmath> <filesystem> <functional> <map>
+  <memory> <optional> <string> <vector> <Eigen/Core> <Eigen/Geometry> <Eigen/SparseCore>
+  <nlohmann/json.hpp>)
+function(tightfit_precompile target)
+  if(TIGHTFIT_PCH)
+    target_precompile_headers(${target} PRIVATE ${TIGHTFIT_PCH_HEADERS} ${ARGN})
+  endif()
+endfunction()
+
 # tightfit_add_layer(NAME DEPS ...) builds src/tightfit/NAME/*.cpp into the library
 # tightfit_NAME (an INTERFACE library while the layer has no sources yet) and
 # tests/NAME/*_test.cpp into the test executable tightfit_NAME_tests.
@@ -21,7 +35,8 @@ function(tightfit_add_layer name)
   if(sources)
     add_library(tightfit_${name} STATIC ${sources})
     target_include_directories(tightfit_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
-    target_link_libraries(tightfit_${name} PUBLIC ${ARG_DEPS} tightfit_options)
+    target_link_libraries(tightfit_${name} PUBLIC ${ARG_DEPS} tightfit_options nlohmann_json::nlohmann_json)
+    tightfit_precompile(tightfit_${name})
   else()
     add_library(tightfit_${name} INTERFACE)
     target_include_directories(tightfit_${name} INTERFACE ${PROJECT_SOURCE_DIR}/src)

@@ -6,8 +6,8 @@ set -euo pipefail
 BUILD_PKGS=(
   build-essential cmake pkg-config
   libeigen3-dev libsuitesparse-dev libosd-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-  libtet1.5-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
-  liblbfgspp-dev libnanoflann-dev libcairo2-dev
+  libtet1.5-dev nlohmann-json3-dev libcli11-dev
+  libnanoflann-dev libcairo2-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 # Clients used by the tests to check exports with real third-party readers.

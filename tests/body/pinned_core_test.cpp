@@ -91,6 +91,32 @@ TEST(PinnedCore, BoneSamplesBecomePinnedVertices) {
   EXPECT_EQ(pinned, expected);
 }
 
+TEST(PinnedCore, SoftTissueDepthAddsToTheAlwaysPinnedVertices) {
+  // Bone samples (always pinned) stay pinned when a soft-tissue depth is given too, even
+  // where they are shallower than that depth; deep vertices are pinned in addition.
+  CoreOptions o;
+  o.bones = {BoneSegment{"axis", "", Vec3(0, 0, -0.2), Vec3(0, 0, 0.2)}};
+  o.bone_radius = 0.0;
+  o.bone_sample_spacing = 0.02;
+  o.bone_sample_clearance = 0.005;
+  o.soft_tissue = 0.045;
+  Cylinder probe = make_cylinder();
+  const Points3 samples = bone_sample_points(o, SurfaceDistance(probe.surface));
+  const Cylinder c = make_cylinder(samples);
+  const SurfaceDistance distance(c.surface);
+  const int n = c.surface.num_vertices(), k = static_cast<int>(samples.rows());
+  const std::vector<int> pinned = pinned_core(c.volume, n, distance, o, k);
+  std::vector<int> expected;
+  int shallow_samples = 0;
+  for (int v = n; v < c.volume.num_vertices(); ++v) {
+    const bool deep = distance.distance(c.volume.vertices.row(v)) >= 0.045;
+    if (v < n + k && !deep) ++shallow_samples;
+    if (v < n + k || deep) expected.push_back(v);
+  }
+  EXPECT_GT(shallow_samples, 0);  // the samples near the caps are shallower than 45 mm
+  EXPECT_EQ(pinned, expected);
+}
+
 TEST(Skeleton, ReadsTheMakeHumanJointsFile) {
   const auto bones = read_skeleton(TIGHTFIT_DATA_DIR "/rig/mh_male_regular.joints.json");
   EXPECT_EQ(bones.size(), 163u);

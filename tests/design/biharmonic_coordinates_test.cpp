@@ -6,46 +6,17 @@
 #include <numbers>
 #include <random>
 
+#include "support/test_pieces.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/garment/piece_mesher.hpp"
 
 namespace tightfit {
 namespace {
 
-/// An nx × ny grid over [0,w]×[0,h] with jittered interior vertices and random
-/// diagonals; boundary loop counter-clockwise from the origin.
+/// An nx × ny grid over [0,w]×[0,h] with interior vertices jittered by 20 % of the
+/// spacing and random diagonals; boundary loop counter-clockwise from the origin.
 PatternPiece jittered_grid(int nx, int ny, double w, double h, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-0.2, 0.2);
-  PatternPiece piece;
-  piece.name = "grid";
-  piece.rest.resize(nx * ny, 2);
-  auto id = [&](int i, int j) { return j * nx + i; };
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const bool inner = i > 0 && j > 0 && i < nx - 1 && j < ny - 1;
-      piece.rest.row(id(i, j)) << w * (i + (inner ? u(rng) : 0.0)) / (nx - 1),
-          h * (j + (inner ? u(rng) : 0.0)) / (ny - 1);
-    }
-  piece.triangles.resize(2 * (nx - 1) * (ny - 1), 3);
-  int t = 0;
-  for (int j = 0; j + 1 < ny; ++j)
-    for (int i = 0; i + 1 < nx; ++i) {
-      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      if (rng() % 2) {
-        piece.triangles.row(t++) << a, b, c;
-        piece.triangles.row(t++) << a, c, d;
-      } else {
-        piece.triangles.row(t++) << a, b, d;
-        piece.triangles.row(t++) << b, c, d;
-      }
-    }
-  for (int i = 0; i < nx - 1; ++i) piece.boundary.push_back(id(i, 0));
-  for (int j = 0; j < ny - 1; ++j) piece.boundary.push_back(id(nx - 1, j));
-  for (int i = nx - 1; i > 0; --i) piece.boundary.push_back(id(i, ny - 1));
-  for (int j = ny - 1; j > 0; --j) piece.boundary.push_back(id(0, j));
-  piece.corners = {id(0, 0), id(nx - 1, 0), id(nx - 1, ny - 1), id(0, ny - 1)};
-  return piece;
+  return test::grid_piece(nx, ny, w, h, 0.2, seed);
 }
 
 /// A CGAL-meshed non-convex piece (an L shape with a curved bump), boundary first.

@@ -4,13 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
 #include <iterator>
 
 #include "garment/garment_test_meshes.hpp"
 #include "tightfit/body/generators.hpp"
 #include "tightfit/common/error.hpp"
-#include "tightfit/garment/pattern_svg.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 
 namespace tightfit {
@@ -100,16 +98,6 @@ TEST(BuildGarment, SleeveOnCylinder) {
     }
     // Both cuffs pinned: two pinned runs per piece.
     EXPECT_EQ(b.garment.pattern.pinned.size(), 4u);
-    // The debugging SVG: one group per piece, 1:1 in millimetres.
-    const std::string svg = pattern_svg(b.garment.pattern);
-    EXPECT_NE(svg.find("<g id=\"piece-front\">"), std::string::npos);
-    EXPECT_NE(svg.find("<g id=\"piece-back\">"), std::string::npos);
-    EXPECT_NE(svg.find(">front/back#2</text>"), std::string::npos);
-    EXPECT_NE(svg.find("mm\" height=\""), std::string::npos);
-    const std::string file = ::testing::TempDir() + "/sleeve.svg";
-    write_pattern_svg(file, b.garment.pattern);
-    std::ifstream in(file);
-    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), svg);
   }
 }
 

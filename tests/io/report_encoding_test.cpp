@@ -27,10 +27,6 @@ TEST(ReportEncoding, TypedArraysAreLittleEndian) {
   EXPECT_THROW(base64_uint32({-1}), std::invalid_argument);
 }
 
-TEST(ReportEncoding, HtmlEscape) {
-  EXPECT_EQ(html_escape("a<b>&\"c'"), "a&lt;b&gt;&amp;&quot;c&#39;");
-}
-
 TEST(ReportEncoding, JsonForScriptHasNoTagsAndParsesBack) {
   const nlohmann::json j = {{"name", "</script><!-- x"}, {"v", 1.5}};
   const std::string text = json_for_script(j);

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "tightfit/body/body_builder.hpp"
+#include "tightfit/body/generators.hpp"
 #include "tightfit/body/tetrahedralize.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
@@ -30,7 +31,9 @@ SoftCylinder make_soft_cylinder(double edge) {
   cyl.length = 0.4;
   cyl.edge_length = edge;
   VolumeOptions volume = default_volume_options(edge);
-  volume.core.soft_tissue = c.b - c.core;
+  // An exact core: the cylinder r = a built into the tet mesh and pinned with all it holds.
+  volume.core.soft_tissue.reset();
+  volume.core.embedded_core = cylinder_surface(cylinder_core(cyl, c.core));
   volume.quality.max_volume = regular_tet_volume(edge);  // as fine inside as on the surface
   c.body = cylinder_body(cyl, volume);
   c.surface = std::make_unique<LimitSurface>(c.body.surface);

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/test_meshes.hpp"
 #include "tightfit/geometry/mesh.hpp"
 #include "tightfit/subdiv/surface_point.hpp"
 
@@ -37,16 +38,8 @@ inline TriMesh make_mesh(const std::vector<Vec3>& v, const std::vector<std::arra
   return m;
 }
 
-/// Regular icosahedron with unit circumradius: 12 vertices of valence 5.
-inline TriMesh icosahedron() {
-  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  for (Vec3& p : v) p.normalize();
-  return make_mesh(v, {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                       {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                       {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}});
-}
+/// Regular icosahedron with unit circumradius: 12 vertices of valence 5 (outward faces).
+using ::tightfit::test::icosahedron;
 
 /// Regular tetrahedron: 4 vertices of valence 3.
 inline TriMesh tetrahedron() {

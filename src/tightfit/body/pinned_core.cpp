@@ -47,7 +47,7 @@ std::vector<int> pinned_core(const TetMesh& volume, int num_surface_vertices,
     if (options.soft_tissue) {
       const double depth = surface.distance(p);
       deepest = std::max(deepest, depth);
-      pin = depth >= *options.soft_tissue;
+      pin = pin || depth >= *options.soft_tissue;
     }
     for (size_t b = 0; !pin && b < options.bones.size(); ++b)
       pin = distance_to_bone(options.bones[b], p) <= options.bone_radius;

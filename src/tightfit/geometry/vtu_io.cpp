@@ -6,6 +6,7 @@
 
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/xml_text.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 #include "tightfit/geometry/text_parsing.hpp"
 
@@ -14,51 +15,6 @@ namespace tightfit {
 namespace {
 
 constexpr int kVtkTetra = 10;
-
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-std::string xml_unescape(std::string_view s) {
-  static const std::pair<std::string_view, char> entities[] = {
-      {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'}, {"&apos;", '\''}};
-  std::string out;
-  for (std::size_t i = 0; i < s.size();) {
-    bool replaced = false;
-    if (s[i] == '&')
-      for (const auto& [entity, c] : entities)
-        if (s.substr(i, entity.size()) == entity) {
-          out += c;
-          i += entity.size();
-          replaced = true;
-          break;
-        }
-    if (!replaced) out += s[i++];
-  }
-  return out;
-}
 
 void check_fields(const std::vector<MeshField>& fields, int rows, const char* what) {
   for (const auto& f : fields)

@@ -19,23 +19,6 @@ std::string unique_identifier(const std::string& name, std::set<std::string>& ta
   return id;
 }
 
-std::string xml_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default:
-        // XML 1.0 forbids most control characters.
-        out.push_back((static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') ? ' ' : c);
-    }
-  }
-  return out;
-}
-
 std::string ascii_escape(const std::string& text) {
   std::string out;
   size_t i = 0;

@@ -18,9 +18,6 @@ std::string base64_float32(const std::vector<double>& values);
 /// Base64 of the values as little-endian uint32 (JS Uint32Array). Values must be >= 0.
 std::string base64_uint32(const std::vector<std::int64_t>& values);
 
-/// Escapes & < > " ' for HTML text and attribute values.
-std::string html_escape(std::string_view text);
-
 /// `json` serialized so that it can sit inside <script type="application/json">:
 /// every '<' becomes the JSON escape of U+003C, so no "</script" or "<!--" can appear.
 std::string json_for_script(const nlohmann::json& json);

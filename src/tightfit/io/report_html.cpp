@@ -7,6 +7,7 @@
 
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/xml_text.hpp"
 #include "tightfit/io/report_data.hpp"
 #include "tightfit/io/report_encoding.hpp"
 #include "tightfit/io/report_modules.hpp"
@@ -85,7 +86,7 @@ std::string render_report_html(const FitView& view, const ReportOptions& options
        {"three/addons/controls/OrbitControls.js", options.orbit_controls}});
   const nlohmann::json data = report_data_json(view, options.colorings, options.title, source);
 
-  const std::string title = html_escape(options.title);
+  const std::string title = xml_escape(options.title);
   for (std::size_t pos = 0; (pos = html.find("{{TITLE}}", pos)) != std::string::npos;) {
     html.replace(pos, 9, title);
     pos += title.size();
