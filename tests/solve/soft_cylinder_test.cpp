@@ -104,7 +104,7 @@ TEST(SoftCylinderSleeveSlow, RadialCompressionFollowsLame) {
   EXPECT_NEAR(u / u_lame, 1.0, 0.03);
 }
 
-TEST(SoftCylinderSleeve, NewtonConvergesQuadratically) {
+TEST(SoftCylinderSleeveSlow, NewtonConvergesQuadratically) {
   SoftCylinder c = make_soft_cylinder(0.012);
   SimulationMaterials m;
   GarmentSimulation sim(c.body, *c.surface, make_sleeve(covering_sleeve(c), *c.surface,
