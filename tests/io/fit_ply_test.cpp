@@ -75,6 +75,33 @@ TEST(FitPly, MeshioReadsGarmentAndBodyFieldsExactly) {
   expect_mesh_and_fields(body, view.body, view.body_fields);
 }
 
+TEST(FitPly, MeshioReadsTheFieldsOfASimulateRun) {
+  // The files `tightfit simulate` writes (garment.ply, body.ply), read by meshio: every
+  // face property equals what our own PLY reader finds (both read the same numbers).
+  test::TempDir dir("ply_cli");
+  std::ofstream(dir / "scene.json") << R"({
+    "body": {"generator": "cylinder", "radius": 0.05, "length": 0.16, "edge_length": 0.014},
+    "garment": {"sleeve": {"radius": 0.05, "axial_begin": -0.04, "axial_end": 0.04,
+                           "hoop_scale": 0.9, "axial_scale": 0.95, "edge_length": 0.016,
+                           "pin_first_ring": true, "pin_last_ring": true}},
+    "body_material": {"rigid": true}})";
+  const auto run = test::run_command(std::string(TIGHTFIT_CLI) + " simulate " + test::quoted(dir / "scene.json") +
+                                         " --out " + test::quoted(dir / "run"),
+                                     dir / "simulate.log");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  for (const char* file : {"garment.ply", "body.ply"}) {
+    const PlyData ours = read_ply(dir / "run" / file);
+    std::vector<FaceField> fields;
+    for (const MeshField& f : ours.attributes.face_fields) fields.push_back({f.name, "", f.values});
+    const auto read = read_with_meshio(dir / "run" / file, dir);
+    expect_mesh_and_fields(read, ours.mesh, fields);
+    if (std::string(file) == "garment.ply") {
+      for (const char* name : {"stretch_max", "stretch_min", "regime", "pressure_pa", "pressure_mmhg"})
+        EXPECT_TRUE(read["cell_data"].contains(name)) << name;
+    }
+  }
+}
+
 TEST(FitPly, GeometryReaderReadsTheFieldsBackInBothEncodings) {
   test::TempDir dir("ply_geometry");
   const FitView view = test::band_on_sphere(6, 2);

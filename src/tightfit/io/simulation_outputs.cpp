@@ -166,7 +166,8 @@ void write_fit_meshes(const std::filesystem::path& folder, const GarmentSimulati
   PlyAttributes ga;
   ga.face_fields = garment_face_fields(sim, fit, op);
   ga.vertex_fields = garment_vertex_fields(fit);
-  write_ply(folder / "garment.ply", garment, ga);
+  // ASCII: Debian's meshio 5 misreads per-face properties of binary PLY (fit_ply.hpp).
+  write_ply(folder / "garment.ply", garment, ga, PlyEncoding::ascii);
 
   const int ns = sim.body().num_surface_vertices();
   TriMesh body{sim.body_positions().topRows(ns), sim.body().surface.faces};
@@ -174,7 +175,7 @@ void write_fit_meshes(const std::filesystem::path& folder, const GarmentSimulati
   const Points3 displacement = sim.body_positions().topRows(ns) - sim.body().surface.vertices;
   ba.vertex_fields.push_back({"displacement", MatX(displacement)});
   ba.vertex_fields.push_back({"displacement_norm", displacement.rowwise().norm()});
-  write_ply(folder / "body.ply", body, ba);
+  write_ply(folder / "body.ply", body, ba, PlyEncoding::ascii);
 }
 
 }  // namespace tightfit
