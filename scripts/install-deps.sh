@@ -16,7 +16,8 @@ CHECK_PKGS=(
   chromium
 )
 # Node runs the report's npm packages (three.js, gltf-validator, playwright-core); a
-# machine that already has npm (e.g. a newer Node) keeps it.
+# machine that already has npm (e.g. a newer Node) keeps it. playwright-core is pinned
+# to 1.60, the last release that supports bookworm's Node 18 (1.62+ need Node 20).
 if ! command -v npm >/dev/null 2>&1; then CHECK_PKGS+=(nodejs npm); fi
 
 SUDO=""
