@@ -219,22 +219,71 @@ TEST(PatternOptimizerRemesh, ADegradingPieceIsRemeshedAndTheRunGoesOn) {
               sim.garment().pattern_to_garment[seam.b.vertices[k]]);
   EXPECT_GE(piece_quality(sim.garment().pattern.pieces[0]).min_angle_deg, 0.75 * 30.0);
 
-  // The remesh record survives the history's JSON form; a checkpoint written after a
-  // remeshing is refused by resume with an InputError.
+  // The remesh record survives the history's JSON form.
   const OptimizationIteration& rec = history[first];
   const OptimizationIteration back = iteration_from_json(iteration_json(rec, names), names, "test");
   ASSERT_TRUE(back.remesh.has_value());
   EXPECT_EQ(back.remesh->value, rec.remesh->value);
   EXPECT_EQ(back.remesh->parameters, rec.remesh->parameters);
+
+  // The checkpoint written right after the remeshing holds the remeshed pattern; a run
+  // resumed from it on a problem built from the scene continues like the uninterrupted
+  // one: same parameter count, same iterations, same final pattern and equilibrium.
   ASSERT_TRUE(checkpoint_written);
+  const OptimizationCheckpoint saved = read_checkpoint(dir + "/checkpoint.json", names);
+  ASSERT_TRUE(saved.remeshed.has_value());
+  EXPECT_EQ(saved.iteration, history[first].iteration);
+  EXPECT_EQ(saved.parameters.size(), history[first].remesh->parameters);
+  EXPECT_TRUE(saved.memory.s.empty());  // cleared by the remeshing
   auto fresh = make_sleeve_scene(so);
+  fresh->sim->solve();
   DesignProblem fresh_problem(*fresh->sim, factory(*fresh->sim), po, factory);
   PatternOptimizer resumed(fresh_problem, oo);
+  resumed.resume(saved);
+  EXPECT_EQ(fresh_problem.num_parameters(), history[first].remesh->parameters);
+  const OptimizationResult again = resumed.run();
+  EXPECT_EQ(again.iterations, result.iterations);
+  EXPECT_EQ(again.stop_reason, result.stop_reason);
+  const auto& h2 = resumed.history();
+  ASSERT_EQ(h2.size(), history.size());
+  for (size_t k = first + 1; k < history.size(); ++k)
+    EXPECT_NEAR(h2[k].value, history[k].value, 1e-9 * history[first].remesh->value + 1e-14)
+        << "iteration " << k;
+  const Garment& g1 = sim.garment();
+  const Garment& g2 = fresh->sim->garment();
+  std::printf("  resumed after the remeshing: final T %.6e vs %.6e; max rest difference %.1e m, "
+              "max position difference %.1e m\n",
+              again.final_value, result.final_value,
+              (g2.rest_positions() - g1.rest_positions()).cwiseAbs().maxCoeff(),
+              (fresh->sim->garment_positions() - sim.garment_positions()).cwiseAbs().maxCoeff());
+  ASSERT_EQ(g2.num_garment_vertices, g1.num_garment_vertices);
+  ASSERT_EQ(g2.pattern_triangles, g1.pattern_triangles);
+  EXPECT_LE((g2.rest_positions() - g1.rest_positions()).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LE((fresh->sim->garment_positions() - sim.garment_positions()).cwiseAbs().maxCoeff(),
+            1e-7);
+
+  // A checkpoint whose remeshed pattern does not fit the scene is refused, naming the
+  // JSON path of the mismatch.
+  OptimizationCheckpoint bad = saved;
+  bad.remeshed->pattern.pieces[0].name = "other";
+  auto other = make_sleeve_scene(so);
+  DesignProblem other_problem(*other->sim, factory(*other->sim), po, factory);
+  PatternOptimizer refused(other_problem, oo);
   try {
-    resumed.resume(read_checkpoint(dir + "/checkpoint.json", names));
-    ADD_FAILURE() << "resume after a remeshing was accepted";
+    refused.resume(bad);
+    ADD_FAILURE() << "a checkpoint of another pattern was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("remesh"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/remeshed/pattern/pieces/0/name"), std::string::npos)
+        << e.what();
+  }
+  nlohmann::json j = checkpoint_json(saved, names);
+  j["remeshed"]["pattern"]["seams"][0]["b"]["vertices"].erase(0);
+  try {
+    checkpoint_from_json(j, names, "ck.json");
+    ADD_FAILURE() << "unequal seam sides were accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("ck.json: /remeshed/pattern/seams/0"), std::string::npos)
+        << e.what();
   }
 }
 

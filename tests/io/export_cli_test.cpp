@@ -200,6 +200,57 @@ TEST_F(ExportCli, OptimizeRunKeepsHistoryAndCheckpointInPlace) {
   EXPECT_LE(res, tol);
 }
 
+TEST_F(ExportCli, RemeshedOptimizeRunIsRegeneratedExactly) {
+  // A regular sleeve pushed to an across-the-grain stretch of 1.6-1.7 flattens its
+  // triangles and is remeshed (measured: after iterations 1 and 3).
+  nlohmann::json scene = sleeve_scene();
+  scene["garment"]["sleeve"]["jitter"] = 0.0;
+  scene["optimize"] = {{"objectives",
+                        {{"directional_stretch",
+                          {{"weight", 1}, {"min", 1.6}, {"max", 1.7}, {"direction", "across_grain"}}}}},
+                       {"remesh", {{"min_angle_deg", 40}}},
+                       {"max_iterations", 5}};
+  const fs::path original = run("optimize", scene);
+  const nlohmann::json state = read_json(original / "state.json");
+  ASSERT_TRUE(state["pattern"].value("remeshed", false)) << "the run did not remesh";
+  const fs::path copy = dir_ / "copy";
+  const CliRun r = run_cli("export " + original.string() + " --out " + copy.string());
+  std::printf("%s", r.output.c_str());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : kSameBytes) EXPECT_EQ(read_text(copy / f), read_text(original / f)) << f;
+  EXPECT_EQ(read_text(copy / "history.json"), read_text(original / "history.json"));
+  expect_json_near(read_json(copy / "result.json"), read_json(original / "result.json"), 1e-12);
+  EXPECT_EQ(report_data(copy / "report.html"), report_data(original / "report.html"));
+  const auto [res, tol] = residual(r.output);
+  EXPECT_GE(res, 0.0) << r.output;
+  EXPECT_LE(res, tol);
+
+  // A saved pattern that does not fit the scene, or does not weld, is an input error
+  // naming the file and the JSON path; nothing is written.
+  auto expect_rejected = [&](const nlohmann::json& j, const std::string& message) {
+    std::ofstream(original / "state.json") << j.dump();
+    const CliRun bad = run_cli("export " + original.string() + " --out " + (dir_ / "bad").string());
+    EXPECT_EQ(bad.exit_code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("state.json: " + message), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+  };
+  nlohmann::json j = state;
+  j["pattern"]["pieces"][0]["name"] = "other";
+  expect_rejected(j, "/pattern/pieces/0/name");
+  j = state;
+  j["pattern"]["seams"][0]["a"]["vertices"].erase(0);
+  expect_rejected(j, "/pattern/seams/0");
+  j = state;
+  j["pattern"]["pinned"].erase(0);
+  expect_rejected(j, "/pattern/pinned");
+  j = state;
+  j["pattern"]["pieces"][0]["triangles"][0][1] = 100000;
+  expect_rejected(j, "/pattern/pieces/0/triangles/0/1");
+  j = state;
+  j["garment"].erase(0);
+  expect_rejected(j, "/garment: ");
+}
+
 TEST_F(ExportCli, LayoutRunIsRegeneratedExactly) {
   const fs::path original = run("layout", layout_scene());
   const fs::path copy = dir_ / "copy";

@@ -86,6 +86,106 @@ TEST(RunState, RoundTripIsBitExact) {
   }
 }
 
+std::string read_error(const nlohmann::json& j);
+
+/// The sample state with a complete (remeshed) pattern of its one piece: a square with
+/// a seam joining its left and right edges and a pinned bottom edge.
+RunState remeshed_state() {
+  RunState s = sample_state("optimize");
+  Pattern p;
+  PatternPiece piece;
+  piece.name = "front";
+  piece.rest = s.pieces[0].rest;
+  piece.triangles = s.pieces[0].triangles;
+  piece.boundary = {0, 1, 2, 3};
+  piece.corners = {0, 2};
+  piece.grain = Vec2(kAwkward[0], kAwkward[1]);
+  p.pieces.push_back(piece);
+  p.seams.push_back({"side", {0, {0, 3}}, {0, {1, 2}}});
+  p.pinned.push_back({"hem", 0, {0, 1}});
+  s.pattern = p;
+  s.state.garment.resize(2);  // the seam welds 4 pattern vertices into 2
+  return s;
+}
+
+TEST(RunState, RemeshedPatternRoundTripIsBitExact) {
+  const RunState s = remeshed_state();
+  const std::string text = run_state_json(s).dump();
+  const RunState r = run_state_from_json(nlohmann::json::parse(text), "state.json");
+  ASSERT_TRUE(r.pattern.has_value());
+  const PatternPiece& a = s.pattern->pieces[0];
+  const PatternPiece& b = r.pattern->pieces[0];
+  EXPECT_EQ(b.name, a.name);
+  EXPECT_EQ(b.triangles, a.triangles);
+  EXPECT_EQ(b.boundary, a.boundary);
+  EXPECT_EQ(b.corners, a.corners);
+  EXPECT_TRUE(bit_equal(b.grain.x(), a.grain.x()) && bit_equal(b.grain.y(), a.grain.y()));
+  for (Eigen::Index i = 0; i < a.rest.size(); ++i)
+    EXPECT_TRUE(bit_equal(b.rest.data()[i], a.rest.data()[i])) << i;
+  ASSERT_EQ(r.pattern->seams.size(), 1u);
+  EXPECT_EQ(r.pattern->seams[0].a.vertices, (std::vector<int>{0, 3}));
+  EXPECT_EQ(r.pattern->seams[0].b.vertices, (std::vector<int>{1, 2}));
+  ASSERT_EQ(r.pattern->pinned.size(), 1u);
+  EXPECT_EQ(r.pattern->pinned[0].vertices, (std::vector<int>{0, 1}));
+  // The short piece list follows the saved pattern.
+  ASSERT_EQ(r.pieces.size(), 1u);
+  EXPECT_EQ(r.pieces[0].triangles, a.triangles);
+  EXPECT_EQ(run_state_json(r).dump(), text);
+}
+
+TEST(RunState, RemeshedPatternIsWeldedAndCheckedAgainstTheScene) {
+  const RunState s = remeshed_state();
+  Body body;
+  body.volume.vertices = s.state.body;
+  // The scene's pattern: the same piece, seam and pinned edge with another mesh.
+  Pattern scene = *s.pattern;
+  scene.pieces[0].triangles.resize(2, 3);
+  scene.pieces[0].triangles << 0, 1, 3, 1, 2, 3;
+  const Garment scene_garment = weld_pattern(scene);
+  const Garment g = run_state_garment(s, scene_garment, body, 100, "state.json");
+  EXPECT_EQ(g.num_garment_vertices, 2);
+  EXPECT_EQ(g.pattern.pieces[0].triangles, s.pattern->pieces[0].triangles);
+  EXPECT_EQ(g.embedding.size(), 2u);
+  auto error = [&](const RunState& state) {
+    try {
+      run_state_garment(state, scene_garment, body, 100, "state.json");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  RunState bad = s;
+  bad.pattern->seams[0].name = "other";
+  EXPECT_NE(error(bad).find("state.json: /pattern/seams/0/name"), std::string::npos) << error(bad);
+  bad = s;
+  bad.pattern->pinned.clear();
+  EXPECT_NE(error(bad).find("state.json: /pattern/pinned: 0 pinned"), std::string::npos)
+      << error(bad);
+  bad = s;
+  bad.state.garment.resize(4);
+  EXPECT_NE(error(bad).find("state.json: /garment: 4 surface points, the saved pattern's"),
+            std::string::npos)
+      << error(bad);
+  // The reader checks the pattern's own consistency.
+  nlohmann::json j = run_state_json(s);
+  j["pattern"]["seams"][0]["b"]["vertices"] = {1};
+  EXPECT_NE(read_error(j).find("/pattern/seams/0: the sides have 2 and 1 vertices"),
+            std::string::npos)
+      << read_error(j);
+  j = run_state_json(s);
+  j["pattern"]["pieces"][0]["boundary"] = {0, 1, 1};
+  EXPECT_NE(read_error(j).find("/pattern/pieces/0/boundary: the loop repeats"), std::string::npos)
+      << read_error(j);
+  j = run_state_json(s);
+  j["pattern"]["pinned"][0]["piece"] = 3;
+  EXPECT_NE(read_error(j).find("/pattern/pinned/0/piece: piece 3 does not exist"),
+            std::string::npos)
+      << read_error(j);
+  j = run_state_json(s);
+  j["pattern"]["remeshed"] = false;
+  EXPECT_NE(read_error(j).find("/pattern/remeshed"), std::string::npos) << read_error(j);
+}
+
 TEST(RunState, StackedRestFollowsPieceOrder) {
   RunState s = sample_state("simulate");
   RunStatePiece second;

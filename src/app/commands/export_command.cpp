@@ -4,6 +4,8 @@
 /// The scene is rebuilt from the document saved in the state (body, limit surface,
 /// garment); the saved pattern, garment embedding and body positions are installed in
 /// the simulation and checked against the rebuilt garment (InputError on a mismatch).
+/// The state of a run that remeshed pieces holds its complete pattern: the garment is
+/// welded from it instead of the scene's layout (io/run_state.hpp, run_state_garment).
 /// For equilibrium runs the force residual of the saved state is recomputed and printed.
 /// OUT (default DIR) is replaced as a whole when the export succeeds; when OUT is DIR,
 /// files that export does not regenerate (e.g. checkpoint.json) are kept.
@@ -24,11 +26,15 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Regenerates the fit of a simulate/optimize state into `folder`; returns the files.
-std::vector<std::string> export_fit(const LoadedScene& scene, RunState& state,
-                                    const fs::path& folder) {
+std::vector<std::string> export_fit(const LoadedScene& scene, const Garment& garment,
+                                    RunState& state, const fs::path& folder) {
   auto sim = make_simulation(scene);
-  sim->set_rest_positions(stacked_rest_positions(state));
-  sim->set_state(state.state);
+  if (state.pattern) {
+    sim->replace_garment(garment, state.state);
+  } else {
+    sim->set_rest_positions(stacked_rest_positions(state));
+    sim->set_state(state.state);
+  }
   EmbeddedEquilibrium& problem = sim->problem();
   const double residual = problem.force_norm(problem.gradient());
   const NewtonOptions& newton = scene.spec.newton;
@@ -44,11 +50,8 @@ std::vector<std::string> export_fit(const LoadedScene& scene, RunState& state,
 }
 
 /// Regenerates the outputs of a layout state into `folder`; returns the files.
-std::vector<std::string> export_layout(const LoadedScene& scene, const RunState& state,
-                                       const fs::path& folder) {
-  Garment garment = scene.garment;
-  garment.set_rest_positions(stacked_rest_positions(state));
-  garment.embedding = state.state.garment;
+std::vector<std::string> export_layout(const LoadedScene& scene, const Garment& garment,
+                                       const RunState& state, const fs::path& folder) {
   const Points3 control = state.state.body.topRows(scene.body.num_surface_vertices());
   return write_layout_run_outputs(folder, garment, *scene.surface, control, state);
 }
@@ -74,7 +77,8 @@ void run_export(const std::string& dir, const std::string& out_option) {
   std::printf("tightfit export: %s run of %s\n", state.command.c_str(), state.scene_file.c_str());
   std::fflush(stdout);
   auto scene = load_scene(run_state_scene(state, source));
-  check_run_state(state, scene->garment, scene->body, scene->surface->num_faces(), source);
+  const Garment garment = run_state_garment(state, scene->garment, scene->body,
+                                            scene->surface->num_faces(), source);
   if (state.command == "layout" && scene->garment.pattern.pieces.size() > kMaxPatternPieces)
     throw InputError(source, "/command: a layout run of a garment without a pattern");
 
@@ -82,8 +86,8 @@ void run_export(const std::string& dir, const std::string& out_option) {
   const bool in_place = fs::exists(out_dir) && fs::equivalent(out_dir, dir);
   OutputDirectory out(out_dir);
   const std::vector<std::string> files = state.command == "layout"
-                                             ? export_layout(*scene, state, out.staging())
-                                             : export_fit(*scene, state, out.staging());
+                                             ? export_layout(*scene, garment, state, out.staging())
+                                             : export_fit(*scene, garment, state, out.staging());
   const std::vector<std::string> kept =
       in_place ? keep_other_files(dir, out.staging()) : std::vector<std::string>{};
   out.commit();

@@ -8,8 +8,10 @@
 /// pattern files (pattern.svg, pattern_*.pdf, pattern.dxf, pieces.json), the fit at
 /// the final equilibrium (report.html with the objective history, fit.glb,
 /// garment.ply, body.ply), result.json, scene.json and state.json (the run state that
-/// `tightfit export` regenerates these files from). `--resume DIR` continues from
-/// DIR/checkpoint.json (same scene and objective terms), appending to the history.
+/// `tightfit export` regenerates these files from; it holds the complete pattern when
+/// pieces were remeshed). `--resume DIR` continues from DIR/checkpoint.json (same scene
+/// and objective terms), appending to the history; a checkpoint written after a
+/// remeshing carries the remeshed pattern, which the run continues on.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -87,7 +89,10 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
       optimizer.resume(read_checkpoint(file, names));
     } catch (const InputError& e) {
       if (e.source() == file.string()) throw;
-      throw InputError(file.string(), e.what());  // e.g. a checkpoint of another garment
+      // e.g. a checkpoint of another garment (source "checkpoint"): name the file instead
+      std::string what = e.what();
+      if (what.starts_with(e.source() + ": ")) what.erase(0, e.source().size() + 2);
+      throw InputError(file.string(), what);
     }
     std::printf("  resuming from %s at iteration %d\n", file.c_str(),
                 optimizer.checkpoint().iteration);
@@ -115,7 +120,8 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
   const FitAnalysis fit = sim->analyze();
   const auto op = input.scene.pressure_operator;
   const std::vector<OptimizationIteration>& history = optimizer.history();
-  RunState state = make_run_state("optimize", input.scene, sim->garment(), sim->problem().state());
+  RunState state = make_run_state("optimize", input.scene, sim->garment(), sim->problem().state(),
+                                  &scene->garment.pattern);
   state.term_names = names;
   state.history = history;
   nlohmann::json initial_terms, final_terms;

@@ -5,6 +5,7 @@
 
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/json_fields.hpp"
+#include "tightfit/garment/pattern_record.hpp"
 
 namespace tightfit {
 namespace {
@@ -171,14 +172,25 @@ nlohmann::json checkpoint_json(const OptimizationCheckpoint& c,
   nlohmann::json history = nlohmann::json::array();
   for (const OptimizationIteration& it : c.history)
     history.push_back(iteration_json(it, term_names));
-  return {{"format", kFormat},
-          {"version", kVersion},
-          {"iteration", c.iteration},
-          {"terms", term_names},
-          {"parameters", vector_json(c.parameters)},
-          {"state", {{"garment", garment}, {"body", body}}},
-          {"memory", {{"s", s}, {"y", y}}},
-          {"history", history}};
+  nlohmann::json j = {{"format", kFormat},
+                      {"version", kVersion},
+                      {"iteration", c.iteration},
+                      {"terms", term_names},
+                      {"parameters", vector_json(c.parameters)},
+                      {"state", {{"garment", garment}, {"body", body}}},
+                      {"memory", {{"s", s}, {"y", y}}},
+                      {"history", history}};
+  if (c.remeshed) {
+    nlohmann::json mesh_rest = nlohmann::json::array();
+    for (const Points2& rest : c.remeshed->mesh_rest) {
+      nlohmann::json rows = nlohmann::json::array();
+      for (Eigen::Index i = 0; i < rest.rows(); ++i) rows.push_back({rest(i, 0), rest(i, 1)});
+      mesh_rest.push_back(std::move(rows));
+    }
+    j["remeshed"] = {{"pattern", pattern_record_json(c.remeshed->pattern)},
+                     {"mesh_rest", mesh_rest}};
+  }
+  return j;
 }
 
 OptimizationCheckpoint checkpoint_from_json(const nlohmann::json& j,
@@ -220,6 +232,30 @@ OptimizationCheckpoint checkpoint_from_json(const nlohmann::json& j,
   c.memory.y = read_vectors(memory->raw("y"), source, "/memory/y", c.parameters.size());
   if (c.memory.s.size() != c.memory.y.size()) memory->fail("s and y differ in length");
   memory->finish();
+
+  if (auto remeshed = f.object("remeshed")) {
+    RemeshedDesign d;
+    d.pattern = pattern_record_from_json(remeshed->raw("pattern"), source, "/remeshed/pattern");
+    const nlohmann::json& mesh_rest = remeshed->raw("mesh_rest");
+    if (!mesh_rest.is_array() || mesh_rest.size() != d.pattern.pieces.size())
+      remeshed->fail("expected one array of rest positions per piece (" +
+                         std::to_string(d.pattern.pieces.size()) + ")",
+                     "mesh_rest");
+    for (size_t k = 0; k < mesh_rest.size(); ++k) {
+      const std::string p = "/remeshed/mesh_rest/" + std::to_string(k);
+      const Eigen::Index n = d.pattern.pieces[k].rest.rows();
+      const std::vector<VecX> rows = read_vectors(mesh_rest[k], source, p, 2);
+      if (static_cast<Eigen::Index>(rows.size()) != n)
+        throw InputError(source, p + ": " + std::to_string(rows.size()) +
+                                     " positions, the piece has " + std::to_string(n) +
+                                     " vertices");
+      Points2 rest(n, 2);
+      for (Eigen::Index i = 0; i < n; ++i) rest.row(i) = rows[static_cast<size_t>(i)].transpose();
+      d.mesh_rest.push_back(std::move(rest));
+    }
+    remeshed->finish();
+    c.remeshed = std::move(d);
+  }
 
   const nlohmann::json& history = f.raw("history");
   if (!history.is_array() || history.empty())

@@ -5,7 +5,10 @@
 /// checkpoint.json: {"format": "tightfit-optimization-checkpoint", "version": 1,
 ///   "iteration": k, "parameters": [p...] (m),
 ///   "state": {"garment": [[face, u, v], ...], "body": [[x, y, z], ...] (m)},
-///   "memory": {"s": [[...], ...], "y": [[...], ...]}, "history": [iteration records]}
+///   "memory": {"s": [[...], ...], "y": [[...], ...]}, "history": [iteration records],
+///   "remeshed" (only after a remeshing): {"pattern": the complete pattern with the
+///     reference rest positions (garment/pattern_record.hpp), "mesh_rest": per piece
+///     [[x, y], ...] (m), the rest positions its mesh was made with}}
 /// Doubles are written with round-trip precision, so a resumed run continues with
 /// bit-identical numbers.
 ///

@@ -44,6 +44,7 @@ DesignProblem::DesignProblem(GarmentSimulation& sim, std::shared_ptr<const Desig
     target_edge_.push_back(options_.remesh.edge_length > 0.0 ? options_.remesh.edge_length
                                                              : mean_edge_length(piece));
     fresh_.push_back(piece_quality(piece));
+    mesh_rest_.push_back(piece.rest);
   }
   reset_reference();
 }
@@ -112,7 +113,9 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
   out.min_angle_before = 180.0;
   out.min_angle_after = 180.0;
   std::vector<PieceQuality> fresh = fresh_;
+  std::vector<Points2> mesh_rest = mesh_rest_;
   for (int k : r.remeshed) {
+    mesh_rest[static_cast<size_t>(k)] = r.garment.pattern.pieces[static_cast<size_t>(k)].rest;
     out.min_angle_before = std::min(out.min_angle_before,
                                     piece_quality(old_garment.pattern.pieces[static_cast<size_t>(k)]).min_angle_deg);
     fresh[static_cast<size_t>(k)] = piece_quality(r.garment.pattern.pieces[static_cast<size_t>(k)]);
@@ -160,12 +163,106 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
   if (!out.evaluation.ok) return undo("re-solve after remeshing: " + out.evaluation.failure);
   accept();
   fresh_ = std::move(fresh);
+  mesh_rest_ = std::move(mesh_rest);
+  remeshed_ = true;
   out.ok = true;
   out.parameters_after = num_parameters();
   out.garment_vertices_after = sim_.garment().num_garment_vertices;
   out.triangles_after = static_cast<int>(sim_.garment().pattern_triangles.rows());
   out.seconds = seconds_since(t0);
   return out;
+}
+
+std::optional<RemeshedDesign> DesignProblem::remeshed_design() const {
+  if (!remeshed_) return std::nullopt;
+  RemeshedDesign d;
+  Garment g = sim_.garment();
+  g.set_rest_positions(initial_rest_);
+  d.pattern = std::move(g.pattern);
+  d.mesh_rest = mesh_rest_;
+  return d;
+}
+
+void DesignProblem::restore_remeshed_design(const RemeshedDesign& design,
+                                            const EmbeddedState& state) {
+  if (!make_objective_)
+    throw std::logic_error("DesignProblem::restore_remeshed_design: no objective factory");
+  const std::string source = "checkpoint";
+  const Pattern& scene = sim_.garment().pattern;
+  const Pattern& p = design.pattern;
+  auto mismatch = [&](const std::string& path, const std::string& what) {
+    throw InputError(source, "/remeshed/pattern/" + path + ": " + what +
+                                 " (a checkpoint of another garment?)");
+  };
+  if (p.pieces.size() != scene.pieces.size())
+    mismatch("pieces", std::to_string(p.pieces.size()) + " pieces, the scene's garment has " +
+                           std::to_string(scene.pieces.size()));
+  for (size_t k = 0; k < p.pieces.size(); ++k)
+    if (p.pieces[k].name != scene.pieces[k].name)
+      mismatch("pieces/" + std::to_string(k) + "/name",
+               "\"" + p.pieces[k].name + "\", the scene's piece is \"" + scene.pieces[k].name + "\"");
+  if (p.seams.size() != scene.seams.size())
+    mismatch("seams", std::to_string(p.seams.size()) + " seams, the scene's garment has " +
+                          std::to_string(scene.seams.size()));
+  for (size_t k = 0; k < p.seams.size(); ++k)
+    if (p.seams[k].name != scene.seams[k].name || p.seams[k].a.piece != scene.seams[k].a.piece ||
+        p.seams[k].b.piece != scene.seams[k].b.piece)
+      mismatch("seams/" + std::to_string(k),
+               "seam \"" + p.seams[k].name + "\" differs from the scene's \"" +
+                   scene.seams[k].name + "\" (name or pieces)");
+  if (p.pinned.size() != scene.pinned.size())
+    mismatch("pinned", std::to_string(p.pinned.size()) +
+                           " pinned boundaries, the scene's garment has " +
+                           std::to_string(scene.pinned.size()));
+  for (size_t k = 0; k < p.pinned.size(); ++k)
+    if (p.pinned[k].name != scene.pinned[k].name || p.pinned[k].piece != scene.pinned[k].piece)
+      mismatch("pinned/" + std::to_string(k),
+               "pinned boundary \"" + p.pinned[k].name + "\" differs from the scene's \"" +
+                   scene.pinned[k].name + "\" (name or piece)");
+  if (design.mesh_rest.size() != p.pieces.size())
+    throw InputError(source, "/remeshed/mesh_rest: " + std::to_string(design.mesh_rest.size()) +
+                                 " pieces, the pattern has " + std::to_string(p.pieces.size()));
+  Pattern mesh_pattern = p;
+  std::vector<PieceQuality> fresh;
+  for (size_t k = 0; k < p.pieces.size(); ++k) {
+    if (design.mesh_rest[k].rows() != p.pieces[k].rest.rows())
+      throw InputError(source, "/remeshed/mesh_rest/" + std::to_string(k) + ": " +
+                                   std::to_string(design.mesh_rest[k].rows()) +
+                                   " positions, the piece has " +
+                                   std::to_string(p.pieces[k].rest.rows()) + " vertices");
+    mesh_pattern.pieces[k].rest = design.mesh_rest[k];
+    fresh.push_back(piece_quality(mesh_pattern.pieces[k]));
+  }
+
+  Garment garment;
+  BiharmonicCoordinates coordinates = coordinates_;
+  try {
+    garment = weld_pattern(p);
+    coordinates = BiharmonicCoordinates(mesh_pattern);
+  } catch (const InputError& e) {
+    throw InputError(source, std::string("/remeshed: ") + e.what());
+  } catch (const SolverError& e) {
+    throw InputError(source, std::string("/remeshed: the biharmonic coordinates of the mesh "
+                                         "rest positions failed: ") + e.what());
+  }
+  if (static_cast<int>(state.garment.size()) != garment.num_garment_vertices ||
+      state.body.rows() != sim_.body().volume.vertices.rows())
+    throw InputError(source, "/state: " + std::to_string(state.garment.size()) +
+                                 " garment surface points and " +
+                                 std::to_string(state.body.rows()) +
+                                 " body positions, the remeshed garment has " +
+                                 std::to_string(garment.num_garment_vertices) + " and the body " +
+                                 std::to_string(sim_.body().volume.vertices.rows()));
+  sim_.replace_garment(std::move(garment), state);
+  auto objective = make_objective_(sim_);
+  if (!objective || objective->entries().size() != objective_->entries().size())
+    throw std::invalid_argument("the objective factory built other terms for the remeshed pattern");
+  objective_ = std::move(objective);
+  coordinates_ = std::move(coordinates);
+  fresh_ = std::move(fresh);
+  mesh_rest_ = design.mesh_rest;
+  remeshed_ = true;
+  reset_reference();
 }
 
 Points2 DesignProblem::rest_positions(const VecX& p) const {

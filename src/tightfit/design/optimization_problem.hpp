@@ -26,14 +26,18 @@
 /// coordinates (pieces left unchanged keep theirs), makes the remeshed pattern the new
 /// reference (initial parameters, areas), and solves the equilibrium from the
 /// transferred state. If that solve fails, everything is put back as it was.
+/// remeshed_design() describes the result for a checkpoint, and restore_remeshed_design()
+/// puts a problem built from the scene back into that remeshed state (--resume).
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "tightfit/design/adjoint_gradient.hpp"
 #include "tightfit/design/biharmonic_coordinates.hpp"
 #include "tightfit/design/design_term.hpp"
+#include "tightfit/design/optimization_state.hpp"
 #include "tightfit/design/pattern_remesh.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
@@ -148,6 +152,22 @@ class DesignProblem {
   /// without an objective factory.
   RemeshOutcome remesh(const std::vector<int>& pieces);
 
+  /// After a successful remesh(): the remeshed pattern with the reference rest positions
+  /// and each piece's mesh rest positions; nullopt while the garment is the one this
+  /// problem was constructed with.
+  std::optional<RemeshedDesign> remeshed_design() const;
+  /// Puts this problem, constructed for the scene's garment, into the state after the
+  /// remeshing described by `design` (from remeshed_design() of an earlier run): the
+  /// simulation's garment becomes weld_pattern(design.pattern) at `state`, the
+  /// biharmonic coordinates and fresh-mesh qualities are built from the mesh rest
+  /// positions, the objective is rebuilt and the reference reset, exactly as after that
+  /// remesh(); the accepted point is the reference at `state`. The target edge lengths
+  /// stay those of the scene's garment. Throws InputError (source "checkpoint", naming
+  /// the JSON path under /remeshed) when the design does not fit the scene's garment
+  /// (pieces, seams, pinned boundaries), the state does not fit the design, or its
+  /// meshes are invalid; std::logic_error without an objective factory.
+  void restore_remeshed_design(const RemeshedDesign& design, const EmbeddedState& state);
+
  private:
   void reset_reference();  // the garment's current rest shape becomes the reference
 
@@ -163,6 +183,8 @@ class DesignProblem {
   ObjectiveFactory make_objective_;
   std::vector<double> target_edge_;     // per piece (m)
   std::vector<PieceQuality> fresh_;     // per piece: quality of its last fresh mesh
+  std::vector<Points2> mesh_rest_;      // per piece: rest positions its mesh was made with
+  bool remeshed_ = false;               // a remesh() succeeded (or one was restored)
   VecX accepted_p_;
   EmbeddedState accepted_state_;
   VecX current_p_;  // parameters the simulation's rest positions are set to

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tightfit/common/types.hpp"
+#include "tightfit/garment/pattern.hpp"
 #include "tightfit/solve/embedded_equilibrium.hpp"
 
 namespace tightfit {
@@ -58,14 +59,28 @@ struct LbfgsMemory {
   std::vector<VecX> y;
 };
 
+/// The design problem's pattern once pieces were remeshed (DesignProblem::remesh), as
+/// far as it differs from the problem built from the scene: what a resumed run needs to
+/// rebuild the garment, the biharmonic coordinates and the reference pattern exactly.
+struct RemeshedDesign {
+  /// The complete pattern with the reference rest positions Xbar0 (the rest shape at
+  /// the last remeshing, which p0 and the reference areas come from).
+  Pattern pattern;
+  /// Per piece (n_k×2, m): the rest positions its current mesh was made with. Its
+  /// biharmonic coordinates and its fresh-mesh quality are built from them.
+  std::vector<Points2> mesh_rest;
+};
+
 /// Everything needed to continue a run: the accepted parameters and equilibrium, the
-/// L-BFGS memory and the history so far.
+/// L-BFGS memory and the history so far, and the remeshed pattern when pieces were
+/// remeshed.
 struct OptimizationCheckpoint {
   int iteration = 0;    ///< last accepted iteration
   VecX parameters;      ///< p (m)
   EmbeddedState state;  ///< equilibrium at p
-  LbfgsMemory memory;
+  LbfgsMemory memory;   ///< pairs since the last remeshing (it clears the memory)
   std::vector<OptimizationIteration> history;
+  std::optional<RemeshedDesign> remeshed;  ///< set once a remeshing succeeded
 };
 
 }  // namespace tightfit

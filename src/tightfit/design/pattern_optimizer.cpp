@@ -70,19 +70,28 @@ void PatternOptimizer::push_pair(const VecX& s, const VecX& y) {
 }
 
 void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
+  bool remeshed = false;
   for (const OptimizationIteration& it : checkpoint.history)
-    if (it.remesh && it.remesh->failure.empty())
-      throw InputError("checkpoint",
-                       "the run remeshed pieces after iteration " + std::to_string(it.iteration) +
-                           "; --resume cannot continue after a remeshing (the checkpoint does "
-                           "not hold the new meshes): start a new run");
+    remeshed = remeshed || (it.remesh && it.remesh->failure.empty());
+  if (remeshed && !checkpoint.remeshed)
+    throw InputError("checkpoint", "its history has a remeshing but it holds no remeshed "
+                                   "pattern (/remeshed)");
+  if (!remeshed && checkpoint.remeshed)
+    throw InputError("checkpoint", "it holds a remeshed pattern (/remeshed) but its history "
+                                   "has no remeshing");
+  if (checkpoint.history.empty())
+    throw InputError("checkpoint", "it has no history (not even the initial iteration)");
+  if (checkpoint.remeshed) {
+    if (!problem_.can_remesh())
+      throw InputError("checkpoint", "it was written after a remeshing, and this problem "
+                                     "cannot rebuild its objective for a remeshed pattern");
+    problem_.restore_remeshed_design(*checkpoint.remeshed, checkpoint.state);
+  }
   const Eigen::Index n = problem_.num_parameters();
   if (checkpoint.parameters.size() != n)
     throw InputError("checkpoint", "it has " + std::to_string(checkpoint.parameters.size()) +
                                        " design parameters, the garment needs " +
                                        std::to_string(n) + " (another garment or mesh?)");
-  if (checkpoint.history.empty())
-    throw InputError("checkpoint", "it has no history (not even the initial iteration)");
   if (checkpoint.memory.s.size() != checkpoint.memory.y.size())
     throw InputError("checkpoint", "its L-BFGS memory has unequal s and y counts");
   for (size_t k = 0; k < checkpoint.memory.s.size(); ++k)
@@ -98,6 +107,23 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
   iteration_ = checkpoint.iteration;
   seconds_before_ = history_.back().seconds;
   resumed_ = true;
+  // The loop's counters as they were after the last record (see run()).
+  stalled_ = 0;
+  remesh_blocked_until_ = -1;
+  for (size_t k = 1; k < history_.size(); ++k) {
+    const OptimizationIteration& prev = history_[k - 1];
+    const double before =
+        prev.remesh && prev.remesh->failure.empty() ? prev.remesh->value : prev.value;
+    const double decrease = before - history_[k].value;
+    stalled_ = decrease <= options_.relative_decrease_tolerance * std::abs(before) ? stalled_ + 1
+                                                                                    : 0;
+    if (const auto& r = history_[k].remesh) {
+      if (r->failure.empty())
+        stalled_ = 0;
+      else
+        remesh_blocked_until_ = history_[k].iteration + kRemeshRetryGap;
+    }
+  }
 }
 
 OptimizationCheckpoint PatternOptimizer::checkpoint() const {
@@ -107,6 +133,7 @@ OptimizationCheckpoint PatternOptimizer::checkpoint() const {
   c.state = problem_.accepted_state();
   c.memory = memory_;
   c.history = history_;
+  c.remeshed = problem_.remeshed_design();
   return c;
 }
 
@@ -136,6 +163,8 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
     first.seconds_adjoint = current.seconds_adjoint;
     first.seconds = elapsed();
     history_.push_back(first);
+    stalled_ = 0;
+    remesh_blocked_until_ = -1;
     if (on_iteration) on_iteration(first);
   }
   resumed_ = true;  // a second run() continues this one
@@ -144,8 +173,6 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
   const double gradient_stop =
       std::max(options_.gradient_tolerance,
                options_.relative_gradient_tolerance * history_.front().gradient_norm);
-  int stalled = 0;
-  int remesh_blocked_until = -1;  // no new attempt right after a failed remeshing
   std::ostringstream reason;
   for (;;) {
     const double gnorm = current.gradient.norm();
@@ -159,9 +186,9 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
       result.converged = true;
       break;
     }
-    if (stalled >= options_.stall_iterations) {
+    if (stalled_ >= options_.stall_iterations) {
       reason << "relative decrease below " << options_.relative_decrease_tolerance << " for "
-             << stalled << " iterations";
+             << stalled_ << " iterations";
       result.converged = true;
       break;
     }
@@ -235,8 +262,8 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
     problem_.accept();
     p += step;
     const double decrease = current.value - trial.value;
-    stalled = decrease <= options_.relative_decrease_tolerance * std::abs(current.value)
-                  ? stalled + 1
+    stalled_ = decrease <= options_.relative_decrease_tolerance * std::abs(current.value)
+                  ? stalled_ + 1
                   : 0;
     current = std::move(trial);
     ++iteration_;
@@ -251,7 +278,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
     rec.hessian_shift = current.hessian_shift;
 
     if (problem_.options().remesh.enabled && problem_.can_remesh() &&
-        iteration_ > remesh_blocked_until) {
+        iteration_ > remesh_blocked_until_) {
       const std::vector<int> degraded = problem_.degraded_pieces();
       if (!degraded.empty()) {
         RemeshOutcome o = problem_.remesh(degraded);
@@ -267,14 +294,14 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
           current = std::move(o.evaluation);
           p = problem_.accepted_parameters();
           memory_ = {};
-          stalled = 0;
+          stalled_ = 0;
           r.value = current.value;
           r.term_values = current.term_values;
           r.gradient_norm = current.gradient.norm();
           r.parameters = o.parameters_after;
           r.garment_vertices = o.garment_vertices_after;
         } else {
-          remesh_blocked_until = iteration_ + kRemeshRetryGap;
+          remesh_blocked_until_ = iteration_ + kRemeshRetryGap;
           r.value = current.value;
           r.term_values = current.term_values;
           r.gradient_norm = current.gradient.norm();

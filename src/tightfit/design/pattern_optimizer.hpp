@@ -27,7 +27,10 @@
 /// continues from the remeshed pattern's equilibrium with an empty L-BFGS memory, and
 /// the iteration's record carries a RemeshRecord. A remeshing that fails is undone
 /// (recorded with its failure) and not tried again for 5 iterations. A checkpoint
-/// written after a remeshing cannot be resumed (resume() throws InputError).
+/// written after a remeshing carries the remeshed design (RemeshedDesign); resume()
+/// restores it (DesignProblem::restore_remeshed_design) before the parameters, so the
+/// run continues on the remeshed pattern with the same coordinates and reference. The
+/// stall count and the wait after a failed remeshing are recomputed from the history.
 ///
 /// Stopping (checked on each accepted point): ‖∇T‖ ≤ max(gradient_tolerance,
 /// relative_gradient_tolerance·‖∇T_0‖); T ≤ value_tolerance (range objectives reach 0
@@ -76,8 +79,9 @@ class PatternOptimizer {
   PatternOptimizer(DesignProblem& problem, PatternOptimizerOptions options = {});
 
   /// Continues from a checkpoint instead of the problem's initial parameters (puts the
-  /// simulation at the saved equilibrium). Call before run(). Throws InputError when
-  /// the checkpoint does not fit the problem or was written after a remeshing.
+  /// simulation at the saved equilibrium; after a remeshing, on the saved remeshed
+  /// pattern). Call before run(), on a problem built from the scene. Throws InputError
+  /// when the checkpoint does not fit the problem.
   void resume(const OptimizationCheckpoint& checkpoint);
 
   /// Runs until a stopping criterion (see the header comment). Throws SolverError when
@@ -103,6 +107,8 @@ class PatternOptimizer {
   int iteration_ = 0;
   double seconds_before_ = 0.0;  // wall time of earlier runs (resume)
   bool resumed_ = false;
+  int stalled_ = 0;                 // consecutive steps below the relative decrease tolerance
+  int remesh_blocked_until_ = -1;   // no remeshing attempt up to this iteration
 };
 
 }  // namespace tightfit

@@ -6,6 +6,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/json_fields.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
+#include "tightfit/garment/pattern_record.hpp"
 
 namespace tightfit {
 namespace {
@@ -65,7 +66,8 @@ nlohmann::json rows_json(const auto& m) {
 }  // namespace
 
 RunState make_run_state(const std::string& command, const SceneSpec& spec,
-                        const Garment& garment, const EmbeddedState& state) {
+                        const Garment& garment, const EmbeddedState& state,
+                        const Pattern* scene_pattern) {
   RunState s;
   s.command = command;
   s.scene_file = spec.file;
@@ -73,6 +75,8 @@ RunState make_run_state(const std::string& command, const SceneSpec& spec,
   if (!s.scene_base_dir.has_filename()) s.scene_base_dir = s.scene_base_dir.parent_path();
   s.scene = spec.document;
   for (const PatternPiece& p : garment.pattern.pieces) s.pieces.push_back({p.name, p.rest, p.triangles});
+  if (scene_pattern && !same_pattern_meshes(garment.pattern, *scene_pattern))
+    s.pattern = garment.pattern;
   s.state = state;
   s.result = nlohmann::json::object();
   return s;
@@ -86,10 +90,17 @@ nlohmann::json history_json(const std::vector<OptimizationIteration>& history,
 }
 
 nlohmann::json run_state_json(const RunState& s) {
-  nlohmann::json pieces = nlohmann::json::array();
-  for (const RunStatePiece& p : s.pieces)
-    pieces.push_back(
-        {{"name", p.name}, {"rest", rows_json(p.rest)}, {"triangles", rows_json(p.triangles)}});
+  nlohmann::json pattern;
+  if (s.pattern) {
+    pattern = pattern_record_json(*s.pattern);
+    pattern["remeshed"] = true;
+  } else {
+    nlohmann::json pieces = nlohmann::json::array();
+    for (const RunStatePiece& p : s.pieces)
+      pieces.push_back(
+          {{"name", p.name}, {"rest", rows_json(p.rest)}, {"triangles", rows_json(p.triangles)}});
+    pattern = {{"pieces", pieces}};
+  }
   nlohmann::json garment = nlohmann::json::array();
   for (const SurfacePoint& q : s.state.garment) garment.push_back({q.face, q.u, q.v});
   nlohmann::json j = {{"format", kFormat},
@@ -98,7 +109,7 @@ nlohmann::json run_state_json(const RunState& s) {
                       {"scene_file", s.scene_file},
                       {"scene_base_dir", s.scene_base_dir.string()},
                       {"scene", s.scene},
-                      {"pattern", {{"pieces", pieces}}},
+                      {"pattern", pattern},
                       {"garment", garment},
                       {"body", rows_json(s.state.body)},
                       {"result", s.result}};
@@ -121,16 +132,27 @@ RunState run_state_from_json(const nlohmann::json& j, const std::string& source)
   s.scene = f.raw("scene");
   if (!s.scene.is_object()) f.fail("expected the scene document (an object)", "scene");
 
-  auto pattern = f.object("pattern", true);
-  for (JsonFields& p : pattern->objects("pieces", true)) {
-    RunStatePiece piece;
-    piece.name = p.string("name");
-    piece.rest = read_rows(p.raw("rest"), 2, source, p.child_path("rest"));
-    piece.triangles = read_triangles(p.raw("triangles"), source, p.child_path("triangles"));
-    p.finish();
-    s.pieces.push_back(std::move(piece));
+  const nlohmann::json& pattern_json = f.raw("pattern");
+  if (!pattern_json.is_object()) f.fail("expected an object (the pattern)", "pattern");
+  if (pattern_json.contains("remeshed")) {
+    if (pattern_json["remeshed"] != true)
+      throw InputError(source, "/pattern/remeshed: expected true (or no such member)");
+    nlohmann::json record = pattern_json;
+    record.erase("remeshed");
+    s.pattern = pattern_record_from_json(record, source, "/pattern");
+    for (const PatternPiece& p : s.pattern->pieces) s.pieces.push_back({p.name, p.rest, p.triangles});
+  } else {
+    JsonFields pattern(pattern_json, source, "/pattern");
+    for (JsonFields& p : pattern.objects("pieces", true)) {
+      RunStatePiece piece;
+      piece.name = p.string("name");
+      piece.rest = read_rows(p.raw("rest"), 2, source, p.child_path("rest"));
+      piece.triangles = read_triangles(p.raw("triangles"), source, p.child_path("triangles"));
+      p.finish();
+      s.pieces.push_back(std::move(piece));
+    }
+    pattern.finish();
   }
-  pattern->finish();
 
   const nlohmann::json& garment = f.raw("garment");
   if (!garment.is_array()) f.fail("expected an array of [face, u, v]", "garment");
@@ -185,32 +207,91 @@ SceneSpec run_state_scene(const RunState& state, const std::string& source) {
   }
 }
 
-void check_run_state(const RunState& s, const Garment& garment, const Body& body,
-                     int num_surface_faces, const std::string& source) {
-  const std::string changed = " (the scene or its files changed since the run?)";
+namespace {
+
+const char* const kChanged = " (the scene or its files changed since the run?)";
+
+/// The saved pieces against the scene's (names, vertex counts, triangles).
+void check_scene_pieces(const RunState& s, const Garment& garment, const std::string& source) {
   const auto& pieces = garment.pattern.pieces;
   if (s.pieces.size() != pieces.size())
     throw InputError(source, "/pattern/pieces: " + std::to_string(s.pieces.size()) +
                                  " pieces, the scene's garment has " +
-                                 std::to_string(pieces.size()) + changed);
+                                 std::to_string(pieces.size()) + kChanged);
   for (size_t k = 0; k < pieces.size(); ++k) {
     const std::string path = at("/pattern/pieces", k);
     const RunStatePiece& p = s.pieces[k];
     if (p.name != pieces[k].name)
       throw InputError(source, path + "/name: \"" + p.name + "\", the scene's piece is \"" +
-                                   pieces[k].name + "\"" + changed);
+                                   pieces[k].name + "\"" + kChanged);
     if (p.rest.rows() != pieces[k].rest.rows())
       throw InputError(source, path + "/rest: " + std::to_string(p.rest.rows()) +
                                    " vertices, the scene's piece has " +
-                                   std::to_string(pieces[k].rest.rows()) + changed);
+                                   std::to_string(pieces[k].rest.rows()) + kChanged);
     if (p.triangles != pieces[k].triangles)
-      throw InputError(source, path + "/triangles: differ from the scene's piece mesh" + changed);
+      throw InputError(source, path + "/triangles: differ from the scene's piece mesh" + kChanged);
+  }
+}
+
+/// A remeshed pattern against the scene's: remeshing keeps the pieces, seams and pinned
+/// boundaries (their names and the pieces they join), only the meshes change.
+void check_remeshed_pattern(const Pattern& saved, const Pattern& scene,
+                            const std::string& source) {
+  auto count = [&](const std::string& what, size_t n, size_t m) {
+    if (n != m)
+      throw InputError(source, "/pattern/" + what + ": " + std::to_string(n) + " " + what +
+                                   ", the scene's pattern has " + std::to_string(m) + kChanged);
+  };
+  auto same = [&](const std::string& path, const std::string& a, const std::string& b) {
+    if (a != b)
+      throw InputError(source, path + ": \"" + a + "\", the scene's is \"" + b + "\"" + kChanged);
+  };
+  auto same_piece = [&](const std::string& path, int a, int b) {
+    if (a != b)
+      throw InputError(source, path + ": piece " + std::to_string(a) + ", the scene's is piece " +
+                                   std::to_string(b) + kChanged);
+  };
+  count("pieces", saved.pieces.size(), scene.pieces.size());
+  for (size_t k = 0; k < scene.pieces.size(); ++k)
+    same(at("/pattern/pieces", k) + "/name", saved.pieces[k].name, scene.pieces[k].name);
+  count("seams", saved.seams.size(), scene.seams.size());
+  for (size_t k = 0; k < scene.seams.size(); ++k) {
+    const std::string path = at("/pattern/seams", k);
+    same(path + "/name", saved.seams[k].name, scene.seams[k].name);
+    same_piece(path + "/a/piece", saved.seams[k].a.piece, scene.seams[k].a.piece);
+    same_piece(path + "/b/piece", saved.seams[k].b.piece, scene.seams[k].b.piece);
+  }
+  count("pinned", saved.pinned.size(), scene.pinned.size());
+  for (size_t k = 0; k < scene.pinned.size(); ++k) {
+    const std::string path = at("/pattern/pinned", k);
+    same(path + "/name", saved.pinned[k].name, scene.pinned[k].name);
+    same_piece(path + "/piece", saved.pinned[k].piece, scene.pinned[k].piece);
+  }
+}
+
+}  // namespace
+
+Garment run_state_garment(const RunState& s, const Garment& scene_garment, const Body& body,
+                          int num_surface_faces, const std::string& source) {
+  Garment garment;
+  if (s.pattern) {
+    check_remeshed_pattern(*s.pattern, scene_garment.pattern, source);
+    try {
+      garment = weld_pattern(*s.pattern);
+    } catch (const InputError& e) {
+      throw InputError(source, std::string("/pattern: ") + e.what());
+    }
+  } else {
+    check_scene_pieces(s, scene_garment, source);
+    garment = scene_garment;
+    garment.set_rest_positions(stacked_rest_positions(s));
   }
   if (static_cast<int>(s.state.garment.size()) != garment.num_garment_vertices)
     throw InputError(source, "/garment: " + std::to_string(s.state.garment.size()) +
-                                 " surface points, the scene's garment has " +
+                                 " surface points, the " +
+                                 (s.pattern ? "saved pattern's" : "scene's") + " garment has " +
                                  std::to_string(garment.num_garment_vertices) + " vertices" +
-                                 changed);
+                                 kChanged);
   constexpr double kSlack = 1e-9;  // (u, v) of a point on a face edge may round outside
   for (size_t i = 0; i < s.state.garment.size(); ++i) {
     const SurfacePoint& q = s.state.garment[i];
@@ -224,7 +305,14 @@ void check_run_state(const RunState& s, const Garment& garment, const Body& body
   if (s.state.body.rows() != body.num_vertices())
     throw InputError(source, "/body: " + std::to_string(s.state.body.rows()) +
                                  " positions, the scene's body has " +
-                                 std::to_string(body.num_vertices()) + " vertices" + changed);
+                                 std::to_string(body.num_vertices()) + " vertices" + kChanged);
+  garment.embedding = s.state.garment;
+  return garment;
+}
+
+void check_run_state(const RunState& s, const Garment& scene_garment, const Body& body,
+                     int num_surface_faces, const std::string& source) {
+  run_state_garment(s, scene_garment, body, num_surface_faces, source);
 }
 
 Points2 stacked_rest_positions(const RunState& state) {

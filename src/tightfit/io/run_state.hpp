@@ -8,7 +8,10 @@
 ///   "scene_file": the scene file as given, "scene_base_dir": absolute folder that the
 ///   scene's relative paths (body mesh, layout mesh, shape target) resolve against,
 ///   "scene": the scene document,
-///   "pattern": {"pieces": [{"name", "rest": [[x, y], ...] (m), "triangles": [[a, b, c], ...]}]},
+///   "pattern": {"pieces": [{"name", "rest": [[x, y], ...] (m), "triangles": [[a, b, c], ...]}]}
+///     when the garment is the scene's (rest positions aside), or, when the run remeshed
+///     pieces, {"remeshed": true, the complete pattern (garment/pattern_record.hpp):
+///     "pieces" with boundaries, corners and grain, "seams", "pinned"},
 ///   "garment": [[face, u, v], ...] (one per garment vertex: its limit-surface point),
 ///   "body": [[x, y, z], ...] (m, deformed body vertices),
 ///   "history": {"terms": [names], "iterations": [records]} (optimize only; the records
@@ -23,6 +26,8 @@
 
 #include "tightfit/body/body.hpp"
 #include "tightfit/design/optimization_state.hpp"
+#include <optional>
+
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/io/scene_spec.hpp"
 #include "tightfit/solve/embedded_equilibrium.hpp"
@@ -43,6 +48,9 @@ struct RunState {
   std::filesystem::path scene_base_dir; ///< absolute; relative scene paths resolve here
   nlohmann::json scene;                 ///< the scene document
   std::vector<RunStatePiece> pieces;    ///< the pattern, piece by piece
+  /// The complete pattern (rest positions as in `pieces`) when it differs from the
+  /// scene's (pieces remeshed during optimization): export welds the garment from it.
+  std::optional<Pattern> pattern;
   EmbeddedState state;                  ///< garment embedding (n_g) and body positions (n_b×3, m)
   std::vector<std::string> term_names;  ///< optimize: names of the objective terms
   std::vector<OptimizationIteration> history;  ///< optimize: accepted iterations; else empty
@@ -50,10 +58,13 @@ struct RunState {
 };
 
 /// The run state of `command` for the scene `spec`, with the garment's pattern (rest
-/// positions as they are in `garment`) and the simulation state `state`. History and
+/// positions as they are in `garment`) and the simulation state `state`. When
+/// `scene_pattern` (the pattern the scene builds) is given and its meshes differ from
+/// the garment's (same_pattern_meshes), the complete pattern is saved too. History and
 /// result are left empty for the caller.
 RunState make_run_state(const std::string& command, const SceneSpec& spec,
-                        const Garment& garment, const EmbeddedState& state);
+                        const Garment& garment, const EmbeddedState& state,
+                        const Pattern* scene_pattern = nullptr);
 
 /// The history.json document: {"terms": names, "iterations": [iteration records]}.
 nlohmann::json history_json(const std::vector<OptimizationIteration>& history,
@@ -73,11 +84,21 @@ RunState read_run_state(const std::filesystem::path& file);
 /// InputError names `source` when the document is no longer a valid scene.
 SceneSpec run_state_scene(const RunState& state, const std::string& source);
 
-/// Checks that the state fits the garment and body rebuilt from its scene: the same
-/// pieces (names, vertex counts, triangles), one surface point per garment vertex on
-/// an existing face, one position per body vertex. InputError names `source` and the
-/// JSON path of the first mismatch.
-void check_run_state(const RunState& state, const Garment& garment, const Body& body,
+/// The run's garment, checked against the garment and body rebuilt from its scene:
+///  * without a saved complete pattern: the scene's garment `scene_garment` with the
+///    saved rest positions; the saved pieces must match the scene's (names, vertex
+///    counts, triangles);
+///  * with one (a remeshed run): weld_pattern of the saved pattern; its pieces, seams
+///    and pinned boundaries must correspond to the scene's (counts, names, and the
+///    pieces that seams and pinned boundaries join);
+/// and in both cases one surface point per garment vertex on an existing face and one
+/// position per body vertex. The embedding is the saved one. InputError names `source`
+/// and the JSON path of the first mismatch.
+Garment run_state_garment(const RunState& state, const Garment& scene_garment, const Body& body,
+                          int num_surface_faces, const std::string& source);
+
+/// The checks of run_state_garment, without keeping the garment.
+void check_run_state(const RunState& state, const Garment& scene_garment, const Body& body,
                      int num_surface_faces, const std::string& source);
 
 /// The saved rest positions stacked over all pieces (num_pattern_vertices × 2, m), for

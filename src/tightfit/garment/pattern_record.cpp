@@ -1,0 +1,185 @@
+#include "tightfit/garment/pattern_record.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "tightfit/common/error.hpp"
+#include "tightfit/common/json_fields.hpp"
+
+namespace tightfit {
+namespace {
+
+using nlohmann::json;
+
+std::string at(const std::string& path, size_t i) { return path + "/" + std::to_string(i); }
+
+json rows_json(const auto& m) {
+  json a = json::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    json row = json::array();
+    for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(m(i, c));
+    a.push_back(std::move(row));
+  }
+  return a;
+}
+
+/// Indices in [0, n) at member `key` of `f`.
+std::vector<int> read_indices(JsonFields& f, const std::string& key, int n) {
+  const json& j = f.raw(key);
+  if (!j.is_array()) f.fail("expected an array of vertex indices", key);
+  std::vector<int> out;
+  for (size_t i = 0; i < j.size(); ++i) {
+    if (!j[i].is_number_integer() || j[i].get<long long>() < 0 || j[i].get<long long>() >= n)
+      throw InputError(f.source(), at(f.child_path(key), i) + ": expected a vertex index in [0, " +
+                                       std::to_string(n) + ")");
+    out.push_back(j[i].get<int>());
+  }
+  return out;
+}
+
+PatternPiece read_piece(JsonFields& f) {
+  PatternPiece piece;
+  piece.name = f.string("name");
+  if (piece.name.empty()) f.fail("expected a non-empty name", "name");
+  const json& rest = f.raw("rest");
+  const std::string rest_path = f.child_path("rest");
+  if (!rest.is_array() || rest.size() < 3)
+    f.fail("expected an array of at least 3 [x, y] positions", "rest");
+  piece.rest.resize(static_cast<Eigen::Index>(rest.size()), 2);
+  for (size_t i = 0; i < rest.size(); ++i) {
+    const json& row = rest[i];
+    if (!row.is_array() || row.size() != 2 || !row[0].is_number() || !row[1].is_number() ||
+        !std::isfinite(row[0].get<double>()) || !std::isfinite(row[1].get<double>()))
+      throw InputError(f.source(), at(rest_path, i) + ": expected [x, y] (finite numbers)");
+    piece.rest(static_cast<Eigen::Index>(i), 0) = row[0].get<double>();
+    piece.rest(static_cast<Eigen::Index>(i), 1) = row[1].get<double>();
+  }
+  const int n = static_cast<int>(rest.size());
+  const json& triangles = f.raw("triangles");
+  const std::string tri_path = f.child_path("triangles");
+  if (!triangles.is_array() || triangles.empty())
+    f.fail("expected a non-empty array of [a, b, c]", "triangles");
+  piece.triangles.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const json& row = triangles[t];
+    if (!row.is_array() || row.size() != 3)
+      throw InputError(f.source(), at(tri_path, t) + ": expected [a, b, c]");
+    for (int c = 0; c < 3; ++c) {
+      if (!row[c].is_number_integer() || row[c].get<long long>() < 0 ||
+          row[c].get<long long>() >= n)
+        throw InputError(f.source(), at(at(tri_path, t), static_cast<size_t>(c)) +
+                                         ": expected a vertex index in [0, " + std::to_string(n) +
+                                         ")");
+      piece.triangles(static_cast<Eigen::Index>(t), c) = row[c].get<int>();
+    }
+  }
+  piece.boundary = read_indices(f, "boundary", n);
+  if (piece.boundary.size() < 3) f.fail("expected a loop of at least 3 vertices", "boundary");
+  if (std::set<int>(piece.boundary.begin(), piece.boundary.end()).size() != piece.boundary.size())
+    f.fail("the loop repeats a vertex", "boundary");
+  piece.corners = read_indices(f, "corners", n);
+  piece.grain = f.vec2("grain");
+  if (!piece.grain.allFinite() || piece.grain.norm() == 0.0)
+    f.fail("expected a finite, non-zero direction", "grain");
+  f.finish();
+  return piece;
+}
+
+/// A piece reference and its vertex list (member names "piece", "vertices").
+void read_side(JsonFields& f, const Pattern& pattern, int& piece, std::vector<int>& vertices) {
+  piece = f.integer("piece");
+  if (piece < 0 || piece >= static_cast<int>(pattern.pieces.size()))
+    f.fail("piece " + std::to_string(piece) + " does not exist (the pattern has " +
+               std::to_string(pattern.pieces.size()) + " pieces)",
+           "piece");
+  vertices = read_indices(f, "vertices",
+                          static_cast<int>(pattern.pieces[static_cast<size_t>(piece)].rest.rows()));
+}
+
+json side_json(const SeamSide& side) { return {{"piece", side.piece}, {"vertices", side.vertices}}; }
+
+}  // namespace
+
+json pattern_record_json(const Pattern& pattern) {
+  json pieces = json::array();
+  for (const PatternPiece& p : pattern.pieces)
+    pieces.push_back({{"name", p.name},
+                      {"rest", rows_json(p.rest)},
+                      {"triangles", rows_json(p.triangles)},
+                      {"boundary", p.boundary},
+                      {"corners", p.corners},
+                      {"grain", json::array({p.grain.x(), p.grain.y()})}});
+  json seams = json::array();
+  for (const Seam& s : pattern.seams)
+    seams.push_back({{"name", s.name}, {"a", side_json(s.a)}, {"b", side_json(s.b)}});
+  json pinned = json::array();
+  for (const PinnedBoundary& p : pattern.pinned)
+    pinned.push_back({{"name", p.name}, {"piece", p.piece}, {"vertices", p.vertices}});
+  return {{"pieces", pieces}, {"seams", seams}, {"pinned", pinned}};
+}
+
+Pattern pattern_record_from_json(const json& j, const std::string& source,
+                                 const std::string& path) {
+  if (!j.is_object()) throw InputError(source, path + ": expected a pattern (an object)");
+  JsonFields f(j, source, path);
+  Pattern pattern;
+  std::set<std::string> names;
+  for (JsonFields& p : f.objects("pieces", true)) {
+    pattern.pieces.push_back(read_piece(p));
+    if (!names.insert(pattern.pieces.back().name).second)
+      p.fail("a second piece named \"" + pattern.pieces.back().name + "\"", "name");
+  }
+  if (pattern.pieces.empty()) f.fail("expected at least one piece", "pieces");
+  for (JsonFields& s : f.objects("seams", true)) {
+    Seam seam;
+    seam.name = s.string("name");
+    auto a = s.object("a", true);
+    read_side(*a, pattern, seam.a.piece, seam.a.vertices);
+    a->finish();
+    auto b = s.object("b", true);
+    read_side(*b, pattern, seam.b.piece, seam.b.vertices);
+    b->finish();
+    if (seam.a.vertices.size() != seam.b.vertices.size() || seam.a.vertices.size() < 2)
+      s.fail("the sides have " + std::to_string(seam.a.vertices.size()) + " and " +
+             std::to_string(seam.b.vertices.size()) +
+             " vertices (expected equal counts of at least 2)");
+    s.finish();
+    pattern.seams.push_back(std::move(seam));
+  }
+  for (JsonFields& p : f.objects("pinned", true)) {
+    PinnedBoundary pin;
+    pin.name = p.string("name");
+    read_side(p, pattern, pin.piece, pin.vertices);
+    p.finish();
+    pattern.pinned.push_back(std::move(pin));
+  }
+  f.finish();
+  return pattern;
+}
+
+bool same_pattern_meshes(const Pattern& a, const Pattern& b) {
+  if (a.pieces.size() != b.pieces.size() || a.seams.size() != b.seams.size() ||
+      a.pinned.size() != b.pinned.size())
+    return false;
+  for (size_t k = 0; k < a.pieces.size(); ++k) {
+    const PatternPiece& p = a.pieces[k];
+    const PatternPiece& q = b.pieces[k];
+    if (p.name != q.name || p.rest.rows() != q.rest.rows() || p.triangles != q.triangles ||
+        p.boundary != q.boundary || p.corners != q.corners)
+      return false;
+  }
+  for (size_t s = 0; s < a.seams.size(); ++s) {
+    const Seam& x = a.seams[s];
+    const Seam& y = b.seams[s];
+    if (x.name != y.name || x.a.piece != y.a.piece || x.a.vertices != y.a.vertices ||
+        x.b.piece != y.b.piece || x.b.vertices != y.b.vertices)
+      return false;
+  }
+  for (size_t s = 0; s < a.pinned.size(); ++s)
+    if (a.pinned[s].name != b.pinned[s].name || a.pinned[s].piece != b.pinned[s].piece ||
+        a.pinned[s].vertices != b.pinned[s].vertices)
+      return false;
+  return true;
+}
+
+}  // namespace tightfit
