@@ -4,39 +4,18 @@
 #include <stdexcept>
 #include <string>
 
-#include <Eigen/LU>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/objectives/element_kinematics.hpp"
 
 namespace tightfit {
 namespace {
 
 const std::string kSource = "directional stretch objective";
 
-/// The element's F, B = Dm⁻¹ and rest area.
-struct Kinematics {
-  Mat32 f;
-  Mat2 b;
-  double area = 0.0;
-};
-
-Kinematics kinematics(const DesignState& s, const Triangles& tri,
-                      const std::vector<int>& to_garment, Eigen::Index e) {
-  Mat2 dm;
-  Mat32 ds;
-  for (int k = 0; k < 2; ++k) {
-    dm.col(k) = (s.rest.row(tri(e, k + 1)) - s.rest.row(tri(e, 0))).transpose();
-    ds.col(k) =
-        s.x.segment<3>(3 * to_garment[tri(e, k + 1)]) - s.x.segment<3>(3 * to_garment[tri(e, 0)]);
-  }
-  const double det = dm.determinant();
-  if (!(std::abs(det) > 1e-14 * dm.squaredNorm()))
-    throw SolverError(kSource + ": rest triangle " + std::to_string(e) + " is degenerate");
-  Kinematics k;
-  k.b = dm.inverse();
-  k.f = ds * k.b;
-  k.area = 0.5 * std::abs(det);
-  return k;
+ElementKinematics kinematics(const DesignState& s, const Triangles& tri,
+                             const std::vector<int>& to_garment, Eigen::Index e) {
+  return element_kinematics(s, tri, to_garment, e, kSource);
 }
 
 }  // namespace
@@ -82,7 +61,7 @@ std::vector<double> DirectionalStretchObjective::stretches(const DesignState& st
   check(state);
   std::vector<double> out(static_cast<size_t>(triangles_.rows()));
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
-    const Kinematics k = kinematics(state, triangles_, pattern_to_garment_, e);
+    const ElementKinematics k = kinematics(state, triangles_, pattern_to_garment_, e);
     out[static_cast<size_t>(e)] = (k.f * directions_[static_cast<size_t>(e)]).norm();
   }
   return out;
@@ -92,7 +71,7 @@ double DirectionalStretchObjective::value(const DesignState& state) const {
   check(state);
   double total = 0.0;
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
-    const Kinematics k = kinematics(state, triangles_, pattern_to_garment_, e);
+    const ElementKinematics k = kinematics(state, triangles_, pattern_to_garment_, e);
     const double c = (k.f * directions_[static_cast<size_t>(e)]).squaredNorm();
     if (c < c_min_) total += k.area * (c - c_min_) * (c - c_min_);
     if (c > c_max_) total += k.area * (c - c_max_) * (c - c_max_);
@@ -106,7 +85,7 @@ void DirectionalStretchObjective::add_gradient(const DesignState& state, VecX& d
   if (d_x.size() != state.x.size() || d_rest.size() != 2 * state.rest.rows())
     throw std::invalid_argument(kSource + ": gradient vectors have the wrong size");
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
-    const Kinematics k = kinematics(state, triangles_, pattern_to_garment_, e);
+    const ElementKinematics k = kinematics(state, triangles_, pattern_to_garment_, e);
     const Vec2& d = directions_[static_cast<size_t>(e)];
     const Vec3 fd = k.f * d;
     const double c = fd.squaredNorm();
@@ -116,19 +95,7 @@ void DirectionalStretchObjective::add_gradient(const DesignState& state, VecX& d
     const double dpen = 2.0 * (c - bound);
     // T_e = A pen(c), c = dᵀFᵀF d: ∂T_e/∂F = 2 A pen'(c) F d dᵀ.
     const Mat32 p = 2.0 * k.area * dpen * fd * d.transpose();
-    // F = Ds B: ∂/∂Ds = P Bᵀ; ∂/∂Dm = −Fᵀ P Bᵀ (through F) + pen A Bᵀ (through A).
-    const Mat32 g_ds = p * k.b.transpose();
-    const Mat2 g_dm = -k.f.transpose() * p * k.b.transpose() + pen * k.area * k.b.transpose();
-    const int g0 = pattern_to_garment_[triangles_(e, 0)];
-    const int p0 = triangles_(e, 0);
-    for (int j = 0; j < 2; ++j) {
-      const int gj = pattern_to_garment_[triangles_(e, j + 1)];
-      const int pj = triangles_(e, j + 1);
-      d_x.segment<3>(3 * gj) += g_ds.col(j);
-      d_x.segment<3>(3 * g0) -= g_ds.col(j);
-      d_rest.segment<2>(2 * pj) += g_dm.col(j);
-      d_rest.segment<2>(2 * p0) -= g_dm.col(j);
-    }
+    add_element_gradient(k, p, pen, triangles_, pattern_to_garment_, e, d_x, d_rest);
   }
 }
 

@@ -6,39 +6,16 @@
 #include <stdexcept>
 #include <string>
 
-#include <Eigen/LU>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/objectives/element_kinematics.hpp"
 
 namespace tightfit {
 namespace {
 
-/// The element's F, its rest-edge inverse B = Dm⁻¹, rest area and C = FᵀF.
-struct ElementKinematics {
-  Mat32 f;
-  Mat2 b;
-  double area = 0.0;
-  Mat2 c;
-};
-
 ElementKinematics kinematics(const DesignState& s, const Triangles& tri,
                              const std::vector<int>& to_garment, Eigen::Index e) {
-  Mat2 dm;
-  Mat32 ds;
-  for (int k = 0; k < 2; ++k) {
-    dm.col(k) = (s.rest.row(tri(e, k + 1)) - s.rest.row(tri(e, 0))).transpose();
-    ds.col(k) =
-        s.x.segment<3>(3 * to_garment[tri(e, k + 1)]) - s.x.segment<3>(3 * to_garment[tri(e, 0)]);
-  }
-  const double det = dm.determinant();
-  if (!(std::abs(det) > 1e-14 * dm.squaredNorm()))
-    throw SolverError("stretch objective: rest triangle " + std::to_string(e) + " is degenerate");
-  ElementKinematics k;
-  k.b = dm.inverse();
-  k.f = ds * k.b;
-  k.area = 0.5 * std::abs(det);
-  k.c = k.f.transpose() * k.f;
-  return k;
+  return element_kinematics(s, tri, to_garment, e, "stretch objective");
 }
 
 /// Eigenvalues λ1 >= λ2 of a symmetric 2×2 matrix, with m = mean and r = half gap.
@@ -134,19 +111,7 @@ void StretchObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& d
         0.5 * (dpen(l1) + dpen(l2)) * Mat2::Identity() + divided * (k.c - ev.m * Mat2::Identity());
     // T_e = A s(C): ∂T_e/∂F = 2 A F ∂s/∂C.
     const Mat32 p = 2.0 * k.area * k.f * ds_dc;
-    // F = Ds B: ∂/∂Ds = P Bᵀ; ∂/∂Dm = −Fᵀ P Bᵀ (through F) + s A Bᵀ (through A).
-    const Mat32 g_ds = p * k.b.transpose();
-    const Mat2 g_dm = -k.f.transpose() * p * k.b.transpose() + s * k.area * k.b.transpose();
-    const int g0 = pattern_to_garment_[triangles_(e, 0)];
-    const int p0 = triangles_(e, 0);
-    for (int j = 0; j < 2; ++j) {
-      const int gj = pattern_to_garment_[triangles_(e, j + 1)];
-      const int pj = triangles_(e, j + 1);
-      d_x.segment<3>(3 * gj) += g_ds.col(j);
-      d_x.segment<3>(3 * g0) -= g_ds.col(j);
-      d_rest.segment<2>(2 * pj) += g_dm.col(j);
-      d_rest.segment<2>(2 * p0) -= g_dm.col(j);
-    }
+    add_element_gradient(k, p, s, triangles_, pattern_to_garment_, e, d_x, d_rest);
   }
 }
 
