@@ -1,6 +1,5 @@
 // Runs the built `tightfit body` command (TIGHTFIT_CLI).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -10,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/cli_run.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 
@@ -18,23 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code;
-  std::string output;  // stdout and stderr
-};
-
-/// Runs the CLI with `args` in folder `cwd` (the test's current folder if empty).
-CliRun run_cli(const std::string& args, const std::string& cwd = "") {
-  const fs::path log = fs::temp_directory_path() / ("tightfit_body_cli_" + std::to_string(::getpid()) + ".log");
-  const std::string command = (cwd.empty() ? "" : "cd '" + cwd + "' && ") + std::string(TIGHTFIT_CLI) + " " +
-                              args + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  fs::remove(log);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
+using test::CliRun;
+using test::run_cli;
 
 class BodyCli : public ::testing::Test {
  protected:

@@ -1,7 +1,6 @@
 /// Runs the built `tightfit` (TIGHTFIT_CLI): `simulate`, `optimize` and `layout` write
 /// state.json, and `tightfit export` regenerates their outputs from it without solving.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -13,28 +12,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/cli_run.hpp"
+
 namespace tightfit {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code;
-  std::string output;  // stdout and stderr
-};
-
-CliRun run_cli(const std::string& args) {
-  const fs::path log =
-      fs::temp_directory_path() / ("tightfit_export_cli_" + std::to_string(::getpid()) + ".log");
-  const std::string command =
-      std::string(TIGHTFIT_CLI) + " " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  fs::remove(log);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
+using test::CliRun;
+using test::run_cli;
 
 std::string read_text(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
