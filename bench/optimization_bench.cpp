@@ -31,6 +31,21 @@ struct Scene {
   std::unique_ptr<GarmentSimulation> sim;
 };
 
+/// A sleeve 10 % short around and 5 % short along, |z| <= half_length, jittered
+/// interior, both cuffs pinned.
+SleeveParams jittered_sleeve(double radius, double half_length, double edge) {
+  SleeveParams sp;
+  sp.radius = radius;
+  sp.axial_begin = -half_length;
+  sp.axial_end = half_length;
+  sp.hoop_scale = 0.9;
+  sp.axial_scale = 0.95;
+  sp.edge_length = edge;
+  sp.jitter = 0.3;
+  sp.pin_first_ring = sp.pin_last_ring = true;
+  return sp;
+}
+
 /// (a): examples/optimize_sleeve_stretch.json with garment edge `edge` (m).
 std::unique_ptr<Scene> stretch_scene(double edge) {
   auto s = std::make_unique<Scene>();
@@ -42,15 +57,7 @@ std::unique_ptr<Scene> stretch_scene(double edge) {
   s->body.volume.vertices = s->body.surface.vertices;
   s->body.volume.tets.resize(0, 4);
   s->surface = std::make_unique<LimitSurface>(s->body.surface);
-  SleeveParams sp;
-  sp.radius = cyl.radius;
-  sp.axial_begin = -0.05;
-  sp.axial_end = 0.05;
-  sp.hoop_scale = 0.9;
-  sp.axial_scale = 0.95;
-  sp.edge_length = edge;
-  sp.jitter = 0.3;
-  sp.pin_first_ring = sp.pin_last_ring = true;
+  const SleeveParams sp = jittered_sleeve(cyl.radius, 0.05, edge);
   SimulationMaterials m;
   m.rigid_body = true;
   s->sim = std::make_unique<GarmentSimulation>(
@@ -69,15 +76,7 @@ std::unique_ptr<Scene> soft_scene(double edge) {
   volume.core.soft_tissue = 0.02;
   s->body = cylinder_body(cyl, volume);
   s->surface = std::make_unique<LimitSurface>(s->body.surface);
-  SleeveParams sp;
-  sp.radius = cyl.radius;
-  sp.axial_begin = -0.1;
-  sp.axial_end = 0.1;
-  sp.hoop_scale = 0.9;
-  sp.axial_scale = 0.95;
-  sp.edge_length = edge;
-  sp.jitter = 0.3;
-  sp.pin_first_ring = sp.pin_last_ring = true;
+  const SleeveParams sp = jittered_sleeve(cyl.radius, 0.1, edge);
   SimulationMaterials m;
   m.body.youngs_modulus = 24780;
   m.body.poisson_ratio = 0.49;
