@@ -1,10 +1,13 @@
-/// Pattern optimization (L-BFGS with adjoint gradients) at two resolutions of two
-/// scenes: (a) the stretch sleeve of examples/optimize_sleeve_stretch.json (rigid
+/// Pattern optimization (L-BFGS with adjoint gradients): three example scenes of
+/// examples/ (the Fig. 3b tapered cylinder, the pants stretch row of Table 1, the soft
+/// sleeve), run exactly as `tightfit optimize` runs them, and two scenes at two
+/// resolutions: (a) the stretch sleeve of examples/optimize_sleeve_stretch.json (rigid
 /// cylinder, stretch objective in [1.02, 1.06], seam-length and spacing regularizers)
 /// and (b) a sleeve on a soft Neo-Hookean cylinder with a shape objective towards a
 /// tapered cylinder. Per accepted L-BFGS iteration (averaged over the run, the initial
 /// evaluation excluded): wall time, forward Newton solves, objective evaluations and
-/// gradient (term gradients + adjoint solve + pull-back), from the optimizer's
+/// gradient (term gradients + adjoint solve + pull-back), line-search trials, Newton
+/// and chord steps, factorizations and GMRES iterations, from the optimizer's
 /// per-iteration records; and one numeric Cholesky factorization of the equilibrium
 /// Hessian at the final state (symbolic analysis done beforehand), with the ratio
 /// iteration / factorization.
@@ -15,10 +18,13 @@
 #include <numbers>
 
 #include "tightfit/body/body_builder.hpp"
+#include "tightfit/common/parallel.hpp"
 #include "tightfit/common/sparse_cholesky.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
 #include "tightfit/design/regularizer_edge_lengths.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
+#include "tightfit/io/optimization_setup.hpp"
+#include "tightfit/io/scene_loader.hpp"
 #include "tightfit/objectives/shape_objective.hpp"
 #include "tightfit/objectives/stretch_objective.hpp"
 
@@ -104,16 +110,21 @@ ImlsSurface tapered_target() {
 
 void report(benchmark::State& state, DesignProblem& problem, const PatternOptimizer& optimizer) {
   const auto& h = optimizer.history();
-  double forward = 0, objective = 0, adjoint = 0, total = 0;
-  int newton = 0, trials = 0;
+  double forward = 0, objective = 0, adjoint = 0, total = 0, assembly = 0, factor_time = 0;
+  int newton = 0, trials = 0, chord = 0, factorizations = 0, krylov = 0;
   const int n = static_cast<int>(h.size()) - 1;
   for (int k = 1; k <= n; ++k) {
     forward += h[k].seconds_forward;
     objective += h[k].seconds_objective;
     adjoint += h[k].seconds_adjoint;
+    assembly += h[k].seconds_assembly;
+    factor_time += h[k].seconds_factorization;
     total += h[k].seconds - h[k - 1].seconds;
     newton += h[k].newton_iterations;
+    chord += h[k].chord_steps;
     trials += h[k].line_search_trials;
+    factorizations += h[k].factorizations;
+    krylov += h[k].krylov_iterations;
   }
   GarmentSimulation& sim = problem.simulation();
   const SparseMatrix H = sim.problem().hessian();
@@ -123,6 +134,7 @@ void report(benchmark::State& state, DesignProblem& problem, const PatternOptimi
   const bool ok = cholesky.factorize(H);
   const double factorization = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double d = std::max(1, n);
+  state.counters["threads"] = thread_count();
   state.counters["garment_triangles"] = static_cast<double>(sim.garment().garment_triangles.rows());
   state.counters["body_tets"] = static_cast<double>(sim.body().volume.num_tets());
   state.counters["dofs"] = static_cast<double>(sim.problem().num_dofs());
@@ -130,8 +142,13 @@ void report(benchmark::State& state, DesignProblem& problem, const PatternOptimi
   state.counters["lbfgs_iterations"] = n;
   state.counters["trials_per_it"] = trials / d;
   state.counters["newton_per_it"] = newton / d;
+  state.counters["chord_per_it"] = chord / d;
+  state.counters["factorizations_per_it"] = factorizations / d;
+  state.counters["gmres_per_it"] = krylov / d;
   state.counters["it_s"] = total / d;
   state.counters["forward_s_per_it"] = forward / d;
+  state.counters["assembly_s_per_it"] = assembly / d;
+  state.counters["newton_factorization_s_per_it"] = factor_time / d;
   state.counters["objective_s_per_it"] = objective / d;
   state.counters["adjoint_s_per_it"] = adjoint / d;
   state.counters["factorization_s"] = factorization;
@@ -140,6 +157,34 @@ void report(benchmark::State& state, DesignProblem& problem, const PatternOptimi
   state.counters["hessian_nnz"] = static_cast<double>(H.nonZeros());
   state.counters["factor_nnz"] = static_cast<double>(cholesky.factor_nonzeros());
   state.counters["objective_ratio"] = h.back().value / h.front().value;
+}
+
+/// Optimizes an example scene (examples/NAME.json, objective and options exactly as
+/// `tightfit optimize` builds them) for `iterations` L-BFGS iterations.
+void optimize_example(benchmark::State& state, const std::string& name, int iterations) {
+  for (auto _ : state) {
+    OptimizationScene input =
+        read_optimization_scene(std::string(TIGHTFIT_SOURCE_DIR) + "/examples/" + name + ".json");
+    input.optimization.optimizer.max_iterations = iterations;
+    const OptimizationSpec& spec = input.optimization;
+    auto scene = load_scene(input.scene);
+    auto sim = make_simulation(*scene);
+    DesignProblem problem(*sim, build_objective(spec, *sim), spec.problem,
+                          [&spec](const GarmentSimulation& s) { return build_objective(spec, s); });
+    PatternOptimizer optimizer(problem, spec.optimizer);
+    optimizer.run();
+    report(state, problem, optimizer);
+  }
+}
+
+void BM_OptimizeExampleTaperedCylinder(benchmark::State& state) {
+  optimize_example(state, "optimize_cylinder_tapered", static_cast<int>(state.range(0)));
+}
+void BM_OptimizeExamplePantsStretch(benchmark::State& state) {
+  optimize_example(state, "optimize_pants_stretch", static_cast<int>(state.range(0)));
+}
+void BM_OptimizeExampleSoftSleeve(benchmark::State& state) {
+  optimize_example(state, "optimize_sleeve_soft", static_cast<int>(state.range(0)));
 }
 
 void BM_OptimizeStretchSleeve(benchmark::State& state) {
@@ -178,6 +223,10 @@ void BM_OptimizeSoftSleeveShape(benchmark::State& state) {
 // Args: garment edge length in 0.1 mm, L-BFGS iterations.
 BENCHMARK(BM_OptimizeStretchSleeve)->Args({120, 10})->Args({60, 10})->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_OptimizeSoftSleeveShape)->Args({140, 5})->Args({100, 5})->Unit(benchmark::kSecond)->Iterations(1);
+// Arg: L-BFGS iterations.
+BENCHMARK(BM_OptimizeExampleTaperedCylinder)->Arg(20)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_OptimizeExamplePantsStretch)->Arg(10)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_OptimizeExampleSoftSleeve)->Arg(10)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 }  // namespace tightfit

@@ -5,6 +5,7 @@
 
 #include "command_registry.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/parallel.hpp"
 
 namespace tightfit::app {
 std::vector<CommandEntry>& command_registry() {
@@ -19,6 +20,18 @@ int main(int argc, char** argv) {
       "tightfit: physics-based pattern design for skintight garments "
       "(Montes et al., SIGGRAPH 2020).\nRun 'tightfit COMMAND --help' for a command's options."};
   root.require_subcommand(1);
+  root.fallthrough();  // --threads may also follow the command's name
+  try {
+    set_thread_count(default_thread_count());
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  root.add_option_function<int>(
+          "--threads", [](int n) { set_thread_count(n); },
+          "Threads for the element loops and the BLAS (default: TIGHTFIT_THREADS, else the "
+          "number of cores)")
+      ->check(CLI::Range(1, 1024));
   auto& registry = app::command_registry();
   std::sort(registry.begin(), registry.end(),
             [](const auto& a, const auto& b) { return a.name < b.name; });

@@ -32,6 +32,8 @@ class VectorProblem : public NewtonProblem {
 class ChainProblem : public VectorProblem {
  public:
   explicit ChainProblem(int n) : VectorProblem(VecX::Zero(n)), b_(VecX::LinSpaced(n, 1.0, 3.0)) {}
+  /// Changes the load (a design change of the problem); the state is kept.
+  void scale_load(double factor) { b_ *= factor; }
   double energy() override {
     double e = 0.25 * q_.array().pow(4).sum() - b_.dot(q_);
     for (Eigen::Index i = 0; i + 1 < q_.size(); ++i) {
@@ -88,6 +90,72 @@ TEST(NewtonSolver, ConvergesQuadraticallyOnASparseConvexProblem) {
   }
   EXPECT_GE(quadratic_steps, 1);
   EXPECT_GT(r.factor_nonzeros, 0);
+}
+
+TEST(NewtonSolver, ChordStepsFromAHeldFactorizationNeedNoNewFactorization) {
+  ChainProblem problem(200);
+  NewtonSolver first;
+  ASSERT_TRUE(first.solve(problem).converged);
+  SparseCholesky held;  // the Hessian at the old equilibrium
+  ASSERT_TRUE(held.factorize(problem.hessian()));
+  const VecX old_solution = problem.q();
+
+  problem.scale_load(1.001);  // a small design step
+  NewtonSolver chord_solver;
+  const NewtonReport r = chord_solver.solve(problem, &held);
+  ASSERT_TRUE(r.converged);
+  EXPECT_GE(r.chord_steps, 1);
+  EXPECT_EQ(r.factorizations, 0) << "the chord steps should have converged on their own";
+  for (const NewtonIteration& it : r.history) EXPECT_TRUE(it.chord);
+  const VecX chord_solution = problem.q();
+
+  // Same equilibrium as plain Newton from the old solution (to the tolerance).
+  ChainProblem reference(200);
+  reference.set_step(old_solution, 1.0);
+  reference.commit();
+  reference.scale_load(1.001);
+  NewtonSolver plain;
+  const NewtonReport p = plain.solve(reference);
+  ASSERT_TRUE(p.converged);
+  EXPECT_GE(p.factorizations, 1);
+  EXPECT_LT((chord_solution - reference.q()).norm(), 1e-8 * reference.q().norm());
+}
+
+TEST(NewtonSolver, SlowChordStepsHandOverToNewton) {
+  ChainProblem problem(100);
+  NewtonSolver first;
+  ASSERT_TRUE(first.solve(problem).converged);
+  SparseCholesky held;
+  ASSERT_TRUE(held.factorize(problem.hessian()));
+  problem.scale_load(3.0);  // far: the old Hessian is a poor model
+  NewtonOptions o;
+  o.max_chord_steps = 10;
+  NewtonSolver solver(o);
+  const NewtonReport r = solver.solve(problem, &held);
+  ASSERT_TRUE(r.converged);
+  EXPECT_GE(r.factorizations, 1);
+  EXPECT_LT(r.chord_steps, 10);
+  // Once Newton took over, every later step is a Newton step.
+  bool newton_seen = false;
+  for (const NewtonIteration& it : r.history) {
+    if (!it.chord) newton_seen = true;
+    if (newton_seen) {
+      EXPECT_FALSE(it.chord);
+    }
+  }
+}
+
+TEST(NewtonSolver, IgnoresAHeldFactorizationOfAnotherSize) {
+  ChainProblem small(10);
+  NewtonSolver first;
+  ASSERT_TRUE(first.solve(small).converged);
+  SparseCholesky held;
+  ASSERT_TRUE(held.factorize(small.hessian()));
+  ChainProblem problem(20);
+  NewtonSolver solver;
+  const NewtonReport r = solver.solve(problem, &held);
+  ASSERT_TRUE(r.converged);
+  EXPECT_EQ(r.chord_steps, 0);
 }
 
 /// Rosenbrock: indefinite Hessian away from the valley, needs regularization.

@@ -7,7 +7,7 @@
 #include <cstdlib>
 
 #include "command_registry.hpp"
-#include "optimization_setup.hpp"
+#include "tightfit/io/optimization_setup.hpp"
 #include "tightfit/design/adjoint_check.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/io/scene_loader.hpp"

@@ -17,7 +17,7 @@
 #include <filesystem>
 
 #include "command_registry.hpp"
-#include "optimization_setup.hpp"
+#include "tightfit/io/optimization_setup.hpp"
 #include "run_outputs.hpp"
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
@@ -39,8 +39,9 @@ void print_iteration(const OptimizationIteration& it, const std::vector<std::str
   std::printf("  it %3d  T %.6e", it.iteration, it.value);
   for (size_t k = 0; k < names.size() && k < it.term_values.size(); ++k)
     std::printf("  %s %.4e", names[k].c_str(), it.term_values[k]);
-  std::printf("  |g| %.3e  step %.2e m  newton %d", it.gradient_norm, it.max_point_move,
-              it.newton_iterations);
+  std::printf("  |g| %.3e  step %.2e m  trials %d  newton %d (chord %d)  chol %d",
+              it.gradient_norm, it.max_point_move, it.line_search_trials, it.newton_iterations,
+              it.chord_steps, it.factorizations);
   if (it.failed_solves > 0) std::printf(" (failed trials %d)", it.failed_solves);
   if (it.hessian_shift > 0.0)
     std::printf("  [adjoint H shifted by %.1e: inexact]", it.hessian_shift);
@@ -142,6 +143,7 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
                                  {"gradient_norm_final", history.back().gradient_norm},
                                  {"design_parameters", problem.num_parameters()},
                                  {"seconds_optimization", history.back().seconds}};
+  result_json["compute"] = compute_json();
   result_json["counts"] = {{"body_vertices", scene->body.num_vertices()},
                            {"body_tets", scene->body.volume.num_tets()},
                            {"garment_vertices", sim->garment().num_garment_vertices},

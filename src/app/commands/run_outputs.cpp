@@ -1,6 +1,7 @@
 #include "run_outputs.hpp"
 
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/parallel.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/pattern_outputs.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
@@ -48,6 +49,16 @@ std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& f
   write_run_state(folder / "state.json", state);
   files.insert(files.end(), {"garment_embedded.ply", "layout.json", "state.json"});
   return files;
+}
+
+nlohmann::json compute_json() {
+  const BlasInfo blas = blas_info();
+  return {{"threads", thread_count()},
+          {"blas",
+           {{"name", blas.name},
+            {"library", blas.library},
+            {"config", blas.config},
+            {"threads", blas.threads}}}};
 }
 
 }  // namespace tightfit::app

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "tightfit/io/run_state.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
@@ -39,5 +41,9 @@ std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& f
                                                   const LimitSurface& surface,
                                                   const Points3& control,
                                                   const RunState& state);
+
+/// What the run computed on, for result.json's "compute": {"threads": N, "blas":
+/// {"name", "library", "config", "threads"}} (common/parallel.hpp).
+nlohmann::json compute_json();
 
 }  // namespace tightfit::app

@@ -56,6 +56,7 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir) {
                           {"seams", energy_of(sim->seams(), xf)},
                           {"body", sim->body_energy().value(yf)}};
   result["newton"] = newton_report_json(report);
+  result["compute"] = compute_json();
   nlohmann::json seconds;
   for (const auto& [stage, s] : scene->stage_seconds) seconds[stage] = s;
   seconds["solve"] = t_solve;

@@ -2,6 +2,7 @@
 
 #include <cholmod.h>
 
+#include <cmath>
 #include <vector>
 
 #include "tightfit/common/error.hpp"
@@ -116,5 +117,24 @@ std::int64_t SparseCholesky::factor_nonzeros() const {
 }
 
 Eigen::Index SparseCholesky::size() const { return impl_->n; }
+
+std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMatrix& A,
+                                        const ShiftSequence& shifts, int& factorizations,
+                                        double* last_shift) {
+  ++factorizations;
+  if (cholesky.factorize(A)) return 0.0;
+  double mean_diag = A.diagonal().cwiseAbs().mean();
+  if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
+  double shift = shifts.initial * mean_diag;
+  SparseMatrix identity(A.rows(), A.cols());
+  identity.setIdentity();
+  for (int k = 0; k < shifts.attempts; ++k) {
+    if (last_shift) *last_shift = shift;
+    ++factorizations;
+    if (cholesky.factorize(SparseMatrix(A + shift * identity))) return shift;
+    shift *= shifts.growth;
+  }
+  return std::nullopt;
+}
 
 }  // namespace tightfit

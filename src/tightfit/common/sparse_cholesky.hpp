@@ -4,6 +4,7 @@
 /// ordering, supernode structure) is reused while the sparsity pattern stays the same.
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "tightfit/common/types.hpp"
 
@@ -37,5 +38,21 @@ class SparseCholesky {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// The growing diagonal shifts tried when a matrix is not positive definite:
+/// δ_k = initial · mean|diag(A)| · growth^k, k = 0 … attempts − 1.
+struct ShiftSequence {
+  double initial = 1e-8;  ///< relative to mean |diag(A)|
+  double growth = 10.0;
+  int attempts = 30;
+};
+
+/// Factorizes A, or else A + δI with the smallest δ of `shifts` that succeeds. Returns
+/// δ (0 when A itself was positive definite), or nullopt when every shift failed (the
+/// factor is then unusable; `last_shift` receives the largest δ tried). `factorizations`
+/// counts the attempts.
+std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMatrix& A,
+                                        const ShiftSequence& shifts, int& factorizations,
+                                        double* last_shift = nullptr);
 
 }  // namespace tightfit

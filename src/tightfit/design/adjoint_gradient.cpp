@@ -1,5 +1,6 @@
 #include "tightfit/design/adjoint_gradient.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -14,45 +15,29 @@ VecX flat_positions(const GarmentSimulation& sim) {
   return Eigen::Map<const VecX>(x.data(), x.size());
 }
 
-/// The garment energies of the simulation that depend on Xbar (cloth, seam springs):
-/// exactly the garment energies of its equilibrium problem.
-std::vector<const RestDependentEnergy*> rest_energies(const GarmentSimulation& sim) {
-  std::vector<const RestDependentEnergy*> out{&sim.cloth()};
-  if (sim.seams()) out.push_back(sim.seams());
-  return out;
-}
-
 }  // namespace
 
 SimulationDesignState::SimulationDesignState(const GarmentSimulation& sim)
     : x(flat_positions(sim)), rest(sim.garment().rest_positions()) {}
 
+const char* adjoint_method_name(AdjointMethod method) {
+  switch (method) {
+    case AdjointMethod::kNone: return "none";
+    case AdjointMethod::kDirect: return "direct";
+    case AdjointMethod::kPreconditioned: return "preconditioned";
+    case AdjointMethod::kFallback: return "fallback";
+  }
+  return "unknown";
+}
+
 SparseMatrix exact_equilibrium_hessian(GarmentSimulation& sim) {
-  EmbeddedEquilibrium& problem = sim.problem();
-  SparseMatrix H = problem.hessian();
-  const VecX x = flat_positions(sim);
-  std::vector<Triplet> exact, projected;
-  for (const RestDependentEnergy* e : rest_energies(sim)) {
-    e->add_hessian(x, exact, false);
-    e->add_hessian(x, projected, true);
-  }
-  exact.reserve(exact.size() + projected.size());
-  for (const Triplet& t : projected) exact.emplace_back(t.row(), t.col(), -t.value());
-  SparseMatrix difference(x.size(), x.size());
-  difference.setFromTriplets(exact.begin(), exact.end());
-  difference.prune(0.0);
-  if (difference.nonZeros() > 0) {
-    const SparseMatrix J = problem.position_jacobian();
-    H += SparseMatrix(J.transpose() * difference * J);
-  }
-  H.makeCompressed();
-  return H;
+  return sim.problem().hessian(HessianKind::kExact);
 }
 
 SparseMatrix mixed_rest_derivative(const GarmentSimulation& sim) {
   const VecX x = flat_positions(sim);
   std::vector<Triplet> t;
-  for (const RestDependentEnergy* e : rest_energies(sim)) e->add_mixed_rest(x, t);
+  for (const RestDependentEnergy* e : sim.rest_dependent_energies()) e->add_mixed_rest(x, t);
   SparseMatrix M(x.size(), 2 * sim.garment().num_pattern_vertices());
   M.setFromTriplets(t.begin(), t.end());
   return M;
@@ -76,34 +61,96 @@ AdjointResult AdjointSolver::rest_gradient(GarmentSimulation& sim, const DesignT
   const SparseMatrix J = problem.position_jacobian();
   const VecX rhs = J.transpose() * r.explicit_x;  // ∂T/∂q
   if (rhs.squaredNorm() == 0.0) return r;         // x depends on no free DOF
-  const SparseMatrix H = exact_equilibrium_hessian(sim);
-
-  if (!cholesky_.factorize(H)) {
-    double mean_diag = H.diagonal().cwiseAbs().mean();
-    if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
-    double shift = options_.initial_regularization * mean_diag;
-    SparseMatrix I(H.rows(), H.cols());
-    I.setIdentity();
-    bool ok = false;
-    for (int k = 0; k < options_.max_regularizations && !ok; ++k) {
-      ok = cholesky_.factorize(SparseMatrix(H + shift * I));
-      if (!ok) shift *= options_.regularization_growth;
-    }
-    if (!ok)
-      throw SolverError(
-          "adjoint: the equilibrium Hessian could not be factorized even with "
-          "diagonal shift " +
-          std::to_string(shift) + " N/m");
-    r.hessian_shift = shift;
-  }
-  const VecX lambda = cholesky_.solve(rhs);
-  r.adjoint_residual = (H * lambda - rhs).norm() / rhs.norm();
+  const AdjointSolve a = solve(sim, rhs);
+  r.hessian_shift = a.hessian_shift;
+  r.adjoint_residual = a.residual;
+  r.method = a.method;
+  r.krylov_iterations = a.krylov_iterations;
+  r.factorizations = a.factorizations;
   r.solved = true;
-  const VecX j_lambda = J * lambda;  // 3·n_g
+  const VecX j_lambda = J * a.lambda;  // 3·n_g
   r.rest_gradient -= mixed_rest_derivative(sim).transpose() * j_lambda;
   if (!r.rest_gradient.allFinite())
     throw SolverError("adjoint: the design gradient is not finite (singular equilibrium?)");
   return r;
+}
+
+namespace {
+
+bool same_matrix(const SparseMatrix& a, const SparseMatrix& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  const auto nnz = static_cast<size_t>(a.nonZeros());
+  const auto cols = static_cast<size_t>(a.cols()) + 1;
+  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + cols, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + nnz, b.innerIndexPtr()) &&
+         std::equal(a.valuePtr(), a.valuePtr() + nnz, b.valuePtr());
+}
+
+}  // namespace
+
+std::optional<double> AdjointSolver::factorize_held(const SparseMatrix& H_newton,
+                                                    int& factorizations) {
+  const ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
+                             options_.max_regularizations};
+  ++generation_;
+  const auto shift = factorize_shifted(newton_factor_, H_newton, shifts, factorizations);
+  held_valid_ = shift.has_value();
+  return shift;
+}
+
+bool AdjointSolver::factorize_held(GarmentSimulation& sim) {
+  int factorizations = 0;
+  return factorize_held(sim.problem().hessian(HessianKind::kNewton), factorizations).has_value();
+}
+
+AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool force_fallback) {
+  EmbeddedEquilibrium& problem = sim.problem();
+  if (rhs.size() != problem.num_dofs())
+    throw SolverError("adjoint: right-hand side has the wrong size");
+  const ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
+                             options_.max_regularizations};
+  AdjointSolve out;
+  const SparseMatrix H_newton = problem.hessian(HessianKind::kNewton);
+  const auto newton_shift = factorize_held(H_newton, out.factorizations);
+  const SparseMatrix H =
+      problem.projects_hessians() ? problem.hessian(HessianKind::kExact) : H_newton;
+  auto residual_of = [&](const VecX& lambda) { return (H * lambda - rhs).norm() / rhs.norm(); };
+
+  if (!force_fallback && held_valid_ && *newton_shift == 0.0 && same_matrix(H, H_newton)) {
+    out.lambda = newton_factor_.solve(rhs);
+    out.method = AdjointMethod::kDirect;
+    out.residual = residual_of(out.lambda);
+    return out;
+  }
+  if (!force_fallback && held_valid_) {
+    GmresOptions gmres;
+    gmres.relative_tolerance = options_.iterative_tolerance;
+    gmres.max_iterations = options_.max_iterative_iterations;
+    VecX lambda = newton_factor_.solve(rhs);  // the solution where nothing was projected
+    const GmresReport report = preconditioned_gmres(
+        [&](const VecX& v) { return VecX(H * v); },
+        [&](const VecX& v) { return newton_factor_.solve(v); }, rhs, lambda, gmres);
+    out.krylov_iterations = report.iterations;
+    if (report.converged && lambda.allFinite()) {
+      out.lambda = std::move(lambda);
+      // No Krylov step needed: H and H_N differ by round-off only (projections of
+      // eigenvalues that are zero up to round-off).
+      out.method = report.iterations == 0 ? AdjointMethod::kDirect : AdjointMethod::kPreconditioned;
+      out.residual = report.relative_residual;
+      return out;
+    }
+  }
+  double last = 0.0;
+  const auto shift = factorize_shifted(exact_factor_, H, shifts, out.factorizations, &last);
+  if (!shift)
+    throw SolverError(
+        "adjoint: the equilibrium Hessian could not be factorized even with diagonal shift " +
+        std::to_string(last) + " N/m");
+  out.hessian_shift = *shift;
+  out.lambda = exact_factor_.solve(rhs);
+  out.method = AdjointMethod::kFallback;
+  out.residual = residual_of(out.lambda);
+  return out;
 }
 
 }  // namespace tightfit

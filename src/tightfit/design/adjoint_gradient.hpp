@@ -16,20 +16,37 @@
 ///
 /// Exact Hessian. The simulation's Newton matrix projects each cloth/seam element
 /// Hessian onto the PSD cone (a descent safeguard) and is therefore not ∂g/∂q wherever
-/// an element is indefinite. The adjoint uses the unprojected Hessian
-///   H = H_newton + Jᵀ (H_xx − P(H_xx)) J
-/// (H_xx: Hessian of the garment energies in x, P: per-element PSD projection), which
-/// equals ∂g/∂q including the second-derivative terms of Eq. 18.
+/// an element is indefinite. The adjoint system uses the exact Hessian
+/// (EmbeddedEquilibrium::hessian(HessianKind::kExact)), including the second-derivative
+/// terms of Eq. 18.
+///
+/// One factorization per gradient, shared with the next forward solves. The solver
+/// factorizes Newton's matrix H_N at the equilibrium (the same sparsity pattern as every
+/// Newton iteration, so the symbolic analysis is done once per garment topology):
+///  * when no element was projected, H_N is the exact H and λ is one direct solve (so
+///    too when projections changed H only by round-off: GMRES stops before its first
+///    step);
+///  * otherwise H λ = ∂T/∂q is solved by GMRES preconditioned with that factorization
+///    (H and H_N differ only on the projected elements) to `iterative_tolerance`;
+///  * only when GMRES does not converge is H itself factorized (the fallback, reported as
+///    AdjointMethod::kFallback).
+/// The factorization of H_N at the equilibrium is kept (held_factorization()): the
+/// forward solves of the next design trials start with chord steps from it
+/// (NewtonSolver::solve's `held`), which is the first-order equilibrium predictor.
 ///
 /// Indefinite H. At a stable equilibrium H is positive semi-definite; it is singular
 /// where the equilibrium is not locally unique (e.g. slack or wrinkled cloth with no
-/// stiffness along a direction the objective cares about). If the Cholesky
-/// factorization of H fails, H + δI is factorized with the smallest δ of a growing
-/// sequence (as in Newton) and the result reports δ > 0: that gradient is then NOT the
-/// exact derivative (it is the gradient of a problem whose equilibrium is stiffened by
-/// δ), only a descent-ish direction. Callers should surface `hessian_shift`.
+/// stiffness along a direction the objective cares about). GMRES solves an indefinite
+/// but regular system exactly. In the fallback, if the Cholesky factorization of H fails,
+/// H + δI is factorized with the smallest δ of a growing sequence (as in Newton) and the
+/// result reports δ > 0: that gradient is then NOT the exact derivative (it is the
+/// gradient of a problem whose equilibrium is stiffened by δ), only a descent-ish
+/// direction. Callers should surface `hessian_shift`.
 ///
 /// Terms that do not depend on x (the regularizers) need no linear solve.
+#include <optional>
+
+#include "tightfit/common/preconditioned_gmres.hpp"
 #include "tightfit/common/sparse_cholesky.hpp"
 #include "tightfit/design/design_term.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
@@ -42,7 +59,23 @@ struct AdjointOptions {
   double initial_regularization = 1e-10;
   double regularization_growth = 10.0;  ///< factor between shifts
   int max_regularizations = 30;
+  /// Relative residual ‖H λ − ∂T/∂q‖ / ‖∂T/∂q‖ the preconditioned GMRES solve reaches.
+  double iterative_tolerance = 1e-12;
+  /// GMRES iterations before the fallback factorizes the exact H.
+  int max_iterative_iterations = 100;
 };
+
+/// How the adjoint system was solved.
+enum class AdjointMethod {
+  kNone,            ///< no system (the term does not depend on positions)
+  kDirect,          ///< one solve with the factorization of H_N, which solves the exact
+                    ///< system to the tolerance (nothing projected beyond round-off)
+  kPreconditioned,  ///< GMRES on H, preconditioned by the factorization of H_N
+  kFallback,        ///< GMRES did not converge: H factorized (maybe shifted)
+};
+
+/// "none", "direct", "preconditioned", "fallback".
+const char* adjoint_method_name(AdjointMethod method);
 
 /// The gradient of a design term at the simulation's current (equilibrium) state.
 struct AdjointResult {
@@ -52,11 +85,24 @@ struct AdjointResult {
   bool solved = false;            ///< an adjoint system was solved (T depends on x)
   double hessian_shift = 0.0;     ///< absolute diagonal shift δ (N/m); 0: exact gradient
   double adjoint_residual = 0.0;  ///< ‖H λ − ∂T/∂q‖ / ‖∂T/∂q‖ with the exact H
+  AdjointMethod method = AdjointMethod::kNone;
+  int krylov_iterations = 0;      ///< GMRES iterations (kPreconditioned, kFallback)
+  int factorizations = 0;         ///< Cholesky factorizations done for this gradient
 };
 
 /// The exact Hessian ∂g/∂q (n_dofs × n_dofs, N/m) of the simulation's total energy at
 /// its current state (see the header comment on the projection).
 SparseMatrix exact_equilibrium_hessian(GarmentSimulation& sim);
+
+/// The solve of the adjoint system H λ = rhs at the simulation's current state.
+struct AdjointSolve {
+  VecX lambda;
+  double hessian_shift = 0.0;  ///< N/m, 0 unless the fallback had to shift H
+  double residual = 0.0;       ///< ‖H λ − rhs‖ / ‖rhs‖
+  AdjointMethod method = AdjointMethod::kNone;
+  int krylov_iterations = 0;
+  int factorizations = 0;
+};
 
 /// ∂²U/∂x∂Xbar (3·n_g × 2·n_p, N/m) of the simulation's rest-dependent energies at the
 /// current garment positions.
@@ -72,11 +118,35 @@ class AdjointSolver {
   /// the largest shift, or when T or its gradient is not finite.
   AdjointResult rest_gradient(GarmentSimulation& sim, const DesignTerm& term);
 
+  /// Solves H λ = rhs (rhs of length n_dofs) at the simulation's current state by the
+  /// method of the header comment. `force_fallback` skips to the direct factorization
+  /// of H (the reference the iterative path is tested against). Throws SolverError
+  /// when no method succeeds.
+  AdjointSolve solve(GarmentSimulation& sim, const VecX& rhs, bool force_fallback = false);
+
+  /// The factorization of Newton's matrix H_N at the state of the last solve() (null
+  /// before one). Its generation() grows with every new factorization, so a holder can
+  /// tell whether it still describes the state it was taken at.
+  const SparseCholesky* held_factorization() const {
+    return held_valid_ ? &newton_factor_ : nullptr;
+  }
+  long generation() const { return generation_; }
+  /// Factorizes Newton's matrix at the simulation's current state as solve() does (it
+  /// becomes the held factorization; a new generation). Returns false when it is not
+  /// positive definite even with the largest shift (nothing is held then).
+  bool factorize_held(GarmentSimulation& sim);
+
   const AdjointOptions& options() const { return options_; }
 
  private:
+  /// factorize_held() with the matrix already assembled; returns the shift used.
+  std::optional<double> factorize_held(const SparseMatrix& H_newton, int& factorizations);
+
   AdjointOptions options_;
-  SparseCholesky cholesky_;
+  SparseCholesky newton_factor_;
+  SparseCholesky exact_factor_;
+  bool held_valid_ = false;
+  long generation_ = 0;
 };
 
 /// The design state (x, Xbar) of the simulation's current garment: x flat (3·n_g, m)

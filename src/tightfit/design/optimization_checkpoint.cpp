@@ -123,11 +123,17 @@ nlohmann::json iteration_json(const OptimizationIteration& it,
           {"line_search_trials", it.line_search_trials},
           {"failed_solves", it.failed_solves},
           {"newton_iterations", it.newton_iterations},
+          {"chord_steps", it.chord_steps},
+          {"factorizations", it.factorizations},
+          {"adjoint_method", it.adjoint_method},
+          {"krylov_iterations", it.krylov_iterations},
           {"hessian_shift", it.hessian_shift},
           {"seconds", it.seconds},
           {"seconds_forward", it.seconds_forward},
           {"seconds_objective", it.seconds_objective},
-          {"seconds_adjoint", it.seconds_adjoint}};
+          {"seconds_adjoint", it.seconds_adjoint},
+          {"seconds_assembly", it.seconds_assembly},
+          {"seconds_factorization", it.seconds_factorization}};
   if (it.remesh) j["remesh"] = remesh_json(*it.remesh, term_names);
   return j;
 }
@@ -149,11 +155,17 @@ OptimizationIteration iteration_from_json(const nlohmann::json& j,
   it.line_search_trials = f.integer("line_search_trials");
   it.failed_solves = f.integer("failed_solves");
   it.newton_iterations = f.integer("newton_iterations");
+  it.chord_steps = f.integer("chord_steps", 0);
+  it.factorizations = f.integer("factorizations", 0);
+  it.adjoint_method = f.string("adjoint_method", std::string());
+  it.krylov_iterations = f.integer("krylov_iterations", 0);
   it.hessian_shift = f.number("hessian_shift");
   it.seconds = f.number("seconds");
   it.seconds_forward = f.number("seconds_forward", 0.0);
   it.seconds_objective = f.number("seconds_objective", 0.0);
   it.seconds_adjoint = f.number("seconds_adjoint", 0.0);
+  it.seconds_assembly = f.number("seconds_assembly", 0.0);
+  it.seconds_factorization = f.number("seconds_factorization", 0.0);
   if (auto r = f.object("remesh")) it.remesh = remesh_from_json(*r, term_names);
   f.finish();
   return it;

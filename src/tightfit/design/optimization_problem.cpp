@@ -66,6 +66,8 @@ void DesignProblem::reset_reference() {
   current_p_ = initial_parameters_;
   accepted_state_ = sim_.problem().state();
   last_ok_ = false;
+  gradient_generation_ = -1;
+  accepted_generation_ = -1;
 }
 
 std::vector<int> DesignProblem::degraded_pieces() const {
@@ -129,6 +131,7 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
   const VecX old_initial_parameters = initial_parameters_, old_initial_areas = initial_areas_;
   const double old_mean_boundary_edge = mean_boundary_edge_;
   const VecX old_accepted_p = accepted_p_;
+  const long old_accepted_generation = accepted_generation_;
   auto undo = [&](const std::string& why) {
     out.ok = false;
     out.failure = why;
@@ -142,6 +145,13 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
     accepted_p_ = old_accepted_p;
     accepted_state_ = old_state;
     restore_accepted();
+    // The next trials start from the factorization at the accepted point, as a run
+    // resumed here would: make it again if the failed re-solve replaced it.
+    accepted_generation_ = -1;
+    if (old_accepted_generation >= 0) {
+      if (old_accepted_generation != adjoint_.generation()) adjoint_.factorize_held(sim_);
+      if (adjoint_.held_factorization()) accepted_generation_ = adjoint_.generation();
+    }
     out.seconds = seconds_since(t0);
     return out;
   };
@@ -293,11 +303,20 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
     return ev;
   }
   current_p_ = p;
+  gradient_generation_ = -1;
+  const SparseCholesky* held =
+      accepted_generation_ == adjoint_.generation() ? adjoint_.held_factorization() : nullptr;
   try {
     sim_.set_state(accepted_state_);
     sim_.set_rest_positions(rest);
-    const NewtonReport report = sim_.solve();
+    const NewtonReport report = sim_.solve(held);
     ev.newton_iterations = report.iterations;
+    ev.chord_steps = report.chord_steps;
+    ev.factorizations = report.factorizations;
+    for (const NewtonIteration& it : report.history) {
+      ev.seconds_assembly += it.seconds_assembly;
+      ev.seconds_factorization += it.seconds_factorization;
+    }
     ev.force_residual = report.final_force_norm;
     if (!report.converged) {
       ev.failure = "forward solve: " + report.message;
@@ -342,6 +361,10 @@ bool DesignProblem::add_gradient(DesignEvaluation& ev) {
     ev.gradient = coordinates_.pull_back(r.rest_gradient);
     ev.hessian_shift = r.hessian_shift;
     ev.adjoint_residual = r.adjoint_residual;
+    ev.adjoint_method = r.method;
+    ev.krylov_iterations = r.krylov_iterations;
+    ev.adjoint_factorizations = r.factorizations;
+    if (r.solved) gradient_generation_ = adjoint_.generation();
   } catch (const SolverError& e) {
     ev.ok = false;
     ev.failure = std::string("adjoint: ") + e.what();
@@ -356,6 +379,7 @@ void DesignProblem::accept() {
     throw std::logic_error("DesignProblem::accept: the last evaluation did not succeed");
   accepted_p_ = current_p_;
   accepted_state_ = sim_.problem().state();
+  accepted_generation_ = gradient_generation_;
 }
 
 void DesignProblem::restore_accepted() {
@@ -375,6 +399,7 @@ void DesignProblem::set_accepted(const VecX& p, const EmbeddedState& state) {
     throw InputError("checkpoint", "its state does not match the garment and body");
   accepted_p_ = p;
   accepted_state_ = state;
+  accepted_generation_ = -1;
   restore_accepted();
 }
 

@@ -10,7 +10,12 @@
 ///
 /// Evaluating at p sets the simulation's rest positions to W p and solves for the
 /// equilibrium, warm-started from the last ACCEPTED equilibrium (never from a rejected
-/// trial); the gradient comes from the adjoint (adjoint_gradient.hpp) and the
+/// trial). Newton's first steps there are chord steps with the factorization the
+/// adjoint made at the accepted equilibrium (AdjointSolver::held_factorization): the
+/// first one is the first-order prediction Δq = −H⁻¹ (∂g/∂p) Δp of the new
+/// equilibrium, and while the chord steps contract fast the forward solve needs no
+/// factorization of its own. Everything a trial starts from is a function of the
+/// accepted point, so a resumed run repeats an uninterrupted one exactly. The gradient comes from the adjoint (adjoint_gradient.hpp) and the
 /// biharmonic pull-back, dT/dp = Wᵀ dT/dXbar. A trial fails, without throwing, when
 ///  * a rest triangle flips or shrinks below `min_area_ratio` of its initial area,
 ///  * the rest-dependent energies reject the rest shape (InputError),
@@ -66,8 +71,15 @@ struct DesignEvaluation {
   VecX gradient;                    ///< dT/dp (only when ok and requested)
   double hessian_shift = 0.0;       ///< adjoint Hessian shift (0: exact gradient)
   double adjoint_residual = 0.0;    ///< relative residual of the adjoint solve
-  int newton_iterations = 0;        ///< of the forward solve
+  int newton_iterations = 0;        ///< of the forward solve (chord steps included)
+  int chord_steps = 0;              ///< of them: chord steps from the held factorization
+  int factorizations = 0;           ///< Cholesky factorizations of the forward solve
+  int adjoint_factorizations = 0;   ///< and of the gradient
+  AdjointMethod adjoint_method = AdjointMethod::kNone;
+  int krylov_iterations = 0;        ///< GMRES iterations of the adjoint solve
   double force_residual = 0.0;      ///< N, final force norm of the forward solve
+  double seconds_assembly = 0.0;       ///< of seconds_forward: gradients and Hessians (s)
+  double seconds_factorization = 0.0;  ///< of seconds_forward: Cholesky factorizations (s)
   double seconds_forward = 0.0;    ///< forward Newton solve (s)
   double seconds_objective = 0.0;  ///< evaluating T at the equilibrium (s)
   double seconds_adjoint = 0.0;    ///< dT/dp: term gradients, adjoint solve, pull-back (s)
@@ -189,6 +201,8 @@ class DesignProblem {
   EmbeddedState accepted_state_;
   VecX current_p_;  // parameters the simulation's rest positions are set to
   bool last_ok_ = false;
+  long gradient_generation_ = -1;  // adjoint factorization made at the last evaluation
+  long accepted_generation_ = -1;  // adjoint factorization made at the accepted point
 };
 
 }  // namespace tightfit

@@ -76,6 +76,7 @@ void parse_lbfgs(JsonFields f, PatternOptimizerOptions& o) {
   if (o.stall_iterations < 1) f.fail("must be >= 1", "stall_iterations");
   o.max_step = f.positive("max_step", o.max_step, true);
   o.max_step_fraction = f.positive("max_step_fraction", o.max_step_fraction);
+  o.step_growth = f.positive("step_growth", o.step_growth, true);
   o.armijo = f.positive("armijo", o.armijo);
   if (o.armijo >= 0.5) f.fail("must be in (0, 0.5)", "armijo");
   o.max_line_search = f.integer("max_line_search", o.max_line_search);

@@ -42,6 +42,10 @@ struct OptimizationIteration {
   int line_search_trials = 0;       ///< forward solves tried for this step
   int failed_solves = 0;            ///< of them: rejected patterns / unconverged solves
   int newton_iterations = 0;        ///< forward Newton iterations of this iteration
+  int chord_steps = 0;              ///< of them: chord steps (no Hessian factorized)
+  int factorizations = 0;           ///< Cholesky factorizations, forward and adjoint
+  std::string adjoint_method;       ///< adjoint_method_name of the accepted gradient
+  int krylov_iterations = 0;        ///< GMRES iterations of the accepted gradient
   double hessian_shift = 0.0;       ///< adjoint Hessian shift (0: exact gradient)
   double seconds = 0.0;             ///< wall time since the run started (s)
   /// Time split of this iteration (s), summed over its line-search trials: forward
@@ -50,6 +54,9 @@ struct OptimizationIteration {
   double seconds_forward = 0.0;
   double seconds_objective = 0.0;
   double seconds_adjoint = 0.0;
+  /// Of seconds_forward: Hessian/gradient assembly and factorizations of Newton.
+  double seconds_assembly = 0.0;
+  double seconds_factorization = 0.0;
   std::optional<RemeshRecord> remesh;  ///< set when pieces were remeshed after this step
 };
 

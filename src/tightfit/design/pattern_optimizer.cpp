@@ -29,6 +29,7 @@ PatternOptimizer::PatternOptimizer(DesignProblem& problem, PatternOptimizerOptio
   if (!(options_.armijo > 0.0 && options_.armijo < 0.5))
     throw std::invalid_argument("PatternOptimizer: armijo must be in (0, 0.5)");
   if (!(options_.max_step >= 0.0) || !(options_.max_step_fraction > 0.0) ||
+      !(options_.step_growth >= 0.0) ||
       !(options_.gradient_tolerance >= 0.0) || !(options_.relative_gradient_tolerance >= 0.0) ||
       !(options_.relative_decrease_tolerance >= 0.0) || std::isnan(options_.value_tolerance))
     throw std::invalid_argument("PatternOptimizer: tolerances and step limits must be >= 0");
@@ -157,6 +158,12 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
     first.gradient_norm = current.gradient.norm();
     first.line_search_trials = 1;
     first.newton_iterations = current.newton_iterations;
+    first.chord_steps = current.chord_steps;
+    first.factorizations = current.factorizations + current.adjoint_factorizations;
+    first.adjoint_method = adjoint_method_name(current.adjoint_method);
+    first.krylov_iterations = current.krylov_iterations;
+    first.seconds_assembly = current.seconds_assembly;
+    first.seconds_factorization = current.seconds_factorization;
     first.hessian_shift = current.hessian_shift;
     first.seconds_forward = current.seconds_forward;
     first.seconds_objective = current.seconds_objective;
@@ -200,6 +207,12 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
     const double max_step = options_.max_step > 0.0
                                 ? options_.max_step
                                 : options_.max_step_fraction * problem_.mean_boundary_edge();
+    // The largest point move of the previous accepted step (none after a remeshing:
+    // the parameters are new).
+    const OptimizationIteration& last = history_.back();
+    const double previous_move =
+        history_.size() > 1 && !(last.remesh && last.remesh->failure.empty()) ? last.max_point_move
+                                                                              : 0.0;
     OptimizationIteration rec;
     DesignEvaluation trial;
     VecX d;
@@ -220,6 +233,8 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
       const double move = max_point_move(d);
       if (!(move > 0.0)) break;
       alpha = memory_.s.empty() || move > max_step ? max_step / move : 1.0;
+      if (const double cap = options_.step_growth * previous_move; cap > 0.0 && alpha * move > cap)
+        alpha = cap / move;
       for (int t = 0; t < options_.max_line_search; ++t) {
         ++rec.line_search_trials;
         const auto t_trial = Clock::now();
@@ -227,6 +242,10 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
         rec.seconds_forward += seconds_since(t_trial) - trial.seconds_objective;
         rec.seconds_objective += trial.seconds_objective;
         rec.newton_iterations += trial.newton_iterations;
+        rec.chord_steps += trial.chord_steps;
+        rec.factorizations += trial.factorizations;
+        rec.seconds_assembly += trial.seconds_assembly;
+        rec.seconds_factorization += trial.seconds_factorization;
         if (!trial.ok) {
           ++rec.failed_solves;
           alpha *= 0.5;
@@ -236,6 +255,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
           const auto t_gradient = Clock::now();
           const bool gradient_ok = problem_.add_gradient(trial);
           rec.seconds_adjoint += seconds_since(t_gradient);
+          rec.factorizations += trial.adjoint_factorizations;
           if (gradient_ok) {
             accepted = true;
             break;
@@ -276,6 +296,8 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
     rec.max_point_move = max_point_move(step);
     rec.step_factor = alpha;
     rec.hessian_shift = current.hessian_shift;
+    rec.adjoint_method = adjoint_method_name(current.adjoint_method);
+    rec.krylov_iterations = current.krylov_iterations;
 
     if (problem_.options().remesh.enabled && problem_.can_remesh() &&
         iteration_ > remesh_blocked_until_) {

@@ -30,20 +30,37 @@ void scatter_gradient(const std::array<int, NV>& ids,
     for (int k = 0; k < Dim; ++k) g[Dim * ids[a] + k] += local[Dim * static_cast<int>(a) + k];
 }
 
-/// Appends the local block (rows: RowDim DOFs of each `rows` vertex; columns: ColDim
-/// DOFs of each `cols` vertex) as triplets. Zeros are written too, so that the sparsity
-/// pattern does not depend on the state (a sparse Cholesky reuses its analysis).
+/// Writes the local block (rows: RowDim DOFs of each `rows` vertex; columns: ColDim
+/// DOFs of each `cols` vertex) as RowDim·NR·ColDim·NC consecutive triplets starting at
+/// `out` (an element's own slot of a preallocated array, so elements can be assembled
+/// in parallel in a fixed order). Zeros are written too, so that the sparsity pattern
+/// does not depend on the state (a sparse Cholesky reuses its analysis).
 template <int RowDim, std::size_t NR, int ColDim, std::size_t NC, typename Derived>
 void scatter_block(const std::array<int, NR>& rows, const std::array<int, NC>& cols,
-                   const Eigen::MatrixBase<Derived>& local, std::vector<Triplet>& out) {
+                   const Eigen::MatrixBase<Derived>& local, Triplet* out) {
   for (std::size_t a = 0; a < NR; ++a)
     for (int i = 0; i < RowDim; ++i)
       for (std::size_t b = 0; b < NC; ++b)
-        for (int j = 0; j < ColDim; ++j) {
-          out.emplace_back(
+        for (int j = 0; j < ColDim; ++j)
+          *out++ = Triplet(
               RowDim * rows[a] + i, ColDim * cols[b] + j,
               local(RowDim * static_cast<int>(a) + i, ColDim * static_cast<int>(b) + j));
-        }
+}
+
+/// Appends the local block as triplets (same order as the pointer version).
+template <int RowDim, std::size_t NR, int ColDim, std::size_t NC, typename Derived>
+void scatter_block(const std::array<int, NR>& rows, const std::array<int, NC>& cols,
+                   const Eigen::MatrixBase<Derived>& local, std::vector<Triplet>& out) {
+  const std::size_t first = out.size();
+  out.resize(first + RowDim * NR * ColDim * NC);
+  scatter_block<RowDim, NR, ColDim, NC>(rows, cols, local, out.data() + first);
+}
+
+/// A symmetric local Hessian over `ids` (Dim DOFs per vertex) as (Dim·NV)² triplets.
+template <int Dim, std::size_t NV, typename Derived>
+void scatter_hessian(const std::array<int, NV>& ids, const Eigen::MatrixBase<Derived>& local,
+                     Triplet* out) {
+  scatter_block<Dim, NV, Dim, NV>(ids, ids, local, out);
 }
 
 /// Appends a symmetric local Hessian over `ids` (Dim DOFs per vertex) as triplets.

@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/parallel.hpp"
 #include "tightfit/physics/assembly.hpp"
 
 namespace tightfit {
@@ -207,58 +208,73 @@ struct ClothElement {
   EdgeMetric<2> rest;
 };
 
+ClothElement gather_element(const Triangles& triangles, const Points2& rest,
+                            const std::vector<int>& to_garment, const VecX& x, Eigen::Index e) {
+  ClothElement el;
+  for (int k = 0; k < 3; ++k) {
+    el.pattern[k] = triangles(e, k);
+    el.garment[k] = to_garment[el.pattern[k]];
+  }
+  el.deformed = edge_metric<3>(x.segment<3>(3 * el.garment[0]), x.segment<3>(3 * el.garment[1]),
+                               x.segment<3>(3 * el.garment[2]));
+  el.rest = edge_metric<2>(rest.row(el.pattern[0]).transpose(), rest.row(el.pattern[1]).transpose(),
+                           rest.row(el.pattern[2]).transpose());
+  return el;
+}
+
+/// Runs fn(e, element) for every triangle in parallel (parallel_for: fn writes only to
+/// element e's slots).
 template <typename Fn>
 void for_each_element(const Triangles& triangles, const Points2& rest,
                       const std::vector<int>& to_garment, const VecX& x, Fn&& fn) {
-  for (Eigen::Index e = 0; e < triangles.rows(); ++e) {
-    ClothElement el;
-    for (int k = 0; k < 3; ++k) {
-      el.pattern[k] = triangles(e, k);
-      el.garment[k] = to_garment[el.pattern[k]];
-    }
-    el.deformed = edge_metric<3>(x.segment<3>(3 * el.garment[0]), x.segment<3>(3 * el.garment[1]),
-                                 x.segment<3>(3 * el.garment[2]));
-    el.rest =
-        edge_metric<2>(rest.row(el.pattern[0]).transpose(), rest.row(el.pattern[1]).transpose(),
-                       rest.row(el.pattern[2]).transpose());
-    fn(el);
-  }
+  parallel_for(triangles.rows(), [&](std::int64_t e) {
+    fn(e, gather_element(triangles, rest, to_garment, x, e));
+  });
 }
 
 }  // namespace
 
 double ClothEnergy::value(const VecX& x) const {
   check_x(x);
-  double total = 0.0;
-  for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
-    total += element_phi(el.deformed.value, el.rest.value, law_, 0).value;
-  });
-  return material().thickness * total;
+  VecX values(triangles_.rows());
+  for_each_element(triangles_, rest_, pattern_to_garment_, x,
+                   [&](std::int64_t e, const ClothElement& el) {
+                     values[e] = element_phi(el.deformed.value, el.rest.value, law_, 0).value;
+                   });
+  return material().thickness * values.sum();
 }
 
 void ClothEnergy::add_gradient(const VecX& x, VecX& g) const {
   check_x(x);
   check_x(g);
   const double t = material().thickness;
-  for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
-    const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
-    const Vec9 local = t * el.deformed.jacobian.transpose() * phi.gradient.head<3>();
-    scatter_gradient<3>(el.garment, local, g);
-  });
+  std::vector<Vec9> local(static_cast<size_t>(triangles_.rows()));
+  std::vector<std::array<int, 3>> ids(local.size());
+  for_each_element(triangles_, rest_, pattern_to_garment_, x,
+                   [&](std::int64_t e, const ClothElement& el) {
+                     const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
+                     local[e] = t * el.deformed.jacobian.transpose() * phi.gradient.head<3>();
+                     ids[e] = el.garment;
+                   });
+  for (size_t e = 0; e < local.size(); ++e) scatter_gradient<3>(ids[e], local[e], g);
 }
 
 void ClothEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd) const {
   check_x(x);
-  H.reserve(H.size() + 81 * static_cast<std::size_t>(triangles_.rows()));
+  constexpr size_t kPerElement = 81;
+  const size_t first = H.size();
+  H.resize(first + kPerElement * static_cast<size_t>(triangles_.rows()));
   const double t = material().thickness;
-  for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
-    const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
-    const Mat3x9& j = el.deformed.jacobian;
-    Mat9 local = t * (j.transpose() * phi.hessian.topLeftCorner<3, 3>() * j +
-                      metric_curvature<3>(phi.gradient.head<3>()));
-    if (project_psd) tightfit::project_psd(local);
-    scatter_hessian<3>(el.garment, local, H);
-  });
+  for_each_element(triangles_, rest_, pattern_to_garment_, x,
+                   [&](std::int64_t e, const ClothElement& el) {
+                     const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
+                     const Mat3x9& j = el.deformed.jacobian;
+                     Mat9 local = t * (j.transpose() * phi.hessian.topLeftCorner<3, 3>() * j +
+                                       metric_curvature<3>(phi.gradient.head<3>()));
+                     if (project_psd) tightfit::project_psd(local);
+                     scatter_hessian<3>(el.garment, local,
+                                        H.data() + first + kPerElement * static_cast<size_t>(e));
+                   });
 }
 
 void ClothEnergy::add_gradient_rest(const VecX& x, VecX& g_rest) const {
@@ -266,23 +282,32 @@ void ClothEnergy::add_gradient_rest(const VecX& x, VecX& g_rest) const {
   if (g_rest.size() != 2 * rest_.rows())
     throw std::invalid_argument("ClothEnergy::add_gradient_rest: wrong vector size");
   const double t = material().thickness;
-  for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
-    const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
-    const Vec6 local = t * el.rest.jacobian.transpose() * phi.gradient.tail<3>();
-    scatter_gradient<2>(el.pattern, local, g_rest);
-  });
+  std::vector<Vec6> local(static_cast<size_t>(triangles_.rows()));
+  std::vector<std::array<int, 3>> ids(local.size());
+  for_each_element(triangles_, rest_, pattern_to_garment_, x,
+                   [&](std::int64_t e, const ClothElement& el) {
+                     const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
+                     local[e] = t * el.rest.jacobian.transpose() * phi.gradient.tail<3>();
+                     ids[e] = el.pattern;
+                   });
+  for (size_t e = 0; e < local.size(); ++e) scatter_gradient<2>(ids[e], local[e], g_rest);
 }
 
 void ClothEnergy::add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const {
   check_x(x);
-  H.reserve(H.size() + 54 * static_cast<std::size_t>(triangles_.rows()));
+  constexpr size_t kPerElement = 54;
+  const size_t first = H.size();
+  H.resize(first + kPerElement * static_cast<size_t>(triangles_.rows()));
   const double t = material().thickness;
-  for_each_element(triangles_, rest_, pattern_to_garment_, x, [&](const ClothElement& el) {
-    const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
-    const Eigen::Matrix<double, 9, 6> local = t * el.deformed.jacobian.transpose() *
-                                              phi.hessian.topRightCorner<3, 3>() * el.rest.jacobian;
-    scatter_block<3, 3, 2, 3>(el.garment, el.pattern, local, H);
-  });
+  for_each_element(triangles_, rest_, pattern_to_garment_, x,
+                   [&](std::int64_t e, const ClothElement& el) {
+                     const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
+                     const Eigen::Matrix<double, 9, 6> local =
+                         t * el.deformed.jacobian.transpose() *
+                         phi.hessian.topRightCorner<3, 3>() * el.rest.jacobian;
+                     scatter_block<3, 3, 2, 3>(el.garment, el.pattern, local,
+                                               H.data() + first + kPerElement * static_cast<size_t>(e));
+                   });
 }
 
 }  // namespace tightfit

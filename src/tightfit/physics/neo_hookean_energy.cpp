@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/parallel.hpp"
 #include "tightfit/physics/assembly.hpp"
 
 namespace tightfit {
@@ -117,14 +118,22 @@ Mat3 NeoHookeanEnergy::deformation_gradient(const VecX& x, int e) const {
 
 double NeoHookeanEnergy::value(const VecX& x) const {
   check_size(x);
-  double total = 0.0;
-  for (int e = 0; e < num_tets(); ++e) {
-    const Mat3 F = deformation_gradient(x, e);
+  VecX values(num_tets());
+  parallel_for(num_tets(), [&](std::int64_t e) {
+    const Mat3 F = deformation_gradient(x, static_cast<int>(e));
     const double J = F.determinant();
-    if (!(J > 0.0)) return std::numeric_limits<double>::infinity();
+    if (!(J > 0.0)) {
+      values[e] = std::numeric_limits<double>::infinity();
+      return;
+    }
     const double w = 0.5 * mu_ * (std::pow(J, -2.0 / 3.0) * F.squaredNorm() - 3.0) +
                      0.5 * kappa_ * (J - 1.0) * (J - 1.0);
-    total += volume_[e] * w;
+    values[e] = volume_[e] * w;
+  });
+  double total = 0.0;
+  for (Eigen::Index e = 0; e < values.size(); ++e) {
+    if (values[e] == std::numeric_limits<double>::infinity()) return values[e];
+    total += values[e];
   }
   return total;
 }
@@ -132,8 +141,9 @@ double NeoHookeanEnergy::value(const VecX& x) const {
 void NeoHookeanEnergy::add_gradient(const VecX& x, VecX& g) const {
   check_size(x);
   check_size(g);
-  for (int e = 0; e < num_tets(); ++e) {
-    const Mat3 F = deformation_gradient(x, e);
+  std::vector<Eigen::Matrix<double, 3, 4>> local(tets_.size());
+  parallel_for(num_tets(), [&](std::int64_t e) {
+    const Mat3 F = deformation_gradient(x, static_cast<int>(e));
     const double J = F.determinant();
     if (!(J > 0.0))
       throw SolverError("NeoHookeanEnergy: gradient at inverted tet " + std::to_string(e));
@@ -142,16 +152,19 @@ void NeoHookeanEnergy::add_gradient(const VecX& x, VecX& g) const {
     const Mat3 cof = cofactor(F);
     const Mat3 P = mu_ * a * F + (kappa_ * (J - 1.0) - mu_ * a * i1 / (3.0 * J)) * cof;
     // dU/dx_a = V P ∇N_a.
-    const Eigen::Matrix<double, 3, 4> local = volume_[e] * P * shape_gradients(rest_inverse_[e]);
-    for (int k = 0; k < 4; ++k) g.segment<3>(3 * tets_[e][k]) += local.col(k);
-  }
+    local[e] = volume_[e] * P * shape_gradients(rest_inverse_[e]);
+  });
+  for (size_t e = 0; e < tets_.size(); ++e)
+    for (int k = 0; k < 4; ++k) g.segment<3>(3 * tets_[e][k]) += local[e].col(k);
 }
 
 void NeoHookeanEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd) const {
   check_size(x);
-  H.reserve(H.size() + 144 * tets_.size());
-  for (int e = 0; e < num_tets(); ++e) {
-    const Mat3 F = deformation_gradient(x, e);
+  constexpr size_t kPerElement = 144;
+  const size_t first = H.size();
+  H.resize(first + kPerElement * tets_.size());
+  parallel_for(num_tets(), [&](std::int64_t e) {
+    const Mat3 F = deformation_gradient(x, static_cast<int>(e));
     const double J = F.determinant();
     if (!(J > 0.0))
       throw SolverError("NeoHookeanEnergy: Hessian at inverted tet " + std::to_string(e));
@@ -167,8 +180,8 @@ void NeoHookeanEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool 
     const Mat9x12 dfdx = deformation_jacobian(shape_gradients(rest_inverse_[e]));
     Mat12 local = volume_[e] * dfdx.transpose() * h * dfdx;
     if (project_psd) tightfit::project_psd(local);
-    scatter_hessian<3>(tets_[e], local, H);
-  }
+    scatter_hessian<3>(tets_[e], local, H.data() + first + kPerElement * static_cast<size_t>(e));
+  });
 }
 
 }  // namespace tightfit

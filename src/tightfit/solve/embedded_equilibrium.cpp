@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/parallel.hpp"
 
 namespace tightfit {
 namespace {
@@ -49,7 +50,7 @@ void EmbeddedEquilibrium::evaluate_garment() {
   const int ng = num_garment_vertices();
   weights_.resize(ng);
   for (Points3* p : {&x_, &xu_, &xv_, &xuu_, &xuv_, &xvv_}) p->setZero(ng, 3);
-  for (int i = 0; i < ng; ++i) {
+  parallel_for(ng, [&](std::int64_t i) {
     LimitWeights& w = weights_[i];
     setup_.surface->weights(state_.garment[i], w);
     for (size_t j = 0; j < w.index.size(); ++j) {
@@ -61,7 +62,7 @@ void EmbeddedEquilibrium::evaluate_garment() {
       xuv_.row(i) += w.duv[j] * y;
       xvv_.row(i) += w.dvv[j] * y;
     }
-  }
+  });
 }
 
 double EmbeddedEquilibrium::garment_energy(const VecX& x) const {
@@ -122,12 +123,12 @@ SparseMatrix EmbeddedEquilibrium::position_jacobian() const {
   return J;
 }
 
-SparseMatrix EmbeddedEquilibrium::hessian() {
+SparseMatrix EmbeddedEquilibrium::hessian(HessianKind kind) {
   const int ng = num_garment_vertices();
   const VecX x = flat(x_);
+  const bool project = kind == HessianKind::kNewton && setup_.project_garment_hessians;
   std::vector<Triplet> hx;
-  for (const Energy* energy : setup_.garment_energies)
-    energy->add_hessian(x, hx, setup_.project_garment_hessians);
+  for (const Energy* energy : setup_.garment_energies) energy->add_hessian(x, hx, project);
   SparseMatrix Hxx(3 * ng, 3 * ng);
   Hxx.setFromTriplets(hx.begin(), hx.end());
   const SparseMatrix J = position_jacobian();
@@ -172,15 +173,15 @@ SparseMatrix EmbeddedEquilibrium::hessian() {
 }
 
 bool EmbeddedEquilibrium::set_step(const VecX& dq, double alpha) {
-  for (int i = 0; i < num_garment_vertices(); ++i) {
+  parallel_for(num_garment_vertices(), [&](std::int64_t i) {
     const int d = garment_dof_[i];
     if (d < 0) {
       state_.garment[i] = base_.garment[i];
-      continue;
+      return;
     }
     const Vec2 delta = alpha * dq.segment<2>(d);
     state_.garment[i] = setup_.surface->walk(base_.garment[i], delta).end;
-  }
+  });
   for (int k = 0; k < static_cast<int>(body_dof_.size()); ++k) {
     const int d = body_dof_[k];
     state_.body.row(k) = base_.body.row(k);

@@ -21,6 +21,14 @@ struct EmbeddedState {
   Points3 body;                       ///< n_b×3 deformed body positions (m)
 };
 
+/// Which Hessian of the total energy to assemble. Both have the same sparsity pattern
+/// (zeros are stored), so one symbolic factorization serves both.
+enum class HessianKind {
+  kNewton,  ///< as Newton uses it: cloth/seam element Hessians PSD-projected when the
+            ///< setup asks for it (EmbeddedSystemSetup::project_garment_hessians)
+  kExact,   ///< the exact ∂g/∂q, no projection (the adjoint's matrix)
+};
+
 struct EmbeddedSystemSetup {
   const LimitSurface* surface = nullptr;        ///< limit surface of the body's surface mesh
   std::vector<const Energy*> garment_energies;  ///< functions of x (3·n_g)
@@ -38,7 +46,13 @@ class EmbeddedEquilibrium : public NewtonProblem {
   Eigen::Index num_dofs() const override { return num_dofs_; }
   double energy() override;
   VecX gradient() override;
-  SparseMatrix hessian() override;
+  /// The Newton Hessian (HessianKind::kNewton).
+  SparseMatrix hessian() override { return hessian(HessianKind::kNewton); }
+  /// The Hessian of the given kind at the current state (num_dofs × num_dofs, N/m, both
+  /// triangles stored, the pattern independent of the state and of the kind).
+  SparseMatrix hessian(HessianKind kind);
+  /// True when kNewton projects element Hessians (so kNewton and kExact may differ).
+  bool projects_hessians() const { return setup_.project_garment_hessians; }
   bool set_step(const VecX& dq, double alpha) override;
   void commit() override;
   double force_norm(const VecX& gradient) override;

@@ -66,11 +66,16 @@ void GarmentSimulation::replace_garment(Garment garment, const EmbeddedState& st
   rebuild_problem(state);
 }
 
+std::vector<const RestDependentEnergy*> GarmentSimulation::rest_dependent_energies() const {
+  std::vector<const RestDependentEnergy*> out{cloth_.get()};
+  if (seams_) out.push_back(seams_.get());
+  return out;
+}
+
 void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
   EmbeddedSystemSetup setup;
   setup.surface = &surface_;
-  setup.garment_energies.push_back(cloth_.get());
-  if (seams_) setup.garment_energies.push_back(seams_.get());
+  for (const RestDependentEnergy* e : rest_dependent_energies()) setup.garment_energies.push_back(e);
   setup.body_energies.push_back(body_energy_.get());
   if (materials_.rigid_body) {
     setup.pinned_body.resize(body_.num_vertices());
@@ -83,8 +88,8 @@ void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
   problem_ = std::make_unique<EmbeddedEquilibrium>(std::move(setup), state);
 }
 
-NewtonReport GarmentSimulation::solve() {
-  NewtonReport report = newton_.solve(*problem_);
+NewtonReport GarmentSimulation::solve(const SparseCholesky* held) {
+  NewtonReport report = newton_.solve(*problem_, held);
   garment_.embedding = problem_->state().garment;
   return report;
 }

@@ -49,7 +49,9 @@ class GarmentSimulation {
   ~GarmentSimulation();
 
   /// Newton from the current state (warm start). Throws SolverError if it fails.
-  NewtonReport solve();
+  /// `held`: a factorization of this system's Hessian near the current state for
+  /// Newton's first (chord) steps (NewtonSolver::solve).
+  NewtonReport solve(const SparseCholesky* held = nullptr);
 
   const Garment& garment() const { return garment_; }
   const Body& body() const { return body_; }
@@ -64,6 +66,9 @@ class GarmentSimulation {
   const SeamSpringEnergy* seams() const { return seams_.get(); }
   SeamSpringEnergy* seams() { return seams_.get(); }
   const NeoHookeanEnergy& body_energy() const { return *body_energy_; }
+  /// The energies of the equilibrium problem that depend on the pattern rest positions
+  /// (cloth, and the seam springs when present): exactly its garment energies.
+  std::vector<const RestDependentEnergy*> rest_dependent_energies() const;
 
   /// Current garment positions (n_g×3, m) and deformed body (n_b×3, m).
   const Points3& garment_positions() const { return problem_->garment_positions(); }

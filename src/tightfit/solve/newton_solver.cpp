@@ -15,32 +15,19 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-SparseMatrix with_shift(const SparseMatrix& H, double shift) {
-  SparseMatrix I(H.rows(), H.cols());
-  I.setIdentity();
-  return H + shift * I;
-}
-
 }  // namespace
 
-double NewtonSolver::factorize_regularized(const SparseMatrix& H) {
-  if (cholesky_.factorize(H)) return 0.0;
-  double mean_diag = H.diagonal().cwiseAbs().mean();
-  if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
-  double shift = options_.initial_regularization * mean_diag;
-  for (int k = 0; k < options_.max_regularizations; ++k) {
-    if (cholesky_.factorize(with_shift(H, shift))) return shift;
-    shift *= options_.regularization_growth;
-  }
+double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factorizations) {
+  const ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
+                             options_.max_regularizations};
+  double last = 0.0;
+  if (const auto shift = factorize_shifted(cholesky_, H, shifts, factorizations, &last))
+    return *shift;
   throw SolverError("Newton: Hessian could not be factorized even with diagonal shift " +
-                    std::to_string(shift));
+                    std::to_string(last));
 }
 
-bool NewtonSolver::factorize_at_current(NewtonProblem& problem) {
-  return cholesky_.factorize(problem.hessian());
-}
-
-NewtonReport NewtonSolver::solve(NewtonProblem& problem) {
+NewtonReport NewtonSolver::solve(NewtonProblem& problem, const SparseCholesky* held) {
   const auto t_start = Clock::now();
   NewtonReport report;
   report.tolerance = std::max(options_.absolute_force_tolerance,
@@ -48,6 +35,8 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem) {
   double energy = problem.energy();
   if (!std::isfinite(energy))
     throw SolverError("Newton: the initial state is inadmissible (energy is not finite)");
+  bool chord = held && held->size() == problem.num_dofs() && options_.max_chord_steps > 0;
+  double previous_force = 0.0;
 
   for (int it = 0;; ++it) {
     NewtonIteration record;
@@ -69,17 +58,28 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem) {
       report.message = "iteration limit reached";
       break;
     }
-    const SparseMatrix H = problem.hessian();
-    record.seconds_assembly = seconds_since(t0);
-    report.hessian_nonzeros = H.nonZeros();
+    if (chord && (report.chord_steps >= options_.max_chord_steps ||
+                  (report.chord_steps > 0 &&
+                   record.force_norm > options_.chord_contraction * previous_force)))
+      chord = false;
+    previous_force = record.force_norm;
+    const SparseCholesky* factor = &cholesky_;
+    if (chord) {
+      factor = held;
+      record.chord = true;
+      record.seconds_assembly = seconds_since(t0);
+    } else {
+      const SparseMatrix H = problem.hessian();
+      record.seconds_assembly = seconds_since(t0);
+      report.hessian_nonzeros = H.nonZeros();
+      t0 = Clock::now();
+      record.regularization = factorize_regularized(H, report.factorizations);
+      record.seconds_factorization = seconds_since(t0);
+      report.factor_nonzeros = cholesky_.factor_nonzeros();
+    }
 
     t0 = Clock::now();
-    record.regularization = factorize_regularized(H);
-    record.seconds_factorization = seconds_since(t0);
-    report.factor_nonzeros = cholesky_.factor_nonzeros();
-
-    t0 = Clock::now();
-    const VecX dq = cholesky_.solve(VecX(-g));
+    const VecX dq = factor->solve(VecX(-g));
     record.seconds_solve = seconds_since(t0);
 
     t0 = Clock::now();
@@ -87,7 +87,10 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem) {
     double alpha = 1.0;
     bool accepted = false;
     double new_energy = energy;
-    for (int k = 0; k <= options_.max_line_search_halvings; ++k, alpha *= 0.5) {
+    // A chord step that needs much backtracking is not worth its trials: Newton's own
+    // Hessian is then the better direction.
+    const int halvings = record.chord ? 3 : options_.max_line_search_halvings;
+    for (int k = 0; k <= halvings; ++k, alpha *= 0.5) {
       if (!problem.set_step(dq, alpha)) continue;
       new_energy = problem.energy();
       // Sufficient decrease, with a round-off allowance so that steps taken at the
@@ -100,6 +103,13 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem) {
       }
     }
     record.seconds_line_search = seconds_since(t0);
+    if (!accepted && record.chord) {
+      // The held factorization gave no descent here: go on with Newton's own.
+      problem.set_step(dq, 0.0);
+      chord = false;
+      report.history.push_back(record);
+      continue;
+    }
     if (!accepted) {
       problem.set_step(dq, 0.0);
       report.history.push_back(record);
@@ -109,6 +119,7 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem) {
     problem.commit();
     energy = new_energy;
     record.step_size = alpha;
+    if (record.chord) ++report.chord_steps;
     report.history.push_back(record);
   }
   report.seconds_total = seconds_since(t_start);

@@ -22,6 +22,11 @@ struct NewtonOptions {
   double regularization_growth = 10.0;     ///< factor between regularization attempts
   int max_regularizations = 30;
   bool throw_on_failure = true;            ///< throw SolverError if not converged
+  /// Chord steps with a held factorization (solve()'s `held`): at most this many, and
+  /// only while each reduces the force norm to at most `chord_contraction` times the
+  /// previous one; then full Newton steps.
+  int max_chord_steps = 4;
+  double chord_contraction = 0.25;
 };
 
 /// One Newton iteration, for reports and convergence tests.
@@ -30,6 +35,7 @@ struct NewtonIteration {
   double force_norm = 0.0;        ///< N, before the step
   double step_size = 0.0;         ///< accepted line-search alpha
   double regularization = 0.0;    ///< absolute diagonal shift used (0 if none)
+  bool chord = false;             ///< step from the held factorization (no new Hessian)
   double seconds_assembly = 0.0;  ///< gradient + Hessian
   double seconds_factorization = 0.0;
   double seconds_solve = 0.0;
@@ -38,7 +44,9 @@ struct NewtonIteration {
 
 struct NewtonReport {
   bool converged = false;
-  int iterations = 0;
+  int iterations = 0;             ///< steps taken (chord steps included)
+  int chord_steps = 0;            ///< of them: with the held factorization
+  int factorizations = 0;         ///< Hessians factorized (shifted retries included)
   double final_energy = 0.0;
   double final_force_norm = 0.0;   ///< N
   double tolerance = 0.0;          ///< N, the force tolerance that was applied
@@ -56,21 +64,28 @@ class NewtonSolver {
   /// Runs Newton from the problem's current (committed) state; on return the problem
   /// holds the last accepted state. Throws SolverError when not converged and
   /// options.throw_on_failure.
-  NewtonReport solve(NewtonProblem& problem);
+  ///
+  /// `held` (optional): the factorization of a Hessian of the same system near the
+  /// starting state (e.g. at the previous equilibrium of a design step, whose rest shape
+  /// differs a little). The first steps are then chord steps dq = −held⁻¹ g, which cost
+  /// a gradient and a solve but no assembly or factorization of a Hessian; the first
+  /// chord step from an equilibrium of the old rest shape is the first-order predictor
+  /// of the new equilibrium, −H⁻¹ (∂g/∂Xbar) ΔXbar. Chord steps stop after
+  /// options.max_chord_steps or when one contracts the force norm by less than
+  /// options.chord_contraction; the convergence test is the same for every step. A
+  /// `held` of another size is ignored.
+  NewtonReport solve(NewtonProblem& problem, const SparseCholesky* held = nullptr);
 
   /// The factorization of the last Hessian that was factorized (at the state before the
-  /// last step, or at the converged state after `factorize_at_current`).
+  /// last full Newton step).
   const SparseCholesky& factorization() const { return cholesky_; }
-
-  /// Factorizes the Hessian at the problem's current state (no regularization) for
-  /// adjoint solves; returns false when it is not positive definite.
-  bool factorize_at_current(NewtonProblem& problem);
 
   const NewtonOptions& options() const { return options_; }
 
  private:
   /// Factorizes H + δI with the smallest δ of the growing sequence that succeeds.
-  double factorize_regularized(const SparseMatrix& H);
+  /// Counts the attempts in `factorizations`.
+  double factorize_regularized(const SparseMatrix& H, int& factorizations);
 
   NewtonOptions options_;
   SparseCholesky cholesky_;

@@ -1,4 +1,4 @@
-#include "optimization_setup.hpp"
+#include "tightfit/io/optimization_setup.hpp"
 
 #include <limits>
 
@@ -14,7 +14,7 @@
 #include "tightfit/objectives/shape_objective.hpp"
 #include "tightfit/objectives/stretch_objective.hpp"
 
-namespace tightfit::app {
+namespace tightfit {
 namespace {
 
 /// The target surface's vertices with their area-weighted normals (unused vertices,
@@ -101,4 +101,4 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
   return sum;
 }
 
-}  // namespace tightfit::app
+}  // namespace tightfit

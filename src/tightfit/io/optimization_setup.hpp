@@ -1,6 +1,7 @@
 #pragma once
-/// Shared by `tightfit optimize` and `tightfit check-gradient`: reading a scene file
-/// with an "optimize" section and building the weighted design objective from it.
+/// Reading a scene file with an "optimize" section and building the weighted design
+/// objective from it: what `tightfit optimize`, `tightfit check-gradient` and the
+/// benchmarks share, so that a benchmark runs exactly the objective of an example.
 #include <memory>
 #include <string>
 
@@ -9,7 +10,7 @@
 #include "tightfit/io/scene_spec.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
-namespace tightfit::app {
+namespace tightfit {
 
 struct OptimizationScene {
   SceneSpec scene;                ///< the scene (scene.optimize: the raw section)
@@ -27,4 +28,4 @@ OptimizationScene read_optimization_scene(const std::string& file);
 std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
                                                const GarmentSimulation& sim);
 
-}  // namespace tightfit::app
+}  // namespace tightfit

@@ -1,0 +1,123 @@
+#include "tightfit/common/preconditioned_gmres.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "tightfit/common/sparse_cholesky.hpp"
+
+namespace tightfit {
+namespace {
+
+/// A sparse symmetric matrix: the 1D Laplacian (+ shift on the diagonal) plus a few
+/// random symmetric off-diagonal couplings of size `noise`.
+SparseMatrix test_matrix(int n, double shift, double noise, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> index(0, n - 1);
+  std::uniform_real_distribution<double> value(-noise, noise);
+  std::vector<Triplet> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 2.0 + shift);
+    if (i + 1 < n) {
+      t.emplace_back(i, i + 1, -1.0);
+      t.emplace_back(i + 1, i, -1.0);
+    }
+  }
+  for (int k = 0; k < n / 4 && noise > 0.0; ++k) {
+    const int i = index(rng), j = index(rng);
+    const double v = value(rng);
+    t.emplace_back(i, j, v);
+    t.emplace_back(j, i, v);
+  }
+  SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+TEST(PreconditionedGmres, ExactPreconditionerConvergesInOneIteration) {
+  const SparseMatrix A = test_matrix(80, 0.1, 0.0, 1);
+  SparseCholesky chol;
+  ASSERT_TRUE(chol.factorize(A));
+  const VecX b = VecX::LinSpaced(80, -1.0, 3.0);
+  VecX x;
+  const GmresReport r = preconditioned_gmres([&](const VecX& v) { return VecX(A * v); },
+                                             [&](const VecX& v) { return chol.solve(v); }, b, x);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LE(r.iterations, 1);
+  EXPECT_LT((A * x - b).norm(), 1e-12 * b.norm());
+}
+
+TEST(PreconditionedGmres, SolvesAPerturbedIndefiniteSystemWithANearbyFactorization) {
+  // A = M + E with M SPD (factorized) and E a sparse symmetric perturbation on a few
+  // rows that makes A indefinite: the adjoint's situation (exact Hessian vs the
+  // projected Newton matrix, which differ on the projected elements only).
+  const int n = 400;
+  const SparseMatrix M = test_matrix(n, 0.05, 0.0, 2);
+  SparseMatrix A = M;
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> index(0, n - 1);
+  for (int k = 0; k < 12; ++k) {
+    const int i = index(rng), j = index(rng);
+    A.coeffRef(i, j) += 0.4;
+    if (i != j) A.coeffRef(j, i) += 0.4;
+  }
+  A.coeffRef(17, 17) = -1.0;  // a negative curvature direction
+  A.makeCompressed();
+  SparseCholesky chol;
+  ASSERT_TRUE(chol.factorize(M));
+  SparseCholesky direct;
+  EXPECT_FALSE(direct.factorize(A)) << "the test matrix should be indefinite";
+  const VecX b = VecX::LinSpaced(n, -1.0, 1.0);
+  VecX x;
+  GmresOptions o;
+  o.relative_tolerance = 1e-12;
+  o.max_iterations = 200;
+  o.restart = 40;
+  const GmresReport r = preconditioned_gmres([&](const VecX& v) { return VecX(A * v); },
+                                             [&](const VecX& v) { return chol.solve(v); }, b, x, o);
+  ASSERT_TRUE(r.converged) << r.iterations << " iterations, residual " << r.relative_residual;
+  EXPECT_LT((A * x - b).norm(), 1e-11 * b.norm());
+  EXPECT_NEAR(r.relative_residual, (A * x - b).norm() / b.norm(), 1e-13);
+  EXPECT_GT(r.iterations, 1);
+  EXPECT_LE(r.iterations, 2 * 13 + 2) << "a rank-k perturbation needs about k iterations";
+}
+
+TEST(PreconditionedGmres, ReportsNonConvergenceWithinTheIterationBudget) {
+  const SparseMatrix A = test_matrix(300, 1e-4, 0.0, 4);
+  const VecX b = VecX::Ones(300);
+  VecX x;
+  GmresOptions o;
+  o.max_iterations = 5;
+  o.restart = 3;
+  const GmresReport r = preconditioned_gmres([&](const VecX& v) { return VecX(A * v); },
+                                             [](const VecX& v) { return v; }, b, x, o);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.iterations, 5);
+  EXPECT_NEAR(r.relative_residual, (A * x - b).norm() / b.norm(), 1e-12);
+}
+
+TEST(PreconditionedGmres, ZeroRightHandSideGivesZero) {
+  const SparseMatrix A = test_matrix(10, 0.1, 0.0, 5);
+  VecX x = VecX::Ones(10);
+  const GmresReport r = preconditioned_gmres([&](const VecX& v) { return VecX(A * v); },
+                                             [](const VecX& v) { return v; }, VecX::Zero(10), x);
+  EXPECT_TRUE(r.converged);
+  EXPECT_EQ(x.norm(), 0.0);
+}
+
+TEST(FactorizeShifted, ShiftsAnIndefiniteMatrixUntilItFactorizes) {
+  SparseMatrix A = test_matrix(20, 0.0, 0.0, 6);
+  A.coeffRef(3, 3) = -1.0;
+  SparseCholesky chol;
+  int count = 0;
+  const auto shift = factorize_shifted(chol, A, ShiftSequence{1e-8, 10.0, 30}, count);
+  ASSERT_TRUE(shift.has_value());
+  EXPECT_GT(*shift, 0.0);
+  EXPECT_GT(count, 1);
+  int none = 0;
+  EXPECT_EQ(*factorize_shifted(chol, test_matrix(20, 0.1, 0.0, 7), ShiftSequence{}, none), 0.0);
+  EXPECT_EQ(none, 1);
+}
+
+}  // namespace
+}  // namespace tightfit
