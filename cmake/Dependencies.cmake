@@ -3,9 +3,8 @@ find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CGAL REQUIRED)
 find_package(Threads REQUIRED)
-# OpenMP (GCC's libgomp) for the element loops; the BLAS is OpenBLAS (pthread build,
-# libopenblas0-pthread), which CHOLMOD finds through libblas.so.3 at run time.
-find_package(OpenMP REQUIRED)
+# The BLAS is OpenBLAS (pthread build, libopenblas0-pthread), which CHOLMOD reaches
+# through Debian's libblas.so.3 alternative at run time (common/parallel.hpp).
 
 # OpenSubdiv: bookworm's CMake config names a static library that is not shipped
 # (DESIGN.md §6), so the header and the shared CPU library are found directly.

@@ -1,8 +1,5 @@
 # Project-wide warnings and sanitizer flags, applied to every tightfit target.
 add_library(tightfit_options INTERFACE)
-# Eigen's own OpenMP parallelization of dense products stays off: tightfit parallelizes
-# its element loops itself, and the BLAS threads the factorization.
-target_compile_definitions(tightfit_options INTERFACE EIGEN_DONT_PARALLELIZE)
 target_compile_options(tightfit_options INTERFACE -Wall -Wextra -Wpedantic -Wshadow
   -Wnon-virtual-dtor -Wcast-align -Woverloaded-virtual -Wno-unused-parameter)
 if(TIGHTFIT_WERROR)

@@ -102,7 +102,7 @@ TEST(NewtonSolver, ChordStepsFromAHeldFactorizationNeedNoNewFactorization) {
 
   problem.scale_load(1.001);  // a small design step
   NewtonSolver chord_solver;
-  const NewtonReport r = chord_solver.solve(problem, &held);
+  const NewtonReport r = chord_solver.solve(problem, {&held, false});
   ASSERT_TRUE(r.converged);
   EXPECT_GE(r.chord_steps, 1);
   EXPECT_EQ(r.factorizations, 0) << "the chord steps should have converged on their own";
@@ -131,7 +131,7 @@ TEST(NewtonSolver, SlowChordStepsHandOverToNewton) {
   NewtonOptions o;
   o.max_chord_steps = 10;
   NewtonSolver solver(o);
-  const NewtonReport r = solver.solve(problem, &held);
+  const NewtonReport r = solver.solve(problem, {&held, false});
   ASSERT_TRUE(r.converged);
   EXPECT_GE(r.factorizations, 1);
   EXPECT_LT(r.chord_steps, 10);
@@ -145,6 +145,18 @@ TEST(NewtonSolver, SlowChordStepsHandOverToNewton) {
   }
 }
 
+TEST(NewtonSolver, ReusingItsOwnFactorizationsSavesFactorizations) {
+  ChainProblem plain_problem(200), reuse_problem(200);
+  NewtonSolver plain, reuse;
+  const NewtonReport p = plain.solve(plain_problem);
+  const NewtonReport r = reuse.solve(reuse_problem, {nullptr, true});
+  ASSERT_TRUE(p.converged);
+  ASSERT_TRUE(r.converged);
+  EXPECT_GT(r.chord_steps, 0);
+  EXPECT_LT(r.factorizations, p.factorizations);
+  EXPECT_LT((plain_problem.q() - reuse_problem.q()).norm(), 1e-8 * plain_problem.q().norm());
+}
+
 TEST(NewtonSolver, IgnoresAHeldFactorizationOfAnotherSize) {
   ChainProblem small(10);
   NewtonSolver first;
@@ -153,7 +165,7 @@ TEST(NewtonSolver, IgnoresAHeldFactorizationOfAnotherSize) {
   ASSERT_TRUE(held.factorize(small.hessian()));
   ChainProblem problem(20);
   NewtonSolver solver;
-  const NewtonReport r = solver.solve(problem, &held);
+  const NewtonReport r = solver.solve(problem, {&held, false});
   ASSERT_TRUE(r.converged);
   EXPECT_EQ(r.chord_steps, 0);
 }

@@ -1,26 +1,121 @@
 #include "tightfit/common/parallel.hpp"
 
 #include <dlfcn.h>
-#include <omp.h>
 
+#include <condition_variable>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 namespace tightfit {
 namespace {
 
 int g_threads = 0;  // 0: not chosen yet
 
+/// A symbol of a library the process has loaded (OpenBLAS, libgomp), or null.
 template <typename Fn>
-Fn openblas_symbol(const char* name) {
+Fn loaded_symbol(const char* name) {
   return reinterpret_cast<Fn>(dlsym(RTLD_DEFAULT, name));
 }
 
 void apply(int n) {
-  omp_set_num_threads(n);
-  if (auto set = openblas_symbol<void (*)(int)>("openblas_set_num_threads")) set(n);
+  if (auto set = loaded_symbol<void (*)(int)>("openblas_set_num_threads")) set(n);
+  // CHOLMOD's OpenMP teams (a fixed 4 threads) run serially: see the header.
+  if (auto levels = loaded_symbol<void (*)(int)>("omp_set_max_active_levels")) levels(0);
+}
+
+/// Worker threads 1 … count−1 of run_on_threads; they sleep between jobs.
+class ThreadPool {
+ public:
+  ~ThreadPool() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    for (std::thread& w : workers_) w.join();
+  }
+
+  void run(int count, const std::function<void(int)>& body) {
+    std::vector<std::exception_ptr> errors(static_cast<size_t>(count));
+    {
+      std::unique_lock lock(mutex_);
+      while (static_cast<int>(workers_.size()) < count - 1) {
+        const int index = static_cast<int>(workers_.size()) + 1;
+        workers_.emplace_back([this, index] { work(index); });
+      }
+      body_ = &body;
+      errors_ = &errors;
+      count_ = count;
+      pending_ = count - 1;
+      ++job_;
+    }
+    wake_.notify_all();
+    run_one(0);
+    {
+      std::unique_lock lock(mutex_);
+      done_.wait(lock, [this] { return pending_ == 0; });
+      body_ = nullptr;
+    }
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
+  }
+
+  static thread_local bool inside;
+
+ private:
+  void run_one(int index) {
+    inside = true;
+    try {
+      (*body_)(index);
+    } catch (...) {
+      (*errors_)[static_cast<size_t>(index)] = std::current_exception();
+    }
+    inside = false;
+  }
+
+  void work(int index) {
+    long seen = 0;
+    for (;;) {
+      {
+        std::unique_lock lock(mutex_);
+        wake_.wait(lock, [&] { return stop_ || (job_ != seen && index < count_); });
+        if (stop_) return;
+        seen = job_;
+      }
+      run_one(index);
+      {
+        std::lock_guard lock(mutex_);
+        if (--pending_ == 0) done_.notify_one();
+      }
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  std::vector<std::thread> workers_;
+  const std::function<void(int)>* body_ = nullptr;
+  std::vector<std::exception_ptr>* errors_ = nullptr;
+  int count_ = 0;
+  int pending_ = 0;
+  long job_ = 0;
+  bool stop_ = false;
+};
+
+thread_local bool ThreadPool::inside = false;
+
+ThreadPool& pool() {
+  static ThreadPool instance;
+  return instance;
+}
+
+std::mutex& pool_user() {  // one run_on_threads at a time from different outside threads
+  static std::mutex m;
+  return m;
 }
 
 }  // namespace
@@ -49,6 +144,23 @@ int thread_count() {
   return g_threads;
 }
 
+void run_on_threads(int count, const std::function<void(int)>& body) {
+  if (count <= 1 || ThreadPool::inside) {
+    std::exception_ptr first;
+    for (int t = 0; t < count; ++t) {
+      try {
+        body(t);
+      } catch (...) {
+        if (!first) first = std::current_exception();
+      }
+    }
+    if (first) std::rethrow_exception(first);
+    return;
+  }
+  std::lock_guard lock(pool_user());
+  pool().run(count, body);
+}
+
 BlasInfo blas_info() {
   BlasInfo info;
   // dgemm_ is the Fortran BLAS entry every implementation exports; CHOLMOD calls it.
@@ -60,10 +172,10 @@ BlasInfo blas_info() {
       info.library = ec ? std::string(dl.dli_fname) : resolved.string();
     }
   }
-  if (auto config = openblas_symbol<char* (*)()>("openblas_get_config")) {
+  if (auto config = loaded_symbol<char* (*)()>("openblas_get_config")) {
     info.name = "OpenBLAS";
     info.config = config();
-    if (auto threads = openblas_symbol<int (*)()>("openblas_get_num_threads"))
+    if (auto threads = loaded_symbol<int (*)()>("openblas_get_num_threads"))
       info.threads = threads();
   } else if (info.library.find("/blas/") != std::string::npos) {
     info.name = "reference BLAS (netlib)";

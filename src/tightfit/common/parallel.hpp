@@ -1,19 +1,28 @@
 #pragma once
-/// Threads: how many tightfit's element loops (OpenMP) and the BLAS under CHOLMOD use,
-/// and which BLAS library the process runs on.
+/// Threads: how many tightfit's element loops and the BLAS under CHOLMOD use, and which
+/// BLAS library the process runs on.
+///
+/// Element loops run on a small pool of std::threads that sleep on a condition variable
+/// between loops. OpenMP is not used by tightfit: Debian's CHOLMOD is built with OpenMP
+/// teams of a fixed 4 threads (CHOLMOD_OMP_NUM_THREADS) for its memory-bound copy loops,
+/// which on a 2-core machine oversubscribe the cores and spend their time in futex
+/// wake-ups and yields (system time); set_thread_count() therefore makes OpenMP
+/// regions inactive (omp_set_max_active_levels(0)), and the factorization's dense work
+/// runs on the BLAS threads.
 ///
 /// The thread count is one number for the whole process: `--threads N` on the command
 /// line, else the environment variable TIGHTFIT_THREADS, else the number of cores.
 /// Parallel loops split work in fixed contiguous chunks per thread and combine the
 /// chunks in thread order, so a run is repeatable bit for bit for a fixed thread
 /// count; other counts change results only by round-off.
+#include <algorithm>
 #include <cstdint>
-#include <exception>
+#include <functional>
 #include <string>
 
 namespace tightfit {
 
-/// Sets the thread count of OpenMP loops and of the BLAS (OpenBLAS is told through
+/// Sets the thread count of the element loops and of the BLAS (OpenBLAS is told through
 /// openblas_set_num_threads when it is the loaded BLAS). Throws std::invalid_argument
 /// for n < 1.
 void set_thread_count(int n);
@@ -23,32 +32,30 @@ int thread_count();
 /// std::invalid_argument naming the variable when it is set to anything else.
 int default_thread_count();
 
-/// Runs fn(i) for i in [0, n) on thread_count() threads (fixed contiguous chunks; serial
-/// below `serial_below` items, where starting threads costs more than it saves). fn must
-/// only write to memory owned by item i (e.g. element i's slot of a preallocated
-/// array): results are then the same for every thread count, bit for bit. An exception
-/// thrown by fn is rethrown after the loop (the one of the lowest i that threw).
+/// Runs body(t) for t = 0 … count − 1, each on its own thread of tightfit's pool (t = 0
+/// on the calling thread), and returns when all have returned. Called from inside a
+/// body, it runs serially on the calling thread (no nested parallelism). Exceptions of
+/// the bodies are rethrown here, the one of the lowest t first.
+void run_on_threads(int count, const std::function<void(int)>& body);
+
+/// Runs fn(i) for i in [0, n) on thread_count() threads, each taking one fixed
+/// contiguous chunk of the range (serial below `serial_below` items, where waking
+/// threads costs more than it saves). fn must only write to memory owned by item i
+/// (e.g. element i's slot of a preallocated array): results are then the same for
+/// every thread count, bit for bit. An exception thrown by fn is rethrown after the
+/// loop (the one of the lowest i that threw).
 template <typename Fn>
 void parallel_for(std::int64_t n, Fn&& fn, std::int64_t serial_below = 256) {
-  if (n < serial_below || thread_count() == 1) {
+  const int threads = thread_count();
+  if (n < serial_below || threads == 1) {
     for (std::int64_t i = 0; i < n; ++i) fn(i);
     return;
   }
-  std::exception_ptr error;
-  std::int64_t error_index = n;
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    try {
-      fn(i);
-    } catch (...) {
-#pragma omp critical(tightfit_parallel_for_error)
-      if (i < error_index) {
-        error_index = i;
-        error = std::current_exception();
-      }
-    }
-  }
-  if (error) std::rethrow_exception(error);
+  const int chunks = static_cast<int>(std::min<std::int64_t>(threads, n));
+  run_on_threads(chunks, [&](int t) {
+    const std::int64_t begin = n * t / chunks, end = n * (t + 1) / chunks;
+    for (std::int64_t i = begin; i < end; ++i) fn(i);
+  });
 }
 
 /// The BLAS that the process calls (CHOLMOD's supernodal factorization runs on it).

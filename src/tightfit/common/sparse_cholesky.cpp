@@ -17,7 +17,10 @@ struct SparseCholesky::Impl {
   Eigen::Index n = 0;
   int analyses = 0;
   bool factor_valid = false;
-  SparseMatrix lower;  // lower triangle of the last matrix, kept alive for CHOLMOD's view
+  // Upper triangle of the last matrix, kept alive for CHOLMOD's view. Upper, not lower:
+  // CHOLMOD's permuted supernodal factorization needs tril(PAPᵀ), one transpose away
+  // from triu(A) but two from tril(A) (cholmod_factorize.c: "the fastest option").
+  SparseMatrix upper;
 
   Impl() {
     cholmod_start(&common);
@@ -32,15 +35,15 @@ struct SparseCholesky::Impl {
 
   cholmod_sparse view() {
     cholmod_sparse s{};
-    s.nrow = static_cast<size_t>(lower.rows());
-    s.ncol = static_cast<size_t>(lower.cols());
-    s.nzmax = static_cast<size_t>(lower.nonZeros());
-    s.p = lower.outerIndexPtr();
-    s.i = lower.innerIndexPtr();
+    s.nrow = static_cast<size_t>(upper.rows());
+    s.ncol = static_cast<size_t>(upper.cols());
+    s.nzmax = static_cast<size_t>(upper.nonZeros());
+    s.p = upper.outerIndexPtr();
+    s.i = upper.innerIndexPtr();
     s.nz = nullptr;
-    s.x = lower.valuePtr();
+    s.x = upper.valuePtr();
     s.z = nullptr;
-    s.stype = -1;  // symmetric, lower triangle stored
+    s.stype = 1;  // symmetric, upper triangle stored
     s.itype = CHOLMOD_INT;
     s.xtype = CHOLMOD_REAL;
     s.dtype = CHOLMOD_DOUBLE;
@@ -50,11 +53,11 @@ struct SparseCholesky::Impl {
   }
 
   bool same_pattern() const {
-    if (!factor || lower.rows() != n) return false;
-    const auto nnz = static_cast<size_t>(lower.nonZeros());
+    if (!factor || upper.rows() != n) return false;
+    const auto nnz = static_cast<size_t>(upper.nonZeros());
     if (pattern_inner.size() != nnz) return false;
-    return std::equal(pattern_outer.begin(), pattern_outer.end(), lower.outerIndexPtr()) &&
-           std::equal(pattern_inner.begin(), pattern_inner.end(), lower.innerIndexPtr());
+    return std::equal(pattern_outer.begin(), pattern_outer.end(), upper.outerIndexPtr()) &&
+           std::equal(pattern_inner.begin(), pattern_inner.end(), upper.innerIndexPtr());
   }
 };
 
@@ -64,16 +67,16 @@ SparseCholesky::~SparseCholesky() = default;
 bool SparseCholesky::factorize(const SparseMatrix& A) {
   if (A.rows() != A.cols()) throw SolverError("SparseCholesky: matrix is not square");
   auto& d = *impl_;
-  d.lower = A.triangularView<Eigen::Lower>();
-  d.lower.makeCompressed();
+  d.upper = A.triangularView<Eigen::Upper>();
+  d.upper.makeCompressed();
   cholmod_sparse s = d.view();
   if (!d.same_pattern()) {
     if (d.factor) cholmod_free_factor(&d.factor, &d.common);
     d.factor = cholmod_analyze(&s, &d.common);
     if (!d.factor) throw SolverError("SparseCholesky: symbolic analysis failed");
-    d.pattern_outer.assign(d.lower.outerIndexPtr(), d.lower.outerIndexPtr() + d.lower.cols() + 1);
-    d.pattern_inner.assign(d.lower.innerIndexPtr(),
-                           d.lower.innerIndexPtr() + d.lower.nonZeros());
+    d.pattern_outer.assign(d.upper.outerIndexPtr(), d.upper.outerIndexPtr() + d.upper.cols() + 1);
+    d.pattern_inner.assign(d.upper.innerIndexPtr(),
+                           d.upper.innerIndexPtr() + d.upper.nonZeros());
     d.n = A.rows();
     ++d.analyses;
   }

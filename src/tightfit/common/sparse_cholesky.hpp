@@ -17,7 +17,7 @@ class SparseCholesky {
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;
 
-  /// Factorizes the symmetric matrix `A` (n×n, compressed; only its lower triangle is
+  /// Factorizes the symmetric matrix `A` (n×n, compressed; only its upper triangle is
   /// read). Returns false when `A` is not positive definite (or the factorization
   /// failed numerically); the previous factor is then unusable.
   bool factorize(const SparseMatrix& A);

@@ -309,7 +309,7 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
   try {
     sim_.set_state(accepted_state_);
     sim_.set_rest_positions(rest);
-    const NewtonReport report = sim_.solve(held);
+    const NewtonReport report = sim_.solve({held, options_.reuse_factorizations});
     ev.newton_iterations = report.iterations;
     ev.chord_steps = report.chord_steps;
     ev.factorizations = report.factorizations;

@@ -52,6 +52,9 @@ struct DesignProblemOptions {
   /// A trial pattern is rejected when a rest triangle's signed area falls below this
   /// fraction of its initial signed area (a flipped triangle has a negative ratio).
   double min_area_ratio = 0.05;
+  /// Forward solves reuse each Newton step's factorization for chord steps while they
+  /// contract fast (ChordSteps::reuse_own); the equilibrium is the same to the tolerance.
+  bool reuse_factorizations = true;
   AdjointOptions adjoint;
   PatternRemeshOptions remesh;
 };

@@ -88,8 +88,8 @@ void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
   problem_ = std::make_unique<EmbeddedEquilibrium>(std::move(setup), state);
 }
 
-NewtonReport GarmentSimulation::solve(const SparseCholesky* held) {
-  NewtonReport report = newton_.solve(*problem_, held);
+NewtonReport GarmentSimulation::solve(ChordSteps chords) {
+  NewtonReport report = newton_.solve(*problem_, chords);
   garment_.embedding = problem_->state().garment;
   return report;
 }

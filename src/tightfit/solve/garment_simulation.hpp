@@ -49,9 +49,8 @@ class GarmentSimulation {
   ~GarmentSimulation();
 
   /// Newton from the current state (warm start). Throws SolverError if it fails.
-  /// `held`: a factorization of this system's Hessian near the current state for
-  /// Newton's first (chord) steps (NewtonSolver::solve).
-  NewtonReport solve(const SparseCholesky* held = nullptr);
+  /// `chords`: factorizations Newton may reuse for chord steps (NewtonSolver::solve).
+  NewtonReport solve(ChordSteps chords = {});
 
   const Garment& garment() const { return garment_; }
   const Body& body() const { return body_; }

@@ -18,7 +18,7 @@ class NewtonProblem {
   virtual double energy() = 0;
   /// Gradient dU/dq at the current state (n).
   virtual VecX gradient() = 0;
-  /// Hessian d²U/dq² at the current state (n×n, symmetric; full or lower triangle).
+  /// Hessian d²U/dq² at the current state (n×n, symmetric, both triangles stored).
   virtual SparseMatrix hessian() = 0;
 
   /// Sets the state to (committed state) ⊕ alpha·dq. The problem decides what ⊕ is

@@ -18,16 +18,40 @@ double seconds_since(Clock::time_point t0) {
 }  // namespace
 
 double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factorizations) {
-  const ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
-                             options_.max_regularizations};
+  ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
+                       options_.max_regularizations};
+  double mean_diag = H.diagonal().cwiseAbs().mean();
+  if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
+  // After a shifted iteration, start one step below the shift that worked (the
+  // unshifted matrix has just failed nearby; each failed attempt is a factorization).
+  if (shift_hint_ > 0.0) {
+    const double start = shift_hint_ / options_.regularization_growth;
+    if (start > options_.initial_regularization * mean_diag) {
+      ShiftSequence from_hint = shifts;
+      from_hint.initial = start / mean_diag;
+      SparseMatrix identity(H.rows(), H.cols());
+      identity.setIdentity();
+      double shift = start;
+      for (int k = 0; k < from_hint.attempts; ++k, shift *= from_hint.growth) {
+        ++factorizations;
+        if (cholesky_.factorize(SparseMatrix(H + shift * identity))) {
+          shift_hint_ = shift;
+          return shift;
+        }
+      }
+    }
+  }
   double last = 0.0;
-  if (const auto shift = factorize_shifted(cholesky_, H, shifts, factorizations, &last))
+  if (const auto shift = factorize_shifted(cholesky_, H, shifts, factorizations, &last)) {
+    shift_hint_ = *shift;
     return *shift;
+  }
   throw SolverError("Newton: Hessian could not be factorized even with diagonal shift " +
                     std::to_string(last));
 }
 
-NewtonReport NewtonSolver::solve(NewtonProblem& problem, const SparseCholesky* held) {
+NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
+  const SparseCholesky* held = chords.held;
   const auto t_start = Clock::now();
   NewtonReport report;
   report.tolerance = std::max(options_.absolute_force_tolerance,
@@ -35,8 +59,16 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, const SparseCholesky* h
   double energy = problem.energy();
   if (!std::isfinite(energy))
     throw SolverError("Newton: the initial state is inadmissible (energy is not finite)");
-  bool chord = held && held->size() == problem.num_dofs() && options_.max_chord_steps > 0;
+  // The factorization steps are taken with: the held one, then Newton's own. It is
+  // reused for chord steps while they contract the force norm fast enough.
+  const SparseCholesky* factor =
+      held && held->size() == problem.num_dofs() && options_.max_chord_steps > 0 ? held : nullptr;
+  bool reuse = factor != nullptr;  // the next step may use `factor` without refactorizing
+  int chord_run = 0;               // consecutive chord steps with `factor`
+  bool last_was_chord = false;
+  int failed_chords = 0;  // chord steps without descent (taken back)
   double previous_force = 0.0;
+  shift_hint_ = 0.0;
 
   for (int it = 0;; ++it) {
     NewtonIteration record;
@@ -54,19 +86,18 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, const SparseCholesky* h
       report.message = "converged";
       break;
     }
-    if (it >= options_.max_iterations) {
+    // The limit counts steps that factorized a Hessian; chord steps come on top (at most
+    // max_chord_steps after each factorization, so the total stays bounded).
+    if (it - report.chord_steps - failed_chords >= options_.max_iterations) {
       report.message = "iteration limit reached";
       break;
     }
-    if (chord && (report.chord_steps >= options_.max_chord_steps ||
-                  (report.chord_steps > 0 &&
-                   record.force_norm > options_.chord_contraction * previous_force)))
-      chord = false;
+    if (last_was_chord && record.force_norm > options_.chord_contraction * previous_force)
+      reuse = false;
     previous_force = record.force_norm;
-    const SparseCholesky* factor = &cholesky_;
-    if (chord) {
-      factor = held;
+    if (reuse && factor && chord_run < options_.max_chord_steps) {
       record.chord = true;
+      ++chord_run;
       record.seconds_assembly = seconds_since(t0);
     } else {
       const SparseMatrix H = problem.hessian();
@@ -76,7 +107,11 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, const SparseCholesky* h
       record.regularization = factorize_regularized(H, report.factorizations);
       record.seconds_factorization = seconds_since(t0);
       report.factor_nonzeros = cholesky_.factor_nonzeros();
+      factor = &cholesky_;
+      reuse = chords.reuse_own && options_.max_chord_steps > 0;
+      chord_run = 0;
     }
+    last_was_chord = record.chord;
 
     t0 = Clock::now();
     const VecX dq = factor->solve(VecX(-g));
@@ -104,9 +139,11 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, const SparseCholesky* h
     }
     record.seconds_line_search = seconds_since(t0);
     if (!accepted && record.chord) {
-      // The held factorization gave no descent here: go on with Newton's own.
+      // The reused factorization gave no descent here: factorize at this state.
       problem.set_step(dq, 0.0);
-      chord = false;
+      reuse = false;
+      last_was_chord = false;
+      ++failed_chords;
       report.history.push_back(record);
       continue;
     }

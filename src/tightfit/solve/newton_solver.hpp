@@ -15,16 +15,18 @@ namespace tightfit {
 struct NewtonOptions {
   double relative_force_tolerance = 1e-9;  ///< relative to the problem's force scale
   double absolute_force_tolerance = 1e-12; ///< N
-  int max_iterations = 100;
+  int max_iterations = 100;                ///< iterations that factorize a Hessian
+                                           ///< (chord steps are not counted)
   int max_line_search_halvings = 40;
   double armijo = 1e-4;                    ///< sufficient-decrease constant
   double initial_regularization = 1e-8;    ///< first diagonal shift, relative to mean |diag(H)|
   double regularization_growth = 10.0;     ///< factor between regularization attempts
   int max_regularizations = 30;
   bool throw_on_failure = true;            ///< throw SolverError if not converged
-  /// Chord steps with a held factorization (solve()'s `held`): at most this many, and
-  /// only while each reduces the force norm to at most `chord_contraction` times the
-  /// previous one; then full Newton steps.
+  /// Chord steps (solve()'s ChordSteps): steps with a factorization that is already
+  /// there instead of a new one. At most this many in a
+  /// row, and only while each reduces the force norm to at most `chord_contraction`
+  /// times the previous one; then a new factorization. 0: plain Newton.
   int max_chord_steps = 4;
   double chord_contraction = 0.25;
 };
@@ -57,6 +59,15 @@ struct NewtonReport {
   std::string message;             ///< why it stopped
 };
 
+/// Factorizations a solve may use for chord steps dq = −F⁻¹ g instead of factorizing new
+/// Hessians (NewtonSolver::solve).
+struct ChordSteps {
+  /// A factorization of a Hessian of the same system near the starting state (null: none).
+  const SparseCholesky* held = nullptr;
+  /// Also reuse each Newton step's own factorization for the steps after it.
+  bool reuse_own = false;
+};
+
 class NewtonSolver {
  public:
   explicit NewtonSolver(NewtonOptions options = {}) : options_(options) {}
@@ -65,16 +76,21 @@ class NewtonSolver {
   /// holds the last accepted state. Throws SolverError when not converged and
   /// options.throw_on_failure.
   ///
-  /// `held` (optional): the factorization of a Hessian of the same system near the
-  /// starting state (e.g. at the previous equilibrium of a design step, whose rest shape
-  /// differs a little). The first steps are then chord steps dq = −held⁻¹ g, which cost
-  /// a gradient and a solve but no assembly or factorization of a Hessian; the first
-  /// chord step from an equilibrium of the old rest shape is the first-order predictor
-  /// of the new equilibrium, −H⁻¹ (∂g/∂Xbar) ΔXbar. Chord steps stop after
-  /// options.max_chord_steps or when one contracts the force norm by less than
-  /// options.chord_contraction; the convergence test is the same for every step. A
-  /// `held` of another size is ignored.
-  NewtonReport solve(NewtonProblem& problem, const SparseCholesky* held = nullptr);
+  /// `chords.held` (optional): the factorization of a Hessian of the same system near
+  /// the starting state (e.g. at the previous equilibrium of a design step, whose rest
+  /// shape differs a little). The first steps are then chord steps dq = −held⁻¹ g, which
+  /// cost a gradient and a solve but no assembly or factorization of a Hessian; the
+  /// first chord step from an equilibrium of the old rest shape is the first-order
+  /// predictor of the new equilibrium, −H⁻¹ (∂g/∂Xbar) ΔXbar. With `chords.reuse_own`,
+  /// each Newton step's own factorization is reused the same way (a Shamanskii-type
+  /// method: superlinear instead of quadratic, far fewer factorizations). Chord steps
+  /// stop after
+  /// options.max_chord_steps in a row or when one contracts the force norm by less than
+  /// options.chord_contraction, and a new Hessian is factorized; the convergence test
+  /// is the same for every step. A `held` of another size is ignored. When a Hessian
+  /// needs a diagonal shift, the next one in the same solve starts its shifts one step
+  /// below the shift that worked.
+  NewtonReport solve(NewtonProblem& problem, ChordSteps chords = {});
 
   /// The factorization of the last Hessian that was factorized (at the state before the
   /// last full Newton step).
@@ -89,6 +105,7 @@ class NewtonSolver {
 
   NewtonOptions options_;
   SparseCholesky cholesky_;
+  double shift_hint_ = 0.0;  // last successful shift in this solve() (0: none needed)
 };
 
 }  // namespace tightfit
