@@ -15,6 +15,26 @@ VecX flat_positions(const GarmentSimulation& sim) {
   return Eigen::Map<const VecX>(x.data(), x.size());
 }
 
+/// D = ∂²U/∂x² − P(∂²U/∂x²) over the rest-dependent (garment) energies (3·n_g × 3·n_g,
+/// N/m): what Newton's element PSD projection took away, zero entries dropped (empty
+/// when nothing was projected). The exact Hessian is H_N + Jᵀ D J, so it can be applied
+/// to vectors without assembling it a second time.
+SparseMatrix projection_difference(const GarmentSimulation& sim) {
+  const VecX x = flat_positions(sim);
+  SparseMatrix D(x.size(), x.size());
+  if (!sim.problem().projects_hessians()) return D;
+  std::vector<Triplet> exact, projected;
+  for (const RestDependentEnergy* e : sim.rest_dependent_energies()) {
+    e->add_hessian(x, exact, false);
+    e->add_hessian(x, projected, true);
+  }
+  exact.reserve(exact.size() + projected.size());
+  for (const Triplet& t : projected) exact.emplace_back(t.row(), t.col(), -t.value());
+  D.setFromTriplets(exact.begin(), exact.end());
+  D.prune(0.0);
+  return D;
+}
+
 }  // namespace
 
 SimulationDesignState::SimulationDesignState(const GarmentSimulation& sim)
@@ -75,19 +95,6 @@ AdjointResult AdjointSolver::rest_gradient(GarmentSimulation& sim, const DesignT
   return r;
 }
 
-namespace {
-
-bool same_matrix(const SparseMatrix& a, const SparseMatrix& b) {
-  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
-  const auto nnz = static_cast<size_t>(a.nonZeros());
-  const auto cols = static_cast<size_t>(a.cols()) + 1;
-  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + cols, b.outerIndexPtr()) &&
-         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + nnz, b.innerIndexPtr()) &&
-         std::equal(a.valuePtr(), a.valuePtr() + nnz, b.valuePtr());
-}
-
-}  // namespace
-
 std::optional<double> AdjointSolver::factorize_held(const SparseMatrix& H_newton,
                                                     int& factorizations) {
   const ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
@@ -112,11 +119,19 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
   AdjointSolve out;
   const SparseMatrix H_newton = problem.hessian(HessianKind::kNewton);
   const auto newton_shift = factorize_held(H_newton, out.factorizations);
-  const SparseMatrix H =
-      problem.projects_hessians() ? problem.hessian(HessianKind::kExact) : H_newton;
-  auto residual_of = [&](const VecX& lambda) { return (H * lambda - rhs).norm() / rhs.norm(); };
+  // H = H_N + Jᵀ D J, applied without assembling it (D: the projected elements only).
+  const SparseMatrix D = projection_difference(sim);
+  const SparseMatrix J = D.nonZeros() > 0 ? problem.position_jacobian() : SparseMatrix();
+  auto apply_exact = [&](const VecX& v) {
+    VecX y = H_newton * v;
+    if (D.nonZeros() > 0) y += J.transpose() * (D * (J * v));
+    return y;
+  };
+  auto residual_of = [&](const VecX& lambda) {
+    return (apply_exact(lambda) - rhs).norm() / rhs.norm();
+  };
 
-  if (!force_fallback && held_valid_ && *newton_shift == 0.0 && same_matrix(H, H_newton)) {
+  if (!force_fallback && held_valid_ && *newton_shift == 0.0 && D.nonZeros() == 0) {
     out.lambda = newton_factor_.solve(rhs);
     out.method = AdjointMethod::kDirect;
     out.residual = residual_of(out.lambda);
@@ -127,9 +142,9 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
     gmres.relative_tolerance = options_.iterative_tolerance;
     gmres.max_iterations = options_.max_iterative_iterations;
     VecX lambda = newton_factor_.solve(rhs);  // the solution where nothing was projected
-    const GmresReport report = preconditioned_gmres(
-        [&](const VecX& v) { return VecX(H * v); },
-        [&](const VecX& v) { return newton_factor_.solve(v); }, rhs, lambda, gmres);
+    const GmresReport report =
+        preconditioned_gmres(apply_exact, [&](const VecX& v) { return newton_factor_.solve(v); },
+                             rhs, lambda, gmres);
     out.krylov_iterations = report.iterations;
     if (report.converged && lambda.allFinite()) {
       out.lambda = std::move(lambda);
@@ -140,6 +155,7 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
       return out;
     }
   }
+  const SparseMatrix H = problem.projects_hessians() ? problem.hessian(HessianKind::kExact) : H_newton;
   double last = 0.0;
   const auto shift = factorize_shifted(exact_factor_, H, shifts, out.factorizations, &last);
   if (!shift)
