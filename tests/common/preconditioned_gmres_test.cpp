@@ -4,38 +4,16 @@
 
 #include <random>
 
+#include "support/laplacian_1d.hpp"
 #include "tightfit/common/sparse_cholesky.hpp"
 
 namespace tightfit {
 namespace {
 
-/// A sparse symmetric matrix: the 1D Laplacian (+ shift on the diagonal) plus a few
-/// random symmetric off-diagonal couplings of size `noise`.
-SparseMatrix test_matrix(int n, double shift, double noise, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> index(0, n - 1);
-  std::uniform_real_distribution<double> value(-noise, noise);
-  std::vector<Triplet> t;
-  for (int i = 0; i < n; ++i) {
-    t.emplace_back(i, i, 2.0 + shift);
-    if (i + 1 < n) {
-      t.emplace_back(i, i + 1, -1.0);
-      t.emplace_back(i + 1, i, -1.0);
-    }
-  }
-  for (int k = 0; k < n / 4 && noise > 0.0; ++k) {
-    const int i = index(rng), j = index(rng);
-    const double v = value(rng);
-    t.emplace_back(i, j, v);
-    t.emplace_back(j, i, v);
-  }
-  SparseMatrix A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
-  return A;
-}
+using test::laplacian_1d;
 
 TEST(PreconditionedGmres, ExactPreconditionerConvergesInOneIteration) {
-  const SparseMatrix A = test_matrix(80, 0.1, 0.0, 1);
+  const SparseMatrix A = laplacian_1d(80, 0.1);
   SparseCholesky chol;
   ASSERT_TRUE(chol.factorize(A));
   const VecX b = VecX::LinSpaced(80, -1.0, 3.0);
@@ -52,7 +30,7 @@ TEST(PreconditionedGmres, SolvesAPerturbedIndefiniteSystemWithANearbyFactorizati
   // rows that makes A indefinite: the adjoint's situation (exact Hessian vs the
   // projected Newton matrix, which differ on the projected elements only).
   const int n = 400;
-  const SparseMatrix M = test_matrix(n, 0.05, 0.0, 2);
+  const SparseMatrix M = laplacian_1d(n, 0.05);
   SparseMatrix A = M;
   std::mt19937 rng(3);
   std::uniform_int_distribution<int> index(0, n - 1);
@@ -83,7 +61,7 @@ TEST(PreconditionedGmres, SolvesAPerturbedIndefiniteSystemWithANearbyFactorizati
 }
 
 TEST(PreconditionedGmres, ReportsNonConvergenceWithinTheIterationBudget) {
-  const SparseMatrix A = test_matrix(300, 1e-4, 0.0, 4);
+  const SparseMatrix A = laplacian_1d(300, 1e-4);
   const VecX b = VecX::Ones(300);
   VecX x;
   GmresOptions o;
@@ -97,7 +75,7 @@ TEST(PreconditionedGmres, ReportsNonConvergenceWithinTheIterationBudget) {
 }
 
 TEST(PreconditionedGmres, ZeroRightHandSideGivesZero) {
-  const SparseMatrix A = test_matrix(10, 0.1, 0.0, 5);
+  const SparseMatrix A = laplacian_1d(10, 0.1);
   VecX x = VecX::Ones(10);
   const GmresReport r = preconditioned_gmres([&](const VecX& v) { return VecX(A * v); },
                                              [](const VecX& v) { return v; }, VecX::Zero(10), x);
@@ -106,7 +84,7 @@ TEST(PreconditionedGmres, ZeroRightHandSideGivesZero) {
 }
 
 TEST(FactorizeShifted, ShiftsAnIndefiniteMatrixUntilItFactorizes) {
-  SparseMatrix A = test_matrix(20, 0.0, 0.0, 6);
+  SparseMatrix A = laplacian_1d(20, 0.0);
   A.coeffRef(3, 3) = -1.0;
   SparseCholesky chol;
   int count = 0;
@@ -115,8 +93,15 @@ TEST(FactorizeShifted, ShiftsAnIndefiniteMatrixUntilItFactorizes) {
   EXPECT_GT(*shift, 0.0);
   EXPECT_GT(count, 1);
   int none = 0;
-  EXPECT_EQ(*factorize_shifted(chol, test_matrix(20, 0.1, 0.0, 7), ShiftSequence{}, none), 0.0);
+  EXPECT_EQ(*factorize_shifted(chol, laplacian_1d(20, 0.1), ShiftSequence{}, none), 0.0);
   EXPECT_EQ(none, 1);
+  // Starting from a shift (Newton's hint after a shifted iteration): A itself is skipped.
+  int from_hint = 0;
+  const auto hinted =
+      factorize_shifted(chol, laplacian_1d(20, 0.1), ShiftSequence{1e-4, 10.0, 30, false}, from_hint);
+  ASSERT_TRUE(hinted.has_value());
+  EXPECT_GT(*hinted, 0.0);
+  EXPECT_EQ(from_hint, 1);
 }
 
 }  // namespace

@@ -2,24 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include "support/laplacian_1d.hpp"
 #include "tightfit/common/error.hpp"
 
 namespace tightfit {
 namespace {
 
-SparseMatrix laplacian_1d(int n, double shift) {
-  std::vector<Triplet> t;
-  for (int i = 0; i < n; ++i) {
-    t.emplace_back(i, i, 2.0 + shift);
-    if (i + 1 < n) {
-      t.emplace_back(i, i + 1, -1.0);
-      t.emplace_back(i + 1, i, -1.0);
-    }
-  }
-  SparseMatrix A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
-  return A;
-}
+using test::laplacian_1d;
 
 TEST(SparseCholesky, SolvesAnSpdSystem) {
   const SparseMatrix A = laplacian_1d(50, 0.1);

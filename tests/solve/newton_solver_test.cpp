@@ -92,12 +92,18 @@ TEST(NewtonSolver, ConvergesQuadraticallyOnASparseConvexProblem) {
   EXPECT_GT(r.factor_nonzeros, 0);
 }
 
-TEST(NewtonSolver, ChordStepsFromAHeldFactorizationNeedNoNewFactorization) {
-  ChainProblem problem(200);
+/// Solves `problem` and factorizes its Hessian at the equilibrium into `held` (the
+/// factorization a design step starts from).
+void solve_and_factorize(ChainProblem& problem, SparseCholesky& held) {
   NewtonSolver first;
   ASSERT_TRUE(first.solve(problem).converged);
-  SparseCholesky held;  // the Hessian at the old equilibrium
   ASSERT_TRUE(held.factorize(problem.hessian()));
+}
+
+TEST(NewtonSolver, ChordStepsFromAHeldFactorizationNeedNoNewFactorization) {
+  ChainProblem problem(200);
+  SparseCholesky held;  // the Hessian at the old equilibrium
+  solve_and_factorize(problem, held);
   const VecX old_solution = problem.q();
 
   problem.scale_load(1.001);  // a small design step
@@ -123,10 +129,8 @@ TEST(NewtonSolver, ChordStepsFromAHeldFactorizationNeedNoNewFactorization) {
 
 TEST(NewtonSolver, SlowChordStepsHandOverToNewton) {
   ChainProblem problem(100);
-  NewtonSolver first;
-  ASSERT_TRUE(first.solve(problem).converged);
   SparseCholesky held;
-  ASSERT_TRUE(held.factorize(problem.hessian()));
+  solve_and_factorize(problem, held);
   problem.scale_load(3.0);  // far: the old Hessian is a poor model
   NewtonOptions o;
   o.max_chord_steps = 10;
@@ -159,10 +163,8 @@ TEST(NewtonSolver, ReusingItsOwnFactorizationsSavesFactorizations) {
 
 TEST(NewtonSolver, IgnoresAHeldFactorizationOfAnotherSize) {
   ChainProblem small(10);
-  NewtonSolver first;
-  ASSERT_TRUE(first.solve(small).converged);
   SparseCholesky held;
-  ASSERT_TRUE(held.factorize(small.hessian()));
+  solve_and_factorize(small, held);
   ChainProblem problem(20);
   NewtonSolver solver;
   const NewtonReport r = solver.solve(problem, {&held, false});

@@ -124,8 +124,10 @@ Eigen::Index SparseCholesky::size() const { return impl_->n; }
 std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMatrix& A,
                                         const ShiftSequence& shifts, int& factorizations,
                                         double* last_shift) {
-  ++factorizations;
-  if (cholesky.factorize(A)) return 0.0;
+  if (shifts.try_unshifted) {
+    ++factorizations;
+    if (cholesky.factorize(A)) return 0.0;
+  }
   double mean_diag = A.diagonal().cwiseAbs().mean();
   if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
   double shift = shifts.initial * mean_diag;

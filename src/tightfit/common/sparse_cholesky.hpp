@@ -45,9 +45,11 @@ struct ShiftSequence {
   double initial = 1e-8;  ///< relative to mean |diag(A)|
   double growth = 10.0;
   int attempts = 30;
+  bool try_unshifted = true;  ///< try A itself before the first shift
 };
 
-/// Factorizes A, or else A + δI with the smallest δ of `shifts` that succeeds. Returns
+/// Factorizes A (when shifts.try_unshifted), or else A + δI with the smallest δ of
+/// `shifts` that succeeds. Returns
 /// δ (0 when A itself was positive definite), or nullopt when every shift failed (the
 /// factor is then unusable; `last_shift` receives the largest δ tried). `factorizations`
 /// counts the attempts.

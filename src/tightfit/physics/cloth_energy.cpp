@@ -232,6 +232,21 @@ void for_each_element(const Triangles& triangles, const Points2& rest,
   });
 }
 
+/// g += Σ_e local_e scattered over each element's vertex ids (Dim DOFs per vertex):
+/// `compute(e, element, local, ids)` fills element e's slot in parallel, the scatter is
+/// serial in element order (the same sums for every thread count).
+template <int Dim, typename Compute>
+void assemble_gradient(const Triangles& triangles, const Points2& rest,
+                       const std::vector<int>& to_garment, const VecX& x, VecX& g,
+                       Compute&& compute) {
+  std::vector<Eigen::Matrix<double, 3 * Dim, 1>> local(static_cast<size_t>(triangles.rows()));
+  std::vector<std::array<int, 3>> ids(local.size());
+  for_each_element(triangles, rest, to_garment, x, [&](std::int64_t e, const ClothElement& el) {
+    compute(el, local[static_cast<size_t>(e)], ids[static_cast<size_t>(e)]);
+  });
+  for (size_t e = 0; e < local.size(); ++e) scatter_gradient<Dim>(ids[e], local[e], g);
+}
+
 }  // namespace
 
 double ClothEnergy::value(const VecX& x) const {
@@ -248,15 +263,12 @@ void ClothEnergy::add_gradient(const VecX& x, VecX& g) const {
   check_x(x);
   check_x(g);
   const double t = material().thickness;
-  std::vector<Vec9> local(static_cast<size_t>(triangles_.rows()));
-  std::vector<std::array<int, 3>> ids(local.size());
-  for_each_element(triangles_, rest_, pattern_to_garment_, x,
-                   [&](std::int64_t e, const ClothElement& el) {
-                     const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
-                     local[e] = t * el.deformed.jacobian.transpose() * phi.gradient.head<3>();
-                     ids[e] = el.garment;
-                   });
-  for (size_t e = 0; e < local.size(); ++e) scatter_gradient<3>(ids[e], local[e], g);
+  assemble_gradient<3>(triangles_, rest_, pattern_to_garment_, x, g,
+                       [&](const ClothElement& el, Vec9& local, std::array<int, 3>& ids) {
+                         const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
+                         local = t * el.deformed.jacobian.transpose() * phi.gradient.head<3>();
+                         ids = el.garment;
+                       });
 }
 
 void ClothEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd) const {
@@ -282,15 +294,12 @@ void ClothEnergy::add_gradient_rest(const VecX& x, VecX& g_rest) const {
   if (g_rest.size() != 2 * rest_.rows())
     throw std::invalid_argument("ClothEnergy::add_gradient_rest: wrong vector size");
   const double t = material().thickness;
-  std::vector<Vec6> local(static_cast<size_t>(triangles_.rows()));
-  std::vector<std::array<int, 3>> ids(local.size());
-  for_each_element(triangles_, rest_, pattern_to_garment_, x,
-                   [&](std::int64_t e, const ClothElement& el) {
-                     const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
-                     local[e] = t * el.rest.jacobian.transpose() * phi.gradient.tail<3>();
-                     ids[e] = el.pattern;
-                   });
-  for (size_t e = 0; e < local.size(); ++e) scatter_gradient<2>(ids[e], local[e], g_rest);
+  assemble_gradient<2>(triangles_, rest_, pattern_to_garment_, x, g_rest,
+                       [&](const ClothElement& el, Vec6& local, std::array<int, 3>& ids) {
+                         const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
+                         local = t * el.rest.jacobian.transpose() * phi.gradient.tail<3>();
+                         ids = el.pattern;
+                       });
 }
 
 void ClothEnergy::add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const {

@@ -20,25 +20,15 @@ double seconds_since(Clock::time_point t0) {
 double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factorizations) {
   ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
                        options_.max_regularizations};
-  double mean_diag = H.diagonal().cwiseAbs().mean();
-  if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
   // After a shifted iteration, start one step below the shift that worked (the
   // unshifted matrix has just failed nearby; each failed attempt is a factorization).
   if (shift_hint_ > 0.0) {
-    const double start = shift_hint_ / options_.regularization_growth;
-    if (start > options_.initial_regularization * mean_diag) {
-      ShiftSequence from_hint = shifts;
-      from_hint.initial = start / mean_diag;
-      SparseMatrix identity(H.rows(), H.cols());
-      identity.setIdentity();
-      double shift = start;
-      for (int k = 0; k < from_hint.attempts; ++k, shift *= from_hint.growth) {
-        ++factorizations;
-        if (cholesky_.factorize(SparseMatrix(H + shift * identity))) {
-          shift_hint_ = shift;
-          return shift;
-        }
-      }
+    double mean_diag = H.diagonal().cwiseAbs().mean();
+    if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
+    const double start = shift_hint_ / options_.regularization_growth / mean_diag;
+    if (start > shifts.initial) {
+      shifts.initial = start;
+      shifts.try_unshifted = false;
     }
   }
   double last = 0.0;
