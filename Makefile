@@ -6,7 +6,7 @@ ASAN_BUILD ?= build/asan
 WERROR ?= $(if $(CI),ON,OFF)
 DEMO_OUT ?= out/demo
 
-.PHONY: deps build build-asan test test-asan demo bench clean format
+.PHONY: deps build build-asan test test-asan test-memcheck demo bench clean format
 
 deps:
 	bash scripts/install-deps.sh
@@ -30,6 +30,11 @@ test-asan: build-asan
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
 	  ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS) -E 'Slow'
+
+# The reader, parser and physics-kernel tests of the Release build under valgrind's
+# memcheck (scripts/memcheck.sh): no second build, so CI runs it on every change.
+test-memcheck: build
+	JOBS=$(JOBS) bash scripts/memcheck.sh $(CURDIR)/$(BUILD)
 
 demo: build
 	bash scripts/demo.sh $(BUILD)/tightfit $(DEMO_OUT)

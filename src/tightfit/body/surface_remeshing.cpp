@@ -1,16 +1,12 @@
-// The only translation unit of the body layer that uses CGAL's Polygon Mesh Processing
-// (clip, isotropic remeshing, feature detection, self-intersection test).
+// CGAL's isotropic remeshing and feature detection (the cut is in crop_and_cap.cpp: the
+// two are the body layer's heaviest templates, compiled apart so builds run them in parallel).
 #include "tightfit/body/surface_remeshing.hpp"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/clip.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
-#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
-#include <CGAL/Surface_mesh.h>
 
 #include <array>
 #include <cmath>
@@ -19,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tightfit/body/cgal_surface_mesh.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/self_intersection.hpp"
 
@@ -26,9 +23,7 @@ namespace tightfit {
 namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
+using namespace cgal_surface;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
 
 /// Projection of remeshed vertices onto the original input surface.
@@ -37,40 +32,6 @@ struct ProjectOntoInput {
   const Tree* tree;
   Point operator()(Mesh::Vertex_index v) const { return tree->closest_point(mesh->point(v)); }
 };
-
-Mesh to_cgal(const TriMesh& m, const std::string& source) {
-  Mesh mesh;
-  std::vector<Mesh::Vertex_index> v(static_cast<size_t>(m.num_vertices()));
-  for (int i = 0; i < m.num_vertices(); ++i)
-    v[i] = mesh.add_vertex(Point(m.vertices(i, 0), m.vertices(i, 1), m.vertices(i, 2)));
-  for (int f = 0; f < m.num_faces(); ++f)
-    if (mesh.add_face(v[m.faces(f, 0)], v[m.faces(f, 1)], v[m.faces(f, 2)]) ==
-        Mesh::null_face())
-      throw InputError(source, "face " + std::to_string(f) +
-                                   " makes the surface non-manifold or inconsistently oriented");
-  return mesh;
-}
-
-TriMesh from_cgal(const Mesh& mesh) {
-  TriMesh m;
-  m.vertices.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
-  std::vector<int> index(mesh.num_vertices(), -1);
-  int next = 0;
-  for (Mesh::Vertex_index v : mesh.vertices()) {
-    const Point& p = mesh.point(v);
-    m.vertices.row(next) << p.x(), p.y(), p.z();
-    index[v.idx()] = next++;
-  }
-  m.faces.resize(static_cast<Eigen::Index>(mesh.number_of_faces()), 3);
-  int f = 0;
-  for (Mesh::Face_index face : mesh.faces()) {
-    int c = 0;
-    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(face), mesh))
-      m.faces(f, c++) = index[v.idx()];
-    ++f;
-  }
-  return m;
-}
 
 using EdgeFlags = Mesh::Property_map<Mesh::Edge_index, bool>;
 
@@ -136,55 +97,7 @@ std::vector<Mesh::Face_index> intersecting_region(const Mesh& mesh, int rings) {
   return {region.begin(), region.end()};
 }
 
-double bbox_diagonal(const Mesh& mesh) {
-  const CGAL::Bbox_3 b = PMP::bbox(mesh);
-  return std::sqrt(std::pow(b.xmax() - b.xmin(), 2) + std::pow(b.ymax() - b.ymin(), 2) +
-                   std::pow(b.zmax() - b.zmin(), 2));
-}
-
 }  // namespace
-
-TriMesh crop_and_cap(const TriMesh& surface, const std::vector<CropPlane>& planes) {
-  Mesh mesh = to_cgal(surface, "crop");
-  for (size_t i = 0; i < planes.size(); ++i) {
-    const std::string source = "crop plane " + std::to_string(i);
-    const Vec3& n = planes[i].normal;
-    if (!(n.norm() > 0.0) || !n.allFinite() || !planes[i].point.allFinite())
-      throw InputError(source, "the normal must be a non-zero finite vector");
-    // Vertices (almost) on the plane would leave near-duplicate cut points and needle
-    // faces: push them off it by ε = 1e-7 of the size of the mesh, keeping their side
-    // (vertices exactly on it go to the kept side).
-    const Vec3 unit = n.normalized();
-    const double epsilon = 1e-7 * bbox_diagonal(mesh);
-    for (Mesh::Vertex_index v : mesh.vertices()) {
-      const Point& p = mesh.point(v);
-      const Vec3 x(p.x(), p.y(), p.z());
-      const double d = unit.dot(x - planes[i].point);
-      if (std::abs(d) < epsilon) {
-        const Vec3 moved = x + ((d < 0.0 ? -epsilon : epsilon) - d) * unit;
-        mesh.point(v) = Point(moved.x(), moved.y(), moved.z());
-      }
-    }
-    // CGAL keeps the negative side of its plane: flip the normal to keep the side it points to.
-    const Kernel::Plane_3 plane(Point(planes[i].point.x(), planes[i].point.y(), planes[i].point.z()),
-                                Kernel::Vector_3(-n.x(), -n.y(), -n.z()));
-    bool manifold = false;
-    try {
-      manifold = PMP::clip(mesh, plane,
-                           CGAL::parameters::clip_volume(true).throw_on_self_intersection(true));
-    } catch (const PMP::Corefinement::Self_intersection_exception&) {
-      throw InputError(source, "the surface intersects itself near the cut");
-    }
-    if (!manifold) throw InputError(source, "the cut could not be closed into a manifold surface");
-    if (mesh.number_of_faces() == 0) throw InputError(source, "the plane removes the whole surface");
-    // Cuts through vertices or along edges leave zero-area faces: collapse them.
-    if (!PMP::remove_degenerate_faces(mesh))
-      throw InputError(source, "the cut left degenerate faces that could not be removed");
-    mesh.collect_garbage();
-    if (!CGAL::is_closed(mesh)) throw InputError(source, "the cut surface is not closed");
-  }
-  return from_cgal(mesh);
-}
 
 RemeshResult remesh_isotropic(const TriMesh& surface, const RemeshOptions& options) {
   if (!(options.edge_length > 0.0) || !std::isfinite(options.edge_length))

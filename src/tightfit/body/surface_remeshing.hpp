@@ -1,30 +1,14 @@
 #pragma once
-/// Preparing a user's closed body surface for simulation (CGAL, GPL-3): cropping to the
-/// region under the garment with capped cuts, and isotropic remeshing to the simulation
-/// resolution with the cap borders and sharp creases kept as feature lines.
+/// Isotropic remeshing of a user's closed body surface to the simulation resolution
+/// (CGAL, GPL-3), with the cap borders of crop_and_cap and sharp creases kept as
+/// feature lines.
 #include <vector>
 
+#include "tightfit/body/crop_and_cap.hpp"
 #include "tightfit/common/types.hpp"
 #include "tightfit/geometry/mesh.hpp"
 
 namespace tightfit {
-
-/// A cutting plane through `point` (m). The crop keeps the half-space the normal points
-/// into; the normal need not be unit length but must be non-zero.
-struct CropPlane {
-  Vec3 point = Vec3::Zero();
-  Vec3 normal = Vec3::UnitY();
-};
-
-/// Crops the closed, outward-oriented, non-self-intersecting surface to the
-/// intersection of the half-spaces and closes every cut with a flat cap (a triangulated
-/// planar polygon; the caps have long, thin triangles until remeshed). Vertices closer
-/// to a plane than 1e-7 of the mesh's bounding-box diagonal are first pushed to that
-/// distance (on their side), so that no cut point nearly coincides with a vertex. Planes that miss
-/// the surface leave it unchanged. Throws InputError (source "crop") if a plane removes
-/// the whole surface or the cut cannot be closed into a manifold, and when CGAL finds the
-/// surface self-intersecting near a cut.
-TriMesh crop_and_cap(const TriMesh& surface, const std::vector<CropPlane>& planes);
 
 struct RemeshOptions {
   double edge_length = 0.015;   ///< target edge length (m), > 0
