@@ -5,6 +5,12 @@ BUILD ?= build/release
 ASAN_BUILD ?= build/asan
 WERROR ?= $(if $(CI),ON,OFF)
 DEMO_OUT ?= out/demo
+# Ninja schedules the object files of all targets together (Make waits for each layer's
+# library before compiling the next layer): the build keeps both cores busy.
+GENERATOR ?= Ninja
+# A build folder configured with another generator is configured afresh.
+configure = if [ -f $(1)/CMakeCache.txt ] && ! grep -qx 'CMAKE_GENERATOR:INTERNAL=$(GENERATOR)' $(1)/CMakeCache.txt; \
+	  then rm -rf $(1)/CMakeCache.txt $(1)/CMakeFiles; fi; cmake -S . -B $(1) -G '$(GENERATOR)'
 
 .PHONY: deps build build-asan test test-asan test-memcheck demo bench clean format
 
@@ -12,11 +18,11 @@ deps:
 	bash scripts/install-deps.sh
 
 build: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DTIGHTFIT_WERROR=$(WERROR)
+	$(call configure,$(BUILD)) -DCMAKE_BUILD_TYPE=Release -DTIGHTFIT_WERROR=$(WERROR)
 	cmake --build $(BUILD) -j $(JOBS)
 
 build-asan: deps
-	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O1 \
+	$(call configure,$(ASAN_BUILD)) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O1 \
 	  -DTIGHTFIT_SANITIZE=ON -DTIGHTFIT_BUILD_BENCH=OFF -DTIGHTFIT_WERROR=OFF
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 

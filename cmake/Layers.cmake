@@ -2,6 +2,10 @@
 add_library(tightfit_options INTERFACE)
 target_compile_options(tightfit_options INTERFACE -Wall -Wextra -Wpedantic -Wshadow
   -Wnon-virtual-dtor -Wcast-align -Woverloaded-virtual -Wno-unused-parameter)
+# CGAL needs -frounding-math (its interval arithmetic changes the rounding mode), and
+# every layer from geometry up links CGAL; giving it to every target keeps the compile
+# flags of all layers alike, so that they can share one precompiled header (below).
+target_compile_options(tightfit_options INTERFACE -frounding-math)
 if(TIGHTFIT_WERROR)
   target_compile_options(tightfit_options INTERFACE -Werror)
 endif()
@@ -12,16 +16,27 @@ if(TIGHTFIT_SANITIZE)
 endif()
 
 # Precompiled headers: the standard, Eigen and JSON headers that nearly every source
-# file parses (about 2 s of CPU per file otherwise). One PCH per target; a CI run builds
-# twice (Release and sanitizers), so this is most of the build time saved. Off with
-# -DTIGHTFIT_PCH=OFF (e.g. when a compiler cache is used).
+# file parses (about 2 s of CPU per file otherwise). A precompiled header costs 11-16 s
+# to build, so the targets share them: every library layer uses the one of
+# tightfit_common, every test executable the one of the first test executable (which
+# adds GoogleTest); the CLI has its own (which adds CLI11). Off with -DTIGHTFIT_PCH=OFF
+# (e.g. when a compiler cache is used).
 option(TIGHTFIT_PCH "Precompile the common standard/Eigen/JSON headers" ON)
 set(TIGHTFIT_PCH_HEADERS <algorithm> <array> <cmath> <filesystem> <functional> <map>
   <memory> <optional> <string> <vector> <Eigen/Core> <Eigen/Geometry> <Eigen/SparseCore>
   <nlohmann/json.hpp>)
+# tightfit_precompile(TARGET [HEADER ...]): TARGET gets its own precompiled header with
+# the common headers and HEADER ...
 function(tightfit_precompile target)
   if(TIGHTFIT_PCH)
     target_precompile_headers(${target} PRIVATE ${TIGHTFIT_PCH_HEADERS} ${ARGN})
+  endif()
+endfunction()
+# tightfit_share_precompiled(TARGET FROM): TARGET uses the precompiled header of FROM
+# (same compile options; definitions may differ when the headers do not use them).
+function(tightfit_share_precompiled target from)
+  if(TIGHTFIT_PCH)
+    target_precompile_headers(${target} REUSE_FROM ${from})
   endif()
 endfunction()
 
@@ -36,7 +51,11 @@ function(tightfit_add_layer name)
     add_library(tightfit_${name} STATIC ${sources})
     target_include_directories(tightfit_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
     target_link_libraries(tightfit_${name} PUBLIC ${ARG_DEPS} tightfit_options nlohmann_json::nlohmann_json)
-    tightfit_precompile(tightfit_${name})
+    if(name STREQUAL "common")
+      tightfit_precompile(tightfit_common)
+    else()
+      tightfit_share_precompiled(tightfit_${name} tightfit_common)
+    endif()
   else()
     add_library(tightfit_${name} INTERFACE)
     target_include_directories(tightfit_${name} INTERFACE ${PROJECT_SOURCE_DIR}/src)

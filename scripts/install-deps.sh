@@ -4,7 +4,7 @@
 set -euo pipefail
 
 BUILD_PKGS=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config
   libeigen3-dev libsuitesparse-dev libosd-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libtet1.5-dev nlohmann-json3-dev libcli11-dev
   libopenblas0-pthread
