@@ -11,20 +11,13 @@ namespace tightfit {
 namespace {
 
 using subdiv_test::irregular_meshes;
+using subdiv_test::random_point;
 
 /// A body-sized version of a test mesh: about 0.4 m across.
 TriMesh body_sized(TriMesh m) {
   const double size = (m.vertices.colwise().maxCoeff() - m.vertices.colwise().minCoeff()).norm();
   m.vertices *= 0.4 / size;
   return m;
-}
-
-SurfacePoint random_point(std::mt19937& rng, int num_faces) {
-  std::uniform_int_distribution<int> face(0, num_faces - 1);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  double u = unit(rng), v = unit(rng);
-  if (u + v > 1) u = 1 - u, v = 1 - v;
-  return {face(rng), u, v};
 }
 
 TEST(LimitSurfaceProjection, PointsOffsetAlongTheNormalProjectBack) {

@@ -16,6 +16,16 @@
 
 namespace tightfit::subdiv_test {
 
+/// A uniformly random point of a random face (barycentric u, v with u + v ≤ 1).
+inline SurfacePoint random_point(std::mt19937& rng, int num_faces) {
+  std::uniform_int_distribution<int> face(0, num_faces - 1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double u = unit(rng), v = unit(rng);
+  if (u + v > 1) u = 1 - u, v = 1 - v;
+  return {face(rng), u, v};
+}
+
+
 /// Turns every face so that its normal points away from the origin (convex meshes around 0).
 inline void orient_outward(TriMesh& m) {
   for (int f = 0; f < m.num_faces(); ++f) {

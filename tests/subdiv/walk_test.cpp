@@ -11,14 +11,7 @@ namespace tightfit {
 namespace {
 
 using subdiv_test::irregular_meshes;
-
-SurfacePoint random_point(std::mt19937& rng, int num_faces) {
-  std::uniform_int_distribution<int> face(0, num_faces - 1);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  double u = unit(rng), v = unit(rng);
-  if (u + v > 1) u = 1 - u, v = 1 - v;
-  return {face(rng), u, v};
-}
+using subdiv_test::random_point;
 
 Vec2 random_delta(std::mt19937& rng, double max_length) {
   std::uniform_real_distribution<double> angle(0.0, 2 * std::numbers::pi), length(0.0, max_length);
