@@ -10,18 +10,13 @@
 #include "tightfit/body/generators.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
+#include "rigid_body_case.hpp"
 
 namespace tightfit {
 namespace {
 
-/// A body whose every vertex is held: the surface alone, no tetrahedra.
-Body rigid_body(TriMesh surface) {
-  Body body;
-  body.surface = std::move(surface);
-  body.volume.vertices = body.surface.vertices;
-  body.volume.tets.resize(0, 4);
-  return body;
-}
+using test::rigid_body;
+using test::rigid_materials;
 
 struct Stats {
   double min = 1e300, max = -1e300, mean = 0;
@@ -58,12 +53,6 @@ SleeveCase make_sleeve_case() {
   c.sleeve.jitter = 0.3;
   c.sleeve.pin_first_ring = c.sleeve.pin_last_ring = true;
   return c;
-}
-
-SimulationMaterials rigid_materials() {
-  SimulationMaterials m;
-  m.rigid_body = true;
-  return m;
 }
 
 class RigidCylinderSleeve : public ::testing::TestWithParam<double> {};
