@@ -1,6 +1,7 @@
 #include "tightfit/objectives/pressure_objective.hpp"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -111,7 +112,37 @@ S penalty(const S& p, double lo, double hi) {
   return S(0.0);
 }
 
+/// A_e Σ pen of one element: its own range plus every candidate region's weighted range.
+template <typename S>
+S element_penalty(const S& pressure, double lo, double hi, const PressureRegions& regions,
+                  int e, const std::array<Vec3T<S>, 3>& corners) {
+  S total = penalty<S>(pressure, lo, hi);
+  for (int r : regions.candidates(e)) {
+    const PressureRegion& region = regions[r];
+    if (value_of(pressure) >= region.min_pa && value_of(pressure) <= region.max_pa) continue;
+    total += regions.band_weight<S>(r, corners) * penalty<S>(pressure, region.min_pa, region.max_pa);
+  }
+  return total;
+}
+
+/// Whether element e's penalty and its slope vanish (inside every range that applies).
+bool inside_all(double pressure, double lo, double hi, const PressureRegions& regions, int e) {
+  if (pressure < lo || pressure > hi) return false;
+  for (int r : regions.candidates(e))
+    if (pressure < regions[r].min_pa || pressure > regions[r].max_pa) return false;
+  return true;
+}
+
 }  // namespace
+
+PressureObjective::PressureObjective(const Garment& garment, const ClothMaterial& material,
+                                     PressureRegions regions)
+    : PressureObjective(
+          garment, material,
+          VecX::Constant(garment.garment_triangles.rows(), -std::numeric_limits<double>::infinity()),
+          VecX::Constant(garment.garment_triangles.rows(), std::numeric_limits<double>::infinity())) {
+  regions_ = std::move(regions);
+}
 
 PressureObjective::PressureObjective(const Garment& garment, const ClothMaterial& material,
                                      double min_pressure, double max_pressure)
@@ -127,7 +158,8 @@ PressureObjective::PressureObjective(const Garment& garment, const ClothMaterial
       num_pattern_(garment.num_pattern_vertices()),
       law_(material),
       min_pressure_(std::move(min_pressure)),
-      max_pressure_(std::move(max_pressure)) {
+      max_pressure_(std::move(max_pressure)),
+      regions_(garment, {}, kSource) {
   const Eigen::Index m = garment_triangles_.rows();
   if (pattern_triangles_.rows() != m)
     throw InputError(kSource, "garment and pattern triangle counts differ");
@@ -135,11 +167,14 @@ PressureObjective::PressureObjective(const Garment& garment, const ClothMaterial
     throw InputError(kSource, "pressure range has " + std::to_string(min_pressure_.size()) + "/" +
                                   std::to_string(max_pressure_.size()) + " entries for " +
                                   std::to_string(m) + " triangles");
-  for (Eigen::Index e = 0; e < m; ++e)
-    if (!std::isfinite(min_pressure_[e]) || !std::isfinite(max_pressure_[e]) ||
-        min_pressure_[e] > max_pressure_[e])
+  const double inf = std::numeric_limits<double>::infinity();
+  for (Eigen::Index e = 0; e < m; ++e) {
+    const bool no_range = min_pressure_[e] == -inf && max_pressure_[e] == inf;
+    if (!no_range && (!std::isfinite(min_pressure_[e]) || !std::isfinite(max_pressure_[e]) ||
+                      min_pressure_[e] > max_pressure_[e]))
       throw InputError(kSource, "pressure range of triangle " + std::to_string(e) +
                                     " must be finite with min <= max");
+  }
   for (Eigen::Index e = 0; e < m; ++e)
     for (int k = 0; k < 3; ++k)
       if (garment_triangles_(e, k) < 0 || garment_triangles_(e, k) >= num_garment_ ||
@@ -291,8 +326,13 @@ double PressureObjective::value(const DesignState& state) const {
   double total = 0.0;
   for (int f = 0; f < static_cast<int>(p.size()); ++f) {
     std::array<Vec2, 3> r;
-    for (int k = 0; k < 3; ++k) r[k] = state.rest.row(pattern_triangles_(f, k)).transpose();
-    total += rest_area<double>(r) * penalty<double>(p[f], min_pressure_[f], max_pressure_[f]);
+    std::array<Vec3, 3> x;
+    for (int k = 0; k < 3; ++k) {
+      r[k] = state.rest.row(pattern_triangles_(f, k)).transpose();
+      x[k] = state.x.segment<3>(3 * garment_triangles_(f, k));
+    }
+    total += rest_area<double>(r) *
+             element_penalty<double>(p[f], min_pressure_[f], max_pressure_[f], regions_, f, x);
   }
   return total;
 }
@@ -315,7 +355,7 @@ void PressureObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& 
   VecX d_phi = VecX::Zero(num_edges_);
   bool any = false;
   for (int f = 0; f < m; ++f) {
-    if (p[f] >= min_pressure_[f] && p[f] <= max_pressure_[f]) continue;  // zero with zero slope
+    if (inside_all(p[f], min_pressure_[f], max_pressure_[f], regions_, f)) continue;  // zero slope
     any = true;
     const std::array<Vec3, 6> pd = face_points(state.x, garment_triangles_, face_opposite_[f], f);
     std::array<Vec3T<S>, 6> pa;
@@ -333,7 +373,8 @@ void PressureObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& 
     }
     const std::array<Vec3T<S>, 3> xa = {pa[0], pa[1], pa[2]};
     const S pressure = element_pressure<S>(law_, xa, ra, lambda, f);
-    const S t = rest_area<S>(ra) * penalty<S>(pressure, min_pressure_[f], max_pressure_[f]);
+    const S t = rest_area<S>(ra) *
+                element_penalty<S>(pressure, min_pressure_[f], max_pressure_[f], regions_, f, xa);
     const Eigen::Matrix<double, kN, 1>& g = t.derivatives();
     for (int k = 0; k < 3; ++k) {
       d_x.segment<3>(3 * garment_triangles_(f, k)) += g.segment<3>(3 * k);

@@ -3,6 +3,10 @@
 ///   T_pressure = Σ_e A_e pen_e(p_e),
 ///   pen_e(p) = (p − p_min,e)² for p < p_min,e,  (p − p_max,e)² for p > p_max,e,  0 between,
 /// (p_min = p_max = p̂ gives Eq. 34 exactly), A_e the rest area (m²), so T is in Pa²·m².
+/// With pressure regions (pressure_regions.hpp) the ranges come from the regions and
+/// their membership weights w_{r,e}(x), and the objective sums them:
+///   T_pressure = Σ_r Σ_e A_e w_{r,e}(x) pen_r(p_e);
+/// a triangle in no region contributes nothing.
 ///
 /// Pressure per element (generalized Young-Laplace, Eq. 31, as in cloth_analysis.hpp):
 ///   p_e = t tr(σ_e Λ_e),   σ_e = F S Fᵀ / J,   S = 2 ∂W/∂C (relaxed StVK),  J = √det C,
@@ -26,6 +30,7 @@
 
 #include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/pressure_regions.hpp"
 #include "tightfit/physics/relaxed_stvk.hpp"
 
 namespace tightfit {
@@ -41,6 +46,9 @@ class PressureObjective : public DesignTerm {
   /// The same range [min_pressure, max_pressure] (Pa) on every element.
   PressureObjective(const Garment& garment, const ClothMaterial& material, double min_pressure,
                     double max_pressure);
+  /// The ranges of `regions` (resolved on this garment), summed where they overlap.
+  PressureObjective(const Garment& garment, const ClothMaterial& material,
+                    PressureRegions regions);
 
   std::string name() const override { return "pressure"; }
   double value(const DesignState& state) const override;
@@ -52,6 +60,8 @@ class PressureObjective : public DesignTerm {
   VecX pressures(const DesignState& state) const;
   /// Λ_e (3×3, 1/m, world frame) for every garment triangle at positions x.
   std::vector<Mat3> shape_operators(const VecX& x) const;
+  /// The regions (empty for the per-element constructors).
+  const PressureRegions& regions() const { return regions_; }
 
  private:
   void check(const DesignState& state) const;
@@ -61,8 +71,10 @@ class PressureObjective : public DesignTerm {
   int num_garment_ = 0;
   int num_pattern_ = 0;
   RelaxedStVK law_;
+  // Per-element range (±infinity where the regions give the targets) and the regions.
   VecX min_pressure_;
   VecX max_pressure_;
+  PressureRegions regions_;
   // Per face and face edge i: edge id (unknown), sign s_i, vertex across the edge (-1 on
   // the boundary).
   std::vector<std::array<int, 3>> face_edge_;

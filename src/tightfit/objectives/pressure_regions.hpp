@@ -1,0 +1,113 @@
+#pragma once
+/// Pressure targets by region (compression garments: a stocking's ankle, calf and thigh
+/// bands; a mask's cheeks and forehead): where on the garment a target range applies.
+///
+/// A region selects garment triangles by piece and/or by a band of the body between two
+/// planes. Its membership weight w_e ∈ [0, 1] of garment triangle e is
+///   w_e = [piece of e selected] · S(d_above(c_e) / δ) · S(−d_below(c_e) / δ),
+/// with c_e the centroid of the DEFORMED triangle (m), d the signed distance (m) to a
+/// plane (positive on the side its normal points to), S the C¹ smoothstep rising from 0
+/// at −½ to 1 at +½ (3u² − 2u³, u = t + ½), and δ the band's transition width (m;
+/// δ = 0 gives a hard step). The weight is a function of the garment positions, not of a
+/// state frozen when the objective was built: a triangle that slides across a band's
+/// plane moves smoothly from one target to the next, and the objective stays C¹.
+/// Regions may overlap; the pressure objective sums them (pressure_objective.hpp).
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tightfit/common/types.hpp"
+#include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/autodiff.hpp"
+
+namespace tightfit {
+
+/// A plane through `point` (m) with unit `normal`.
+struct RegionPlane {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitY();
+};
+
+/// One pressure target: where it applies and its range (Pa).
+struct PressureRegion {
+  std::string name;
+  std::vector<std::string> pieces;   ///< pattern piece names; empty: every piece
+  std::optional<RegionPlane> above;  ///< keep the side the plane's normal points to
+  std::optional<RegionPlane> below;  ///< keep the side opposite to the plane's normal
+  double transition = 0.0;           ///< δ (m), >= 0
+  double min_pa = 0.0;               ///< Pa
+  double max_pa = 0.0;               ///< Pa, >= min_pa
+};
+
+/// The regions resolved on one garment: which pieces each selects.
+class PressureRegions {
+ public:
+  /// Throws InputError (source `source`) for an unnamed or duplicated region, a piece
+  /// name the garment does not have (naming the region and the piece), a zero normal,
+  /// a negative transition, or a non-finite or inverted range.
+  PressureRegions(const Garment& garment, std::vector<PressureRegion> regions,
+                  const std::string& source);
+
+  int size() const { return static_cast<int>(regions_.size()); }
+  const PressureRegion& operator[](int r) const { return regions_[r]; }
+  const std::vector<PressureRegion>& regions() const { return regions_; }
+
+  /// Regions whose pieces include triangle e's piece (candidates for a weight > 0).
+  const std::vector<int>& candidates(int e) const { return candidates_[e]; }
+
+  /// w of region r for a triangle with deformed corners `corners` (m); templated for
+  /// automatic differentiation. Does not check the piece (see `candidates`).
+  template <typename S>
+  S band_weight(int r, const std::array<autodiff::Vec3T<S>, 3>& corners) const;
+
+  /// w_{r,e} for every region r (rows) and garment triangle e (columns) at positions x
+  /// (3·n_g, m).
+  MatX weights(const VecX& x) const;
+
+  /// Throws InputError (source `source`) naming every region whose weight is zero on
+  /// every garment triangle at positions x: a region no garment covers.
+  void check_covered(const VecX& x, const std::string& source) const;
+
+ private:
+  std::vector<PressureRegion> regions_;
+  std::vector<std::vector<int>> candidates_;  ///< per garment triangle
+  Triangles triangles_;                       ///< garment triangles
+};
+
+namespace pressure_region_detail {
+
+using autodiff::value_of;
+using autodiff::Vec3T;
+
+/// S(t): 0 for t <= −½, 1 for t >= ½, 3u² − 2u³ with u = t + ½ between.
+template <typename S>
+S smoothstep(const S& t) {
+  if (value_of(t) <= -0.5) return S(0.0);
+  if (value_of(t) >= 0.5) return S(1.0);
+  const S u = t + 0.5;
+  return u * u * (3.0 - 2.0 * u);
+}
+
+/// Side weight of one plane: S(sign · d / δ), a hard step for δ = 0.
+template <typename S>
+S side_weight(const RegionPlane& plane, double sign, double transition, const Vec3T<S>& c) {
+  const S d = sign * (c - plane.point.cast<S>()).dot(plane.normal.cast<S>());
+  if (transition <= 0.0) return S(value_of(d) >= 0.0 ? 1.0 : 0.0);
+  return smoothstep<S>(d / transition);
+}
+
+}  // namespace pressure_region_detail
+
+template <typename S>
+S PressureRegions::band_weight(int r, const std::array<autodiff::Vec3T<S>, 3>& corners) const {
+  using namespace pressure_region_detail;
+  const PressureRegion& region = regions_[r];
+  const Vec3T<S> c = (corners[0] + corners[1] + corners[2]) / 3.0;
+  S w(1.0);
+  if (region.above) w = w * side_weight<S>(*region.above, 1.0, region.transition, c);
+  if (region.below) w = w * side_weight<S>(*region.below, -1.0, region.transition, c);
+  return w;
+}
+
+}  // namespace tightfit
