@@ -257,6 +257,38 @@ TEST_F(OptimizeCli, CheckGradientOfShapePressureAndSeamTraction) {
     EXPECT_NE(r.output.find(std::string("  ") + term + " "), std::string::npos) << term;
 }
 
+TEST_F(OptimizeCli, CheckGradientOfPressureRegions) {
+  // The sleeve (z in [-0.04, 0.04]) in two bands with smooth 1 cm transitions around
+  // z = 0, plus a whole-piece region; the targets sit above and below the sleeve's
+  // pressure (about 24 mmHg), so every region is active.
+  nlohmann::json s = stretch_scene(1);
+  s["pressure"] = {{"regions",
+                    {{{"name", "lower"},
+                      {"below", {{"point", {0, 0, 0.005}}, {"normal", {0, 0, 1}}}},
+                      {"min_mmhg", 40},
+                      {"max_mmhg", 50}},
+                     {{"name", "upper"},
+                      {"above", {{"point", {0, 0, -0.005}}, {"normal", {0, 0, 1}}}},
+                      {"min_mmhg", 5},
+                      {"max_mmhg", 10}},
+                     {{"name", "whole sleeve"}, {"pieces", {"sleeve"}}, {"min_mmhg", 30},
+                      {"max_mmhg", 32}}}}};
+  s["optimize"]["objectives"] = {{"pressure", {{"weight", 1e-9}}}};
+  s["optimize"].erase("regularizers");
+  const CliRun r = run_cli("check-gradient " + write_scene("scene.json", s).string() +
+                           " --directions 2 --perturb 0.1 --max-error 1e-5");
+  std::printf("%s", r.output.c_str());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex("largest relative error: ([0-9.e+-]+)")));
+  EXPECT_LT(std::stod(m[1]), 1e-5);
+  // A region no garment covers is an input error naming it.
+  s["pressure"]["regions"][0]["below"]["point"] = {0, 0, -1.0};
+  const CliRun bad = run_cli("check-gradient " + write_scene("scene.json", s).string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("\"lower\""), std::string::npos) << bad.output;
+}
+
 TEST_F(OptimizeCli, CheckGradientOfTheDirectionalStretch) {
   // The sleeve's grain runs along the axis: across the grain is the hoop (stretch 1.11,
   // above the range), along it the axis (1.05, below the range).

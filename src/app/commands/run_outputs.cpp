@@ -4,6 +4,7 @@
 #include "tightfit/common/parallel.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/pattern_outputs.hpp"
+#include "tightfit/io/scene_spec.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
 
 namespace tightfit::app {
@@ -17,7 +18,17 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   write_fit_meshes(folder, sim, fit, pressure_operator);
   if (sim.garment().pattern.pieces.size() <= kMaxPatternPieces)
     for (const auto& f : write_pattern_files(folder, sim.garment().pattern)) files.push_back(f);
-  state.result["fit"] = fit_statistics(sim, fit, pressure_operator);
+  {
+    double relaxation = 0.0;
+    if (state.scene.contains("fabric") && state.scene["fabric"].contains("relaxation"))
+      relaxation = state.scene["fabric"]["relaxation"].get<double>();
+    const double simulated = sim.materials().fabric.youngs_modulus;
+    state.result["fabric"] = {{"relaxation", relaxation},
+                              {"youngs_modulus_pa_simulated", simulated},
+                              {"youngs_modulus_pa_new", simulated / (1.0 - relaxation)}};
+  }
+  state.result["fit"] = fit_statistics(sim, fit, pressure_operator,
+                                       scene_pressure_regions(state.scene, "scene"), "scene");
   write_text_atomically(folder / "result.json", state.result.dump(2) + "\n");
   write_text_atomically(folder / "scene.json", state.scene.dump(2) + "\n");
   files.insert(files.end(), {"result.json", "scene.json"});

@@ -1,6 +1,7 @@
 #include "tightfit/design/optimization_spec.hpp"
 
 #include "tightfit/common/json_fields.hpp"
+#include "tightfit/design/pressure_region.hpp"
 
 namespace tightfit {
 namespace {
@@ -48,17 +49,8 @@ ShapeObjectiveSpec parse_shape(JsonFields f, const std::filesystem::path& base_d
 PressureObjectiveSpec parse_pressure(JsonFields f) {
   PressureObjectiveSpec s;
   s.weight = weight(f);
-  const bool pa = f.has("min_pa") || f.has("max_pa");
-  const bool mmhg = f.has("min_mmhg") || f.has("max_mmhg");
-  if (pa == mmhg) f.fail("give the range either as min_pa/max_pa or as min_mmhg/max_mmhg");
-  if (pa) {
-    s.min_pa = f.number("min_pa");
-    s.max_pa = f.number("max_pa");
-  } else {
-    s.min_pa = f.number("min_mmhg") * kPascalPerMmHg;
-    s.max_pa = f.number("max_mmhg") * kPascalPerMmHg;
-  }
-  if (s.max_pa < s.min_pa) f.fail("the maximum pressure is below the minimum");
+  s.scene_regions = !(f.has("min_pa") || f.has("max_pa") || f.has("min_mmhg") || f.has("max_mmhg"));
+  if (!s.scene_regions) parse_pressure_range(f, s.min_pa, s.max_pa);
   f.finish();
   return s;
 }

@@ -10,7 +10,8 @@
 ///                               "min": 1.3, "max": 1.3},                // "max" optional
 ///       "shape":    {"weight": 1, "target": "target.obj", "radius": 0.01,
 ///                    "vertices": "all"},    // or "unpinned": skip pinned boundary vertices
-///       "pressure": {"weight": 1, "min_mmhg": 15, "max_mmhg": 25},  // or min_pa/max_pa
+///       "pressure": {"weight": 1, "min_mmhg": 15, "max_mmhg": 25},  // or min_pa/max_pa;
+///                                           // without a range: the scene's pressure regions
 ///       "seam_traction": {"weight": 1}
 ///     },
 ///     "regularizers": {                     // weights, all optional (default 0 = off)
@@ -41,8 +42,10 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tightfit/design/optimization_problem.hpp"
+#include "tightfit/design/pressure_region.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
 #include "tightfit/design/regularizer_compactness.hpp"
 
@@ -72,8 +75,14 @@ struct ShapeObjectiveSpec {
 
 struct PressureObjectiveSpec {
   double weight = 1.0;
+  /// No range given: the targets are the scene's `"pressure": {"regions": [...]}`
+  /// (copied into `regions` by read_optimization_scene). Else [min_pa, max_pa] on the
+  /// whole garment.
+  bool scene_regions = false;
   double min_pa = 0.0;  ///< Pa (min_mmhg converted)
   double max_pa = 0.0;  ///< Pa
+  std::vector<PressureRegion> regions;  ///< when scene_regions
+  std::string regions_source;           ///< the scene file, for errors about the regions
 };
 
 struct SeamTractionObjectiveSpec {

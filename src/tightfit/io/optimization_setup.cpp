@@ -42,6 +42,16 @@ OptimizationScene read_optimization_scene(const std::string& file) {
   if (s.scene.optimize.is_null())
     throw InputError(file, "/optimize: missing (this command needs an \"optimize\" section)");
   s.optimization = parse_optimization_spec(s.scene.optimize, file, "/optimize", s.scene.base_dir);
+  if (auto& pressure = s.optimization.pressure) {
+    if (pressure->scene_regions && s.scene.pressure_regions.empty())
+      throw InputError(file, "/optimize/objectives/pressure: give a range (min_pa/max_pa or "
+                             "min_mmhg/max_mmhg) or the targets in /pressure/regions");
+    if (!pressure->scene_regions && !s.scene.pressure_regions.empty())
+      throw InputError(file, "/optimize/objectives/pressure: the scene has /pressure/regions; "
+                             "give the targets there or here, not both");
+    pressure->regions = s.scene.pressure_regions;
+    pressure->regions_source = file;
+  }
   return s;
 }
 
@@ -83,9 +93,15 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
                                               vertices);
     });
   if (spec.pressure)
-    add(spec.pressure->weight, [&] {
-      return std::make_shared<PressureObjective>(g, sim.materials().fabric, spec.pressure->min_pa,
-                                                 spec.pressure->max_pa);
+    add(spec.pressure->weight, [&]() -> std::shared_ptr<PressureObjective> {
+      if (!spec.pressure->scene_regions)
+        return std::make_shared<PressureObjective>(g, sim.materials().fabric,
+                                                   spec.pressure->min_pa, spec.pressure->max_pa);
+      const std::string& source = spec.pressure->regions_source;
+      PressureRegions regions(g, spec.pressure->regions, source);
+      const Points3& x = sim.garment_positions();
+      regions.check_covered(Eigen::Map<const VecX>(x.data(), x.size()), source);
+      return std::make_shared<PressureObjective>(g, sim.materials().fabric, std::move(regions));
     });
   if (spec.seam_traction)
     add(spec.seam_traction->weight,

@@ -64,6 +64,9 @@ void parse_fabric(JsonFields& f, ClothMaterial& m) {
     f.fail("must lie in (-1, 1) for a membrane", "poisson_ratio");
   m.thickness = f.positive("thickness", m.thickness);
   m.regime_smoothing = f.positive("regime_smoothing", m.regime_smoothing);
+  const double relaxation = f.number("relaxation", 0.0);
+  if (!(relaxation >= 0.0 && relaxation < 1.0)) f.fail("must lie in [0, 1)", "relaxation");
+  m.youngs_modulus *= 1.0 - relaxation;
   f.finish();
 }
 
@@ -119,6 +122,8 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
                                   "mid_edge"
                               ? ShapeOperatorKind::kMidEdge
                               : ShapeOperatorKind::kLimitSurface;
+    for (JsonFields& region : f->objects("regions"))
+      s.pressure_regions.push_back(parse_pressure_region(region));
     f->finish();
   }
   if (root.has("optimize")) {
@@ -127,6 +132,18 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   }
   root.finish();
   return s;
+}
+
+std::vector<PressureRegion> scene_pressure_regions(const nlohmann::json& document,
+                                                   const std::string& file) {
+  std::vector<PressureRegion> regions;
+  if (!document.is_object() || !document.contains("pressure")) return regions;
+  const nlohmann::json& pressure = document["pressure"];
+  if (!pressure.is_object() || !pressure.contains("regions")) return regions;
+  const nlohmann::json section = {{"regions", pressure["regions"]}};
+  JsonFields f(section, file, "/pressure");
+  for (JsonFields& region : f.objects("regions")) regions.push_back(parse_pressure_region(region));
+  return regions;
 }
 
 SceneSpec read_scene(const std::filesystem::path& file) {

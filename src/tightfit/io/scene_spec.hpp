@@ -10,18 +10,25 @@
 ///              | {"layout": {...garment/layout_spec.hpp...},
 ///                 "pattern": {...garment/pattern_options.hpp...}},
 ///     "fabric": {"youngs_modulus": 5.4e6, "poisson_ratio": 0.33, "thickness": 1e-4,
-///                "regime_smoothing": 1e-3},
+///                "regime_smoothing": 1e-3, "relaxation": 0},
+///       relaxation r in [0, 1): the share of its tension a knit loses with wear; every
+///       simulation (and so every design) uses the worn fabric, E (1 − r), so that
+///       pressure targets hold after relaxation (the new garment presses about
+///       1/(1 − r) times harder). materials.fabric holds the scaled modulus.
 ///     "seam": {"youngs_modulus": 0, "width": 0.005, "thickness": 2e-4},
 ///     "body_material": {"youngs_modulus": 24780, "poisson_ratio": 0.49, "rigid": false},
 ///     "solver": {"relative_force_tolerance": 1e-9, "max_iterations": 100,
 ///                "limit_level": 8},
-///     "pressure": {"shape_operator": "mid_edge" | "limit_surface"}
+///     "pressure": {"shape_operator": "mid_edge" | "limit_surface",
+///                  "regions": [...design/pressure_region.hpp...]}
 ///   }
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "tightfit/body/body_spec.hpp"
+#include "tightfit/design/pressure_region.hpp"
 #include "tightfit/garment/layout_spec.hpp"
 #include "tightfit/garment/pattern_options.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
@@ -51,10 +58,18 @@ struct SceneSpec {
   NewtonOptions newton;
   LimitSurfaceOptions limit;
   ShapeOperatorKind pressure_operator = ShapeOperatorKind::kMidEdge;
+  /// Pressure targets by region: reported by every command that simulates, and the
+  /// pressure objective's targets when it gives no range of its own.
+  std::vector<PressureRegion> pressure_regions;
   /// The "optimize" section (objectives, regularizers, optimizer settings), validated by
   /// the design layer's parser when a command optimizes; null when absent.
   nlohmann::json optimize;
 };
+
+/// The pressure regions of a scene document (its "/pressure/regions"; empty when
+/// absent), e.g. of the scene saved in a run's state.json. Throws InputError (`file`).
+std::vector<PressureRegion> scene_pressure_regions(const nlohmann::json& document,
+                                                   const std::string& file);
 
 /// Reads and validates a scene file.
 SceneSpec read_scene(const std::filesystem::path& file);

@@ -1,5 +1,9 @@
 #include "tightfit/io/simulation_outputs.hpp"
 
+#include <cmath>
+
+#include "tightfit/io/pressure_statistics.hpp"
+
 #include <algorithm>
 
 #include "tightfit/io/fit_glb.hpp"
@@ -53,7 +57,8 @@ std::vector<MeshField> garment_vertex_fields(const FitAnalysis& fit) {
 }
 
 nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
-                              ShapeOperatorKind op) {
+                              ShapeOperatorKind op, const std::vector<PressureRegion>& regions,
+                              const std::string& source) {
   const VecX& p = chosen_pressure(fit, op);
   const int n = static_cast<int>(fit.elements.size());
   const int pieces = static_cast<int>(sim.garment().pattern.pieces.size());
@@ -74,6 +79,18 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
   j["pressure_operator"] = op == ShapeOperatorKind::kMidEdge ? "mid_edge" : "limit_surface";
   j["pressure_pa"] = range_json(all);
   j["pressure_mmhg"] = range_json(all, kPascalPerMmHg);
+  {
+    std::vector<double> areas(n);
+    std::vector<int> faces(n);
+    for (int e = 0; e < n; ++e) {
+      areas[e] = fit.elements[e].deformed_area;
+      faces[e] = e;
+    }
+    const PressureMoments m = pressure_moments(p, areas, faces);
+    j["pressure_pa"]["area_weighted_mean"] = m.mean;
+    j["pressure_pa"]["area_weighted_std"] = m.std;
+    j["pressure_spread"] = m.mean != 0.0 ? m.std / std::abs(m.mean) : 0.0;
+  }
   j["stretch_max"] = range_json(smax);
   j["stretch_min"] = range_json(smin);
   j["garment_area_m2"] = total;
@@ -91,6 +108,7 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
                     {"pressure_pa", range_json(per_piece[k])},
                     {"pressure_mmhg", range_json(per_piece[k], kPascalPerMmHg)}});
   }
+  if (!regions.empty()) j["pressure_regions"] = pressure_region_statistics(sim, p, regions, source);
   return j;
 }
 

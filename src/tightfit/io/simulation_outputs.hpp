@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "tightfit/design/pressure_region.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/fit_view.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
@@ -26,10 +27,15 @@ std::vector<MeshField> garment_vertex_fields(const FitAnalysis& fit);
 const VecX& chosen_pressure(const FitAnalysis& fit, ShapeOperatorKind op);
 
 /// Statistics of the fit: pressure min/median/max (Pa and mmHg, overall and per piece),
+/// the area-weighted mean, standard deviation and spread (std / mean) of the pressure,
 /// area shares of slack / wrinkled / taut elements, lift-off area (negative pressure),
-/// stretch ranges.
+/// stretch ranges, and per pressure region (pressure_statistics.hpp) its statistics
+/// against the target and the compression class reached ("pressure_regions", only
+/// when `regions` is not empty; `source` names the scene in errors).
 nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
-                              ShapeOperatorKind pressure_operator);
+                              ShapeOperatorKind pressure_operator,
+                              const std::vector<PressureRegion>& regions = {},
+                              const std::string& source = "scene");
 
 /// JSON of a Newton report (iterations, residuals, time split).
 nlohmann::json newton_report_json(const NewtonReport& report);

@@ -18,27 +18,11 @@
 #include <vector>
 
 #include "tightfit/common/types.hpp"
+#include "tightfit/design/pressure_region.hpp"
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/autodiff.hpp"
 
 namespace tightfit {
-
-/// A plane through `point` (m) with unit `normal`.
-struct RegionPlane {
-  Vec3 point = Vec3::Zero();
-  Vec3 normal = Vec3::UnitY();
-};
-
-/// One pressure target: where it applies and its range (Pa).
-struct PressureRegion {
-  std::string name;
-  std::vector<std::string> pieces;   ///< pattern piece names; empty: every piece
-  std::optional<RegionPlane> above;  ///< keep the side the plane's normal points to
-  std::optional<RegionPlane> below;  ///< keep the side opposite to the plane's normal
-  double transition = 0.0;           ///< δ (m), >= 0
-  double min_pa = 0.0;               ///< Pa
-  double max_pa = 0.0;               ///< Pa, >= min_pa
-};
 
 /// The regions resolved on one garment: which pieces each selects.
 class PressureRegions {

@@ -1,0 +1,122 @@
+#include "tightfit/io/pressure_statistics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "tightfit/objectives/pressure_regions.hpp"
+
+namespace tightfit {
+
+std::string ral_gz_387_class(double mmhg) {
+  if (mmhg < 18.0) return "below I";
+  if (mmhg <= 21.0) return "I";
+  if (mmhg < 23.0) return "between I and II";
+  if (mmhg <= 32.0) return "II";
+  if (mmhg < 34.0) return "between II and III";
+  if (mmhg <= 46.0) return "III";
+  if (mmhg < 49.0) return "between III and IV";
+  return "IV";
+}
+
+bool in_burn_scar_range(double mmhg) { return mmhg >= 15.0 && mmhg <= 25.0; }
+bool in_face_mask_range(double mmhg) { return mmhg >= 20.0 && mmhg <= 32.0; }
+
+PressureMoments pressure_moments(const VecX& p, const std::vector<double>& areas,
+                                 const std::vector<int>& faces) {
+  PressureMoments m;
+  double sum = 0.0, sum_sq = 0.0;
+  for (int f : faces) {
+    m.area += areas[f];
+    sum += areas[f] * p[f];
+  }
+  if (!(m.area > 0.0)) return m;
+  m.mean = sum / m.area;
+  for (int f : faces) sum_sq += areas[f] * (p[f] - m.mean) * (p[f] - m.mean);
+  m.std = std::sqrt(sum_sq / m.area);
+  return m;
+}
+
+namespace {
+
+/// Area-weighted median: the value below which half of the area lies.
+double weighted_median(std::vector<std::pair<double, double>> value_area) {
+  if (value_area.empty()) return 0.0;
+  std::sort(value_area.begin(), value_area.end());
+  double total = 0.0;
+  for (const auto& v : value_area) total += v.second;
+  double cumulative = 0.0;
+  for (const auto& v : value_area) {
+    cumulative += v.second;
+    if (cumulative >= 0.5 * total * (1.0 - 1e-12)) return v.first;
+  }
+  return value_area.back().first;
+}
+
+nlohmann::json pressure_summary(double lo, double median, const PressureMoments& m, double hi,
+                                double scale) {
+  return {{"min", lo / scale}, {"median", median / scale}, {"mean", m.mean / scale},
+          {"std", m.std / scale}, {"max", hi / scale}};
+}
+
+}  // namespace
+
+nlohmann::json pressure_region_statistics(const GarmentSimulation& sim, const VecX& p,
+                                          const std::vector<PressureRegion>& regions,
+                                          const std::string& source) {
+  nlohmann::json out = nlohmann::json::array();
+  if (regions.empty()) return out;
+  const Garment& g = sim.garment();
+  const PressureRegions resolved(g, regions, source);
+  const Points3& x = sim.garment_positions();
+  const MatX w = resolved.weights(Eigen::Map<const VecX>(x.data(), x.size()));
+  const Eigen::Index n = g.garment_triangles.rows();
+  std::vector<double> areas(n);
+  for (Eigen::Index e = 0; e < n; ++e) {
+    const Vec3 a = x.row(g.garment_triangles(e, 0)), b = x.row(g.garment_triangles(e, 1)),
+               c = x.row(g.garment_triangles(e, 2));
+    areas[e] = 0.5 * (b - a).cross(c - a).norm();
+  }
+  for (int r = 0; r < resolved.size(); ++r) {
+    const PressureRegion& region = resolved[r];
+    std::vector<int> faces;
+    for (Eigen::Index e = 0; e < n; ++e)
+      if (w(r, e) >= 0.5) faces.push_back(static_cast<int>(e));
+    nlohmann::json j = {{"name", region.name},
+                        {"faces", faces.size()},
+                        {"target_pa", {{"min", region.min_pa}, {"max", region.max_pa}}},
+                        {"target_mmhg",
+                         {{"min", region.min_pa / kPascalPerMmHg},
+                          {"max", region.max_pa / kPascalPerMmHg}}}};
+    const PressureMoments m = pressure_moments(p, areas, faces);
+    j["area_m2"] = m.area;
+    if (faces.empty()) {
+      j["pressure_pa"] = nullptr;
+      out.push_back(std::move(j));
+      continue;
+    }
+    std::vector<std::pair<double, double>> samples;
+    double lo = p[faces.front()], hi = lo, inside = 0.0, lift_off = 0.0;
+    for (int f : faces) {
+      samples.emplace_back(p[f], areas[f]);
+      lo = std::min(lo, p[f]);
+      hi = std::max(hi, p[f]);
+      if (p[f] >= region.min_pa && p[f] <= region.max_pa) inside += areas[f];
+      if (p[f] < 0.0) lift_off += areas[f];
+    }
+    const double median = weighted_median(std::move(samples));
+    const double median_mmhg = median / kPascalPerMmHg;
+    j["pressure_pa"] = pressure_summary(lo, median, m, hi, 1.0);
+    j["pressure_mmhg"] = pressure_summary(lo, median, m, hi, kPascalPerMmHg);
+    j["spread"] = m.mean != 0.0 ? m.std / std::abs(m.mean) : 0.0;
+    j["share_in_target"] = m.area > 0.0 ? inside / m.area : 0.0;
+    j["lift_off_share"] = m.area > 0.0 ? lift_off / m.area : 0.0;
+    j["ral_gz_387_class"] = ral_gz_387_class(median_mmhg);
+    j["burn_scar_range"] = in_burn_scar_range(median_mmhg);
+    j["face_mask_range"] = in_face_mask_range(median_mmhg);
+    out.push_back(std::move(j));
+  }
+  return out;
+}
+
+}  // namespace tightfit

@@ -1,0 +1,52 @@
+#pragma once
+/// Pressure of a compression garment against its targets and the medical classes: per
+/// pressure region (design/pressure_region.hpp) the area-weighted pressure statistics,
+/// the share of the region's area inside its target range, the lift-off share and the
+/// compression class its median reaches.
+///
+/// Classes (DESIGN.md §5, public sources): RAL-GZ 387 (the German/Austrian/Swiss
+/// quality mark for medical compression stockings, pressure at the ankle): class I
+/// 18–21, II 23–32, III 34–46, IV >= 49 mmHg; burn-scar pressure therapy 15–25 mmHg
+/// (meta-analysis of 12 trials); face masks 20–32 mmHg. UK (BS 661210) and French
+/// (ASQUAL) stocking classes differ and are not used here.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tightfit/design/pressure_region.hpp"
+#include "tightfit/solve/garment_simulation.hpp"
+
+namespace tightfit {
+
+/// The RAL-GZ 387 class of a pressure (mmHg): "I", "II", "III", "IV", or where it falls
+/// outside the classes "below I", "between I and II", "between II and III",
+/// "between III and IV". Boundaries are inclusive (18 and 21 are class I).
+std::string ral_gz_387_class(double mmhg);
+
+/// Whether a pressure (mmHg) lies in the burn-scar therapy range 15–25 and in the face
+/// mask range 20–32 (inclusive).
+bool in_burn_scar_range(double mmhg);
+bool in_face_mask_range(double mmhg);
+
+/// Area-weighted mean and standard deviation (Pa) of per-element pressures `p` over the
+/// elements `faces` with deformed areas `areas` (m²).
+struct PressureMoments {
+  double mean = 0.0;  ///< Pa
+  double std = 0.0;   ///< Pa
+  double area = 0.0;  ///< m²
+};
+PressureMoments pressure_moments(const VecX& p, const std::vector<double>& areas,
+                                 const std::vector<int>& faces);
+
+/// Per region: {"name", "faces", "area_m2", "target_pa" {min, max}, "target_mmhg",
+/// "pressure_pa" {min, median, mean, std, max} (area-weighted median, mean, std),
+/// "pressure_mmhg" (same), "spread" (std / mean), "share_in_target", "lift_off_share",
+/// "ral_gz_387_class" and "burn_scar_range" / "face_mask_range" of the median}.
+/// A face belongs to a region when its membership weight at the equilibrium is >= ½.
+/// `p` the per-element pressure (Pa). Throws InputError (source `source`) for regions
+/// that do not resolve on the garment (pressure_regions.hpp).
+nlohmann::json pressure_region_statistics(const GarmentSimulation& sim, const VecX& p,
+                                          const std::vector<PressureRegion>& regions,
+                                          const std::string& source);
+
+}  // namespace tightfit
