@@ -53,6 +53,7 @@ function colorOf(coloring, value) {
     const k = Math.min(Math.max(Math.round(value), 0), coloring.categories.length - 1);
     return coloring.categories[k].color;
   }
+  if (coloring.negative_color && value < 0) return coloring.negative_color;
   let t = (value - coloring.lo) / (coloring.hi - coloring.lo);
   t = Math.min(Math.max(t, 0), 1);
   const i = Math.round(t * 255) * 3;
@@ -194,6 +195,13 @@ function drawLegend(coloring) {
   }
   box.append(canvas, ticks);
   legend.appendChild(box);
+  if (coloring.negative_color) {
+    const item = document.createElement('span');
+    item.className = 'cat';
+    item.innerHTML = `<span class="swatch" style="background:${cssColor(coloring.negative_color)}"></span>`;
+    item.appendChild(document.createTextNode('lift-off (< 0)'));
+    legend.appendChild(item);
+  }
   const note = document.createElement('span');
   note.className = 'hint';
   note.textContent = 'values outside the range are clamped; grey: no value';
@@ -359,6 +367,92 @@ function drawStats() {
   document.getElementById('stats').appendChild(table);
 }
 
+/// RAL-GZ 387 compression classes (mmHg), as in src/tightfit/io/pressure_statistics.hpp.
+const PRESSURE_CLASSES = [
+  { label: 'I', lo: 18, hi: 21 }, { label: 'II', lo: 23, hi: 32 },
+  { label: 'III', lo: 34, hi: 46 }, { label: 'IV', lo: 49, hi: Infinity },
+];
+
+function drawRegions() {
+  const host = document.getElementById('regions');
+  const regions = Array.isArray(data.pressure_regions) ? data.pressure_regions : [];
+  if (regions.length === 0) {
+    host.textContent = 'No pressure regions in this scene ("pressure": {"regions": [...]}).';
+    return;
+  }
+  const table = document.createElement('table');
+  table.innerHTML = '<thead><tr><th class="name" rowspan="2">region</th><th colspan="2">target (mmHg)</th>' +
+    '<th rowspan="2">area (cm²)</th><th colspan="5">pressure (mmHg)</th><th rowspan="2">in target</th>' +
+    '<th rowspan="2">lift-off</th><th rowspan="2">RAL-GZ 387 class (median)</th><th rowspan="2">burn scar 15–25</th>' +
+    '<th rowspan="2">face mask 20–32</th></tr>' +
+    '<tr><th>min</th><th>max</th><th>min</th><th>median</th><th>mean</th><th>std</th><th>max</th></tr></thead>';
+  const tbody = document.createElement('tbody');
+  for (const r of regions) {
+    const tr = document.createElement('tr');
+    cell(tr, r.name, 'name');
+    cell(tr, fmt(r.target_mmhg.min));
+    cell(tr, fmt(r.target_mmhg.max));
+    cell(tr, fmt(r.area_m2 * 1e4));
+    for (const k of ['min', 'median', 'mean', 'std', 'max']) cell(tr, r.pressure_mmhg ? fmt(r.pressure_mmhg[k]) : '–');
+    cell(tr, percent(r.share_in_target));
+    cell(tr, percent(r.lift_off_share), r.lift_off_share > 0 ? 'liftoff' : '');
+    cell(tr, r.ral_gz_387_class ?? '–');
+    cell(tr, r.burn_scar_range === null ? '–' : (r.burn_scar_range ? 'yes' : 'no'));
+    cell(tr, r.face_mask_range === null ? '–' : (r.face_mask_range ? 'yes' : 'no'));
+    tbody.appendChild(tr);
+  }
+  table.appendChild(tbody);
+  host.appendChild(table);
+}
+
+function drawHistogram() {
+  const host = document.getElementById('histogram');
+  const h = data.pressure_histogram;
+  if (!h || !Array.isArray(h.edges_mmhg) || h.area_m2.length === 0) {
+    host.textContent = 'No pressure in this fit.';
+    return;
+  }
+  const edges = h.edges_mmhg, areas = h.area_m2;
+  const total = areas.reduce((a, b) => a + b, 0) || 1;
+  const shares = areas.map((a) => a / total);
+  const W = 640, H = 220, L = 52, R = 12, T = 18, B = 40;
+  const x0 = Math.min(edges[0], 0), x1 = Math.max(edges[edges.length - 1], 0);
+  const yMax = Math.max(...shares) || 1;
+  const sx = (x) => L + ((x - x0) / (x1 - x0 || 1)) * (W - L - R);
+  const sy = (y) => H - B - (y / yMax) * (H - T - B);
+  let body = `<rect x="${L}" y="${T}" width="${W - L - R}" height="${H - T - B}" fill="#f7f8fa" stroke="#d5dae0"/>`;
+  for (const c of PRESSURE_CLASSES) {
+    const lo = Math.max(c.lo, x0), hi = Math.min(c.hi, x1);
+    if (hi <= lo) continue;
+    body += `<rect class="class-band" x="${sx(lo)}" y="${T}" width="${sx(hi) - sx(lo)}" height="${H - T - B}" fill="#2a6fdb" fill-opacity="0.08"/>` +
+      `<text x="${(sx(lo) + sx(hi)) / 2}" y="${T - 4}" text-anchor="middle" font-size="10" fill="#5b6570">${c.label}</text>`;
+  }
+  for (let k = 0; k < shares.length; ++k) {
+    const liftoff = edges[k + 1] <= 0;
+    body += `<rect class="bar${liftoff ? ' liftoff' : ''}" x="${sx(edges[k]) + 0.5}" y="${sy(shares[k])}" width="${Math.max(sx(edges[k + 1]) - sx(edges[k]) - 1, 1)}" height="${H - B - sy(shares[k])}" fill="${liftoff ? cssColor([217, 26, 217]) : '#5b6570'}"><title>${fmt(edges[k])}–${fmt(edges[k + 1])} mmHg: ${percent(shares[k])}</title></rect>`;
+  }
+  const regions = Array.isArray(data.pressure_regions) ? data.pressure_regions : [];
+  regions.forEach((r, i) => {
+    const lo = Math.max(r.target_mmhg.min, x0), hi = Math.min(r.target_mmhg.max, x1);
+    if (hi < lo) return;
+    const y = T + 6 + 8 * i;
+    body += `<line class="target" x1="${sx(lo)}" x2="${Math.max(sx(hi), sx(lo) + 2)}" y1="${y}" y2="${y}" stroke="#1d7a3a" stroke-width="4"><title>${r.name} target</title></line>` +
+      `<text x="${Math.max(sx(hi), sx(lo) + 2) + 4}" y="${y + 3}" font-size="9" fill="#1d7a3a">${r.name}</text>`;
+  });
+  const ticks = [x0, 0, x1].filter((v, i, a) => a.indexOf(v) === i);
+  for (const v of ticks) body += `<text x="${sx(v)}" y="${H - B + 14}" text-anchor="middle" font-size="11">${fmt(v)}</text>`;
+  body += `<text x="${L - 6}" y="${T + 10}" text-anchor="end" font-size="11">${percent(yMax)}</text>` +
+    `<text x="${L - 6}" y="${H - B}" text-anchor="end" font-size="11">0 %</text>` +
+    `<text x="${(L + W - R) / 2}" y="${H - 4}" text-anchor="middle" font-size="12">pressure (mmHg)</text>` +
+    `<text x="12" y="${(T + H - B) / 2}" font-size="12" transform="rotate(-90 12 ${(T + H - B) / 2})" text-anchor="middle">share of area</text>`;
+  const svg = document.createElementNS(SVG_NS, 'svg');
+  svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
+  svg.setAttribute('width', W);
+  svg.setAttribute('height', H);
+  svg.innerHTML = body;
+  host.appendChild(svg);
+}
+
 function drawHistory() {
   const host = document.getElementById('history');
   const entries = Array.isArray(data.history) ? data.history : [];
@@ -435,6 +529,8 @@ if (data.missing_colorings.length > 0) {
 
 drawPattern();
 drawStats();
+drawRegions();
+drawHistogram();
 drawHistory();
 drawParameters();
 resize();

@@ -116,6 +116,13 @@ TEST(FitColormap, StandardColorings) {
   EXPECT_NEAR(list[2].scale * kPascalPerMmHg, 1.0, 1e-15);
   EXPECT_TRUE(list[2].include_zero);
   EXPECT_EQ(list[3].colormap, ColorMap::kRegime);
+  // Lift-off (negative pressure) has its own colour; zero and above follow the map.
+  ASSERT_TRUE(list[2].negative_color.has_value());
+  const auto r = resolve_coloring(list[2], scalar({-100.0, 0.0, 4000.0}), "x");
+  expect_rgb_near(r.color(r.values[0]), kLiftOffColor, 0.0);
+  expect_rgb_near(r.color(r.values[1]), colormap_color(ColorMap::kTurbo, (0.0 - r.lo) / (r.hi - r.lo)),
+                  1e-12);
+  EXPECT_FALSE(list[0].negative_color.has_value());
 }
 
 TEST(FitColormap, SrgbToLinear) {

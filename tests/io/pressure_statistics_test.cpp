@@ -41,6 +41,28 @@ TEST(CompressionClasses, AreaWeightedMoments) {
   EXPECT_NEAR(m.std, std::sqrt((75.0 * 75.0 + 3 * 25.0 * 25.0) / 4.0), 1e-12);
 }
 
+TEST(CompressionClasses, HistogramHasNiceBinsAndAZeroEdge) {
+  // 4 faces: -0.5, 3.3, 7.9 and 10 mmHg with areas 1, 2, 3, 4.
+  VecX p(4);
+  p << -0.5, 3.3, 7.9, 10.0;
+  p *= kPascalPerMmHg;
+  const PressureHistogram h = pressure_histogram(p, {1.0, 2.0, 3.0, 4.0}, {0, 1, 2, 3}, 10);
+  ASSERT_GE(h.edges_mmhg.size(), 2u);
+  ASSERT_EQ(h.area_m2.size() + 1, h.edges_mmhg.size());
+  const double width = h.edges_mmhg[1] - h.edges_mmhg[0];
+  EXPECT_NEAR(width, 2.0, 1e-12);  // range 10.5 / 10 bins -> 1.05 -> nice 2
+  EXPECT_LE(h.edges_mmhg.front(), -0.5);
+  EXPECT_GT(h.edges_mmhg.back(), 10.0);
+  bool zero_edge = false;
+  for (double e : h.edges_mmhg) zero_edge |= std::abs(e) < 1e-12;
+  EXPECT_TRUE(zero_edge);
+  double total = 0.0;
+  for (double a : h.area_m2) total += a;
+  EXPECT_DOUBLE_EQ(total, 10.0);
+  EXPECT_DOUBLE_EQ(h.area_m2.front(), 1.0);  // the lift-off face alone in [-2, 0)
+  EXPECT_DOUBLE_EQ(h.area_m2.back(), 4.0);   // 10 mmHg in [10, 12)
+}
+
 const char* kSphere = R"({"body": {"generator": "sphere", "radius": 0.1},
   "garment": {"cover": {"scale": 0.9}}})";
 
@@ -169,6 +191,9 @@ TEST(PressureRegionStatistics, RegionsOfACoverOnARigidSphere) {
   EXPECT_EQ(ja["ral_gz_387_class"].get<std::string>(), ral_gz_387_class(median));
   EXPECT_LT(ja["spread"].get<double>(), 0.01);  // uniform on the sphere
   EXPECT_LT(j["pressure_spread"].get<double>(), 0.01);
+  double histogram_area = 0.0;
+  for (const auto& a : ja["histogram"]["area_m2"]) histogram_area += a.get<double>();
+  EXPECT_NEAR(histogram_area, ja["area_m2"].get<double>(), 1e-12);
   PressureRegion unknown = all;
   unknown.pieces = {"sleeve"};
   EXPECT_THROW(fit_statistics(*c.sim, fit, ShapeOperatorKind::kMidEdge, {unknown}, "scene.json"),

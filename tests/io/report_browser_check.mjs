@@ -129,6 +129,11 @@ try {
   summary.legend = [legendA, legendB];
   summary.statsRows = await page.locator('#stats tbody tr').count();
   summary.statsText = await page.locator('#stats').textContent();
+  summary.regionRows = await page.locator('#regions tbody tr').count();
+  summary.regionsText = await page.locator('#regions').textContent();
+  summary.histogramBars = await page.locator('#histogram rect.bar').count();
+  summary.liftoffBars = await page.locator('#histogram rect.bar.liftoff').count();
+  summary.targetLines = await page.locator('#histogram line.target').count();
 
   if (consoleErrors.length > 0) failures.push(`console errors: ${consoleErrors.join(' | ')}`);
   if (externalRequests.length > 0) failures.push(`network requests: ${externalRequests.join(' ')}`);

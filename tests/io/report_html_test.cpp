@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "io/fit_test_tools.hpp"
@@ -109,12 +110,29 @@ nlohmann::json check_in_browser(const FitView& view, const std::string& tag) {
 }
 
 TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
-  const auto summary = check_in_browser(test::band_on_sphere(32, 8), "report_browser");
+  FitView view = test::band_on_sphere(32, 8);
+  // Two pressure regions: the front piece's faces and every other face.
+  FitRegion front{"front", 20 * kPascalPerMmHg, 30 * kPascalPerMmHg, {}};
+  FitRegion alternate{"alternate", 0.0, 10 * kPascalPerMmHg, {}};
+  for (int f = 0; f < view.garment.num_faces(); ++f) {
+    if (f % 2 == 0) alternate.faces.push_back(f);
+  }
+  front.faces = resolved_piece_faces(view)[0];
+  std::sort(front.faces.begin(), front.faces.end());
+  view.pressure_regions = {front, alternate};
+  const auto summary = check_in_browser(view, "report_browser");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
   EXPECT_GT(summary.at("pixels").at("notBackground").get<double>(), 0.05);
   EXPECT_GT(summary.at("pixels").at("changed").get<double>(), 0.02);
   EXPECT_EQ(summary.at("statsRows"), 3);  // two pieces and the whole garment
   EXPECT_NE(summary.at("statsText").get<std::string>().find("lift-off"), std::string::npos);
+  EXPECT_EQ(summary.at("regionRows"), 2);
+  const std::string regions = summary.at("regionsText").get<std::string>();
+  EXPECT_NE(regions.find("front"), std::string::npos);
+  EXPECT_NE(regions.find("RAL-GZ 387"), std::string::npos);
+  EXPECT_GT(summary.at("histogramBars").get<int>(), 5);
+  EXPECT_GT(summary.at("liftoffBars").get<int>(), 0);  // the back piece lifts off in a sector
+  EXPECT_EQ(summary.at("targetLines"), 2);
 }
 
 TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {

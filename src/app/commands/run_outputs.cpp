@@ -4,6 +4,7 @@
 #include "tightfit/common/parallel.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/pattern_outputs.hpp"
+#include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/io/scene_spec.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
 
@@ -27,8 +28,8 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
                               {"youngs_modulus_pa_simulated", simulated},
                               {"youngs_modulus_pa_new", simulated / (1.0 - relaxation)}};
   }
-  state.result["fit"] = fit_statistics(sim, fit, pressure_operator,
-                                       scene_pressure_regions(state.scene, "scene"), "scene");
+  const std::vector<PressureRegion> regions = scene_pressure_regions(state.scene, "scene");
+  state.result["fit"] = fit_statistics(sim, fit, pressure_operator, regions, "scene");
   write_text_atomically(folder / "result.json", state.result.dump(2) + "\n");
   write_text_atomically(folder / "scene.json", state.scene.dump(2) + "\n");
   files.insert(files.end(), {"result.json", "scene.json"});
@@ -41,7 +42,9 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   }
   write_run_state(folder / "state.json", state);
   files.push_back("state.json");
-  write_fit_report(folder, make_fit_view(sim, fit, pressure_operator, state.scene, records));
+  FitView view = make_fit_view(sim, fit, pressure_operator, state.scene, records);
+  view.pressure_regions = resolve_fit_regions(sim, regions, "scene");
+  write_fit_report(folder, view);
   files.insert(files.end(), {"report.html", "fit.glb"});
   return files;
 }

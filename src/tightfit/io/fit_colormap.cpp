@@ -96,19 +96,21 @@ Rgb colormap_color(ColorMap map, double t) {
 std::vector<FieldColoring> standard_colorings() {
   std::vector<FieldColoring> list;
   list.push_back({std::string(fit_fields::kStretchMax), "Max principal stretch", "", 1.0,
-                  ColorMap::kViridis, std::nullopt, std::nullopt, false});
+                  ColorMap::kViridis, std::nullopt, std::nullopt, false, std::nullopt});
   list.push_back({std::string(fit_fields::kStretchMin), "Min principal stretch", "", 1.0,
-                  ColorMap::kViridis, std::nullopt, std::nullopt, false});
+                  ColorMap::kViridis, std::nullopt, std::nullopt, false, std::nullopt});
   list.push_back({std::string(fit_fields::kPressurePa), "Pressure", "mmHg", 1.0 / kPascalPerMmHg,
-                  ColorMap::kTurbo, std::nullopt, std::nullopt, true});
+                  ColorMap::kTurbo, std::nullopt, std::nullopt, true, kLiftOffColor});
   list.push_back(
-      {std::string(fit_fields::kRegime), "Regime", "", 1.0, ColorMap::kRegime, 0.0, 2.0, false});
+      {std::string(fit_fields::kRegime), "Regime", "", 1.0, ColorMap::kRegime, 0.0, 2.0, false,
+       std::nullopt});
   return list;
 }
 
 Rgb ResolvedColoring::color(double value) const {
   if (std::isnan(value)) return kNoValueColor;
   if (coloring.colormap == ColorMap::kRegime) return colormap_color(ColorMap::kRegime, value);
+  if (coloring.negative_color && value < 0.0) return *coloring.negative_color;
   return colormap_color(coloring.colormap, (value - lo) / (hi - lo));
 }
 

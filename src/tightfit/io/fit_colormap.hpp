@@ -58,10 +58,17 @@ struct FieldColoring {
   std::optional<double> lo;   ///< range start in scaled units; default from the data
   std::optional<double> hi;   ///< range end in scaled units; default from the data
   bool include_zero = false;  ///< widen the default range to contain 0
+  /// Values below 0 get this colour instead of the map's (lift-off: negative pressure).
+  std::optional<Rgb> negative_color;
 };
 
+/// The colour of lift-off (negative pressure) in the pressure colouring: magenta, a hue
+/// the turbo map does not contain.
+inline constexpr Rgb kLiftOffColor = {0.85, 0.1, 0.85};
+
 /// The report's default colourings: max stretch, min stretch (viridis), pressure in
-/// mmHg from pressure_pa (turbo, range includes 0) and regime (categorical).
+/// mmHg from pressure_pa (turbo, range includes 0, lift-off in kLiftOffColor) and regime
+/// (categorical).
 std::vector<FieldColoring> standard_colorings();
 
 /// A coloring applied to one field: the scaled per-face values and the range used.

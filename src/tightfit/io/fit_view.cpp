@@ -108,6 +108,13 @@ void validate_fit_view(const FitView& view, const std::string& source) {
   validate_pattern_mapping(view, source);
   if (!view.parameters.is_object()) throw InputError(source, "parameters must be a JSON object");
   if (!view.history.is_array()) throw InputError(source, "history must be a JSON array");
+  for (const FitRegion& region : view.pressure_regions) {
+    if (!(region.min_pa <= region.max_pa))
+      throw InputError(source, "pressure region \"" + region.name + "\" has min > max");
+    for (const int f : region.faces)
+      if (f < 0 || f >= view.garment.num_faces())
+        throw InputError(source, "pressure region \"" + region.name + "\" has a face out of range");
+  }
 }
 
 const FaceField* find_field(const std::vector<FaceField>& fields, std::string_view name) {

@@ -48,6 +48,15 @@ struct FaceField {
 
 /// Everything the fit exports show. Garment faces and pattern triangles are the same
 /// triangles: `piece_faces` says which garment face each pattern triangle became.
+/// A pressure target region on the garment (design/pressure_region.hpp) as the
+/// outputs see it: its target range and the garment faces it holds (membership >= ½).
+struct FitRegion {
+  std::string name;
+  double min_pa = 0.0;     ///< Pa
+  double max_pa = 0.0;     ///< Pa
+  std::vector<int> faces;  ///< garment faces, ascending
+};
+
 struct FitView {
   TriMesh body;                           ///< deformed body surface (m)
   std::vector<FaceField> body_fields;     ///< per body face; may be empty
@@ -62,6 +71,8 @@ struct FitView {
   /// Optimization history: an array of per-iteration objects, e.g.
   /// {"iteration": 3, "objective": 0.12, "gradient_norm": 1e-3}; may be empty.
   nlohmann::json history = nlohmann::json::array();
+  /// Pressure target regions; may be empty.
+  std::vector<FitRegion> pressure_regions;
 };
 
 /// Checks shapes and indices: faces index existing vertices, every field has one row

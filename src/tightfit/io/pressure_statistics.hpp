@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tightfit/design/pressure_region.hpp"
+#include "tightfit/io/fit_view.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit {
@@ -38,13 +39,33 @@ struct PressureMoments {
 PressureMoments pressure_moments(const VecX& p, const std::vector<double>& areas,
                                  const std::vector<int>& faces);
 
-/// Per region: {"name", "faces", "area_m2", "target_pa" {min, max}, "target_mmhg",
-/// "pressure_pa" {min, median, mean, std, max} (area-weighted median, mean, std),
-/// "pressure_mmhg" (same), "spread" (std / mean), "share_in_target", "lift_off_share",
-/// "ral_gz_387_class" and "burn_scar_range" / "face_mask_range" of the median}.
-/// A face belongs to a region when its membership weight at the equilibrium is >= ½.
-/// `p` the per-element pressure (Pa). Throws InputError (source `source`) for regions
-/// that do not resolve on the garment (pressure_regions.hpp).
+/// An area-weighted pressure histogram: bins of a "nice" width (1, 2 or 5 × 10^k mmHg,
+/// about `target_bins` of them) from below the smallest to above the largest value,
+/// with a bin edge at 0 so that lift-off (p < 0) has bins of its own.
+struct PressureHistogram {
+  std::vector<double> edges_mmhg;  ///< bins + 1 ascending edges
+  std::vector<double> area_m2;     ///< area per bin
+};
+PressureHistogram pressure_histogram(const VecX& p, const std::vector<double>& areas,
+                                     const std::vector<int>& faces, int target_bins = 24);
+
+/// The faces of each region at the simulation's equilibrium (membership weight >= ½).
+/// Throws InputError (source `source`) for regions that do not resolve on the garment
+/// (pressure_regions.hpp).
+std::vector<FitRegion> resolve_fit_regions(const GarmentSimulation& sim,
+                                           const std::vector<PressureRegion>& regions,
+                                           const std::string& source);
+
+/// Statistics of one region: {"name", "faces", "area_m2", "target_pa" {min, max},
+/// "target_mmhg", "pressure_pa" {min, median, mean, std, max} (area-weighted median,
+/// mean, std), "pressure_mmhg" (same), "spread" (std / mean), "share_in_target",
+/// "lift_off_share", "ral_gz_387_class" and "burn_scar_range" / "face_mask_range" of the
+/// median, "histogram" {edges_mmhg, area_m2}}; the pressure entries are null for a
+/// region without faces. `p` per garment face (Pa), `areas` deformed face areas (m²).
+nlohmann::json region_statistics_json(const FitRegion& region, const VecX& p,
+                                      const std::vector<double>& areas);
+
+/// region_statistics_json of every region resolved at the simulation's equilibrium.
 nlohmann::json pressure_region_statistics(const GarmentSimulation& sim, const VecX& p,
                                           const std::vector<PressureRegion>& regions,
                                           const std::string& source);

@@ -2,7 +2,10 @@
 
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "tightfit/io/fit_stats.hpp"
+#include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/io/report_encoding.hpp"
 
 namespace tightfit {
@@ -50,6 +53,7 @@ nlohmann::json coloring_json(const ResolvedColoring& c) {
                       {"lo", c.lo},
                       {"hi", c.hi},
                       {"values", f32(c.values)}};
+  if (c.coloring.negative_color) j["negative_color"] = bytes(*c.coloring.negative_color);
   if (c.coloring.colormap == ColorMap::kRegime) {
     nlohmann::json categories = nlohmann::json::array();
     for (const auto& cat : regime_categories()) {
@@ -95,6 +99,27 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
                       {"grain", {piece.grain.x(), piece.grain.y()}}});
   }
 
+  // Pressure by region and the garment's pressure histogram (mmHg), one definition
+  // with result.json (pressure_statistics.hpp).
+  nlohmann::json regions = nlohmann::json::array();
+  nlohmann::json histogram;
+  if (const FaceField* pa = find_field(view.garment_fields, fit_fields::kPressurePa)) {
+    const VecX p = pa->values.col(0);
+    std::vector<double> areas(static_cast<std::size_t>(view.garment.num_faces()));
+    std::vector<int> all(areas.size());
+    for (int f = 0; f < view.garment.num_faces(); ++f) {
+      const Vec3 a = view.garment.vertices.row(view.garment.faces(f, 0));
+      const Vec3 b = view.garment.vertices.row(view.garment.faces(f, 1));
+      const Vec3 c = view.garment.vertices.row(view.garment.faces(f, 2));
+      areas[f] = 0.5 * (b - a).cross(c - a).norm();
+      all[f] = f;
+    }
+    for (const FitRegion& region : view.pressure_regions)
+      regions.push_back(region_statistics_json(region, p, areas));
+    const PressureHistogram h = pressure_histogram(p, areas, all);
+    histogram = {{"edges_mmhg", h.edges_mmhg}, {"area_m2", h.area_m2}};
+  }
+
   return {{"title", title},
           {"body", view.body.num_faces() > 0 ? mesh_json(view.body) : nlohmann::json()},
           {"garment", mesh_json(view.garment)},
@@ -103,7 +128,9 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
           {"pieces", pieces},
           {"stats", fit_statistics_json(compute_fit_statistics(view))},
           {"parameters", view.parameters},
-          {"history", view.history}};
+          {"history", view.history},
+          {"pressure_regions", regions},
+          {"pressure_histogram", histogram}};
 }
 
 }  // namespace tightfit

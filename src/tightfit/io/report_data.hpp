@@ -7,12 +7,15 @@
 ///   body, garment         {positions: f32 n×3 (m), indices: u32 m×3} (body null if empty)
 ///   colorings[]           {field, label, unit, colormap, lo, hi, values: f32 per garment
 ///                          face (scaled), lut: 256×3 sRGB bytes (continuous maps) or
-///                          categories: [{value, label, color: [r,g,b] bytes}]}
+///                          categories: [{value, label, color: [r,g,b] bytes}],
+///                          negative_color: [r,g,b] bytes for values < 0 (lift-off), optional}
 ///   missing_colorings[]   labels of requested colourings whose field the fit lacks
 ///   pieces[]              {name, rest: f32 n×2 (m), triangles: u32 t×3, faces: u32 t
 ///                          (garment face of each triangle), boundary: [vertex], grain: [x,y]}
 ///   stats                 fit_statistics_json
 ///   parameters, history   as in FitView
+///   pressure_regions[]    region_statistics_json of each FitView region (pressure_statistics.hpp)
+///   pressure_histogram    {edges_mmhg, area_m2} of the whole garment, null without pressure
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
