@@ -97,7 +97,6 @@ TEST(PressureRegionScene, RegionsAndRelaxationAreRead) {
   EXPECT_NEAR(top.min_pa, 23 * kPascalPerMmHg, 1e-9);
   EXPECT_NEAR(top.max_pa, 32 * kPascalPerMmHg, 1e-9);
   EXPECT_DOUBLE_EQ(s.pressure_regions[1].transition, 0.01);  // default
-  EXPECT_EQ(scene_pressure_regions(doc, "state.json").size(), 2u);
 
   nlohmann::json bad = doc;
   bad["fabric"]["relaxation"] = 1.0;
@@ -112,6 +111,25 @@ TEST(PressureRegionScene, RegionsAndRelaxationAreRead) {
   bad = doc;
   bad["pressure"]["regions"][0]["pieces"] = nlohmann::json::array();
   EXPECT_NE(parse_error(bad).find("pieces"), std::string::npos) << parse_error(bad);
+}
+
+TEST(PressureRegionScene, BoneRegionsNeedTheRigWhichIsLoaded) {
+  nlohmann::json doc = nlohmann::json::parse(kSphere);
+  doc["pressure"] = {
+      {"regions", {{{"name", "thigh"}, {"bones", {"upperleg01.L"}}, {"min_pa", 1}, {"max_pa", 2}}}}};
+  EXPECT_NE(parse_error(doc).find("/pressure/regions/0/bones"), std::string::npos)
+      << parse_error(doc);
+  const std::string data = TIGHTFIT_DATA_DIR;
+  doc["pressure"]["rig"] = {{"mesh", data + "/bodies/mh_male_regular.obj"},
+                            {"weights", data + "/rig/default_weights.mhw"},
+                            {"radius", 0.02}};
+  const SceneSpec s = parse_scene(doc, "scene.json", ".");
+  ASSERT_TRUE(s.pressure_rig);
+  EXPECT_EQ(s.pressure_rig->vertices.rows(), 13380);
+  EXPECT_DOUBLE_EQ(s.pressure_rig_radius, 0.02);
+  EXPECT_EQ(s.pressure_regions[0].bones, std::vector<std::string>{"upperleg01.L"});
+  doc["pressure"]["rig"]["weights"] = "missing.mhw";
+  EXPECT_NE(parse_error(doc).find("missing.mhw"), std::string::npos) << parse_error(doc);
 }
 
 /// Writes `doc` as a scene file in a fresh folder and reads it as an optimization scene.
@@ -176,7 +194,8 @@ TEST(PressureRegionStatistics, RegionsOfACoverOnARigidSphere) {
   cap.min_pa = 2 * p0;  // nowhere inside
   cap.max_pa = 3 * p0;
   const nlohmann::json j =
-      fit_statistics(*c.sim, fit, ShapeOperatorKind::kMidEdge, {all, cap}, "scene.json");
+      fit_statistics(*c.sim, fit, ShapeOperatorKind::kMidEdge, PressureRegionSet{{all, cap}},
+                     "scene.json");
   ASSERT_EQ(j["pressure_regions"].size(), 2u);
   const nlohmann::json& ja = j["pressure_regions"][0];
   const nlohmann::json& jc = j["pressure_regions"][1];
@@ -196,7 +215,8 @@ TEST(PressureRegionStatistics, RegionsOfACoverOnARigidSphere) {
   EXPECT_NEAR(histogram_area, ja["area_m2"].get<double>(), 1e-12);
   PressureRegion unknown = all;
   unknown.pieces = {"sleeve"};
-  EXPECT_THROW(fit_statistics(*c.sim, fit, ShapeOperatorKind::kMidEdge, {unknown}, "scene.json"),
+  EXPECT_THROW(fit_statistics(*c.sim, fit, ShapeOperatorKind::kMidEdge, PressureRegionSet{{unknown}},
+                              "scene.json"),
                InputError);
 }
 

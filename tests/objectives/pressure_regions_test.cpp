@@ -153,3 +153,103 @@ TEST(PressureRegions, BadRegionsAreInputErrorsNamingThem) {
 
 }  // namespace
 }  // namespace tightfit
+
+namespace tightfit {
+namespace {
+
+TEST(PointField, ConstantsExactlyValuesInRangeGradientByFiniteDifferences) {
+  Points3 p(200, 3);
+  VecX v(200), ones = VecX::Ones(200);
+  for (int k = 0; k < 200; ++k) {
+    p.row(k) << 0.01 * (k % 10), 0.01 * ((k / 10) % 10), 0.01 * (k / 100);
+    v[k] = std::sin(30.0 * p(k, 0)) * std::cos(20.0 * p(k, 1));
+  }
+  const PointField constant(p, ones, 0.025), field(p, v, 0.025);
+  const Vec3 x(0.043, 0.051, 0.004);
+  EXPECT_NEAR(constant.evaluate(x).value, 1.0, 1e-14);
+  EXPECT_NEAR(constant.evaluate(x).gradient.norm(), 0.0, 1e-10);
+  const PointField::Evaluation e = field.evaluate(x);
+  EXPECT_GE(e.value, v.minCoeff());
+  EXPECT_LE(e.value, v.maxCoeff());
+  for (int d = 0; d < 3; ++d) {
+    const double h = 1e-6;
+    Vec3 a = x, b = x;
+    a[d] += h;
+    b[d] -= h;
+    const double fd = (field.evaluate(a).value - field.evaluate(b).value) / (2 * h);
+    EXPECT_NEAR(e.gradient[d], fd, 1e-6 * (1.0 + std::abs(fd))) << d;
+  }
+  // Far from every point: the nearest point's value, gradient 0.
+  const PointField::Evaluation far = field.evaluate(Vec3(1, 1, 1));
+  EXPECT_EQ(far.value, v[199]);
+  EXPECT_EQ(far.gradient.norm(), 0.0);
+}
+
+/// A rig for the test sleeve: points on the cylinder, bone "top" weighs 1 above z = 0.05
+/// and 0 below, bone "bottom" the opposite.
+SkinWeights sleeve_rig() {
+  SkinWeights rig;
+  rig.source = "test rig";
+  const int n_theta = 48, n_z = 25;
+  rig.vertices.resize(n_theta * n_z, 3);
+  for (int j = 0; j < n_z; ++j)
+    for (int i = 0; i < n_theta; ++i) {
+      const int v = j * n_theta + i;
+      const double a = 2 * std::numbers::pi * i / n_theta, z = -0.01 + 0.005 * j;
+      rig.vertices.row(v) << kBandSleeveRadius * std::cos(a), kBandSleeveRadius * std::sin(a), z;
+      rig.bones[z > 0.05 ? "top" : "bottom"].emplace_back(v, 1.0);
+    }
+  return rig;
+}
+
+TEST(PressureRegions, BoneRegionsFollowTheSkinWeightsAndTheirGradientIsExact) {
+  const test::GarmentState s = region_sleeve(9, 7);
+  const SkinWeights rig = sleeve_rig();
+  PressureRegion top;
+  top.name = "top";
+  top.bones = {"top"};
+  const PressureRegions regions(s.garment, {top}, "test", &rig, 0.012);
+  const MatX w = regions.weights(s.x);
+  for (Eigen::Index e = 0; e < w.cols(); ++e) {
+    const double z = centroid_height(s, e);
+    if (z > 0.065) {
+      EXPECT_NEAR(w(0, e), 1.0, 1e-12) << z;
+    }
+    if (z < 0.035) {
+      EXPECT_NEAR(w(0, e), 0.0, 1e-12) << z;
+    }
+  }
+  const Points2 rest0 = s.garment.rest_positions();
+  const PressureObjective probe(s.garment, ClothMaterial{}, 0.0, 1e9);
+  const double mean = probe.pressures({s.x, rest0}).mean();
+  top.min_pa = 2.0 * mean;
+  top.max_pa = 3.0 * mean;
+  PressureRegion bottom = top;
+  bottom.name = "bottom";
+  bottom.bones = {"bottom"};
+  bottom.min_pa = 0.1 * mean;
+  bottom.max_pa = 0.2 * mean;
+  const PressureObjective t(s.garment, ClothMaterial{},
+                            PressureRegions(s.garment, {top, bottom}, "test", &rig, 0.012));
+  for (unsigned seed = 1; seed <= 2; ++seed) {
+    const VecX x = test::perturb(s.x, 0.002, seed);
+    const Points2 rest = test::perturb(rest0, 0.001, 40 + seed);
+    const test::GradientErrors e = test::gradient_errors(t, x, rest, 1e-7, 1e-7);
+    EXPECT_GT(e.norm_x, 0.0);
+    EXPECT_LT(e.x, 1e-6) << "seed " << seed;
+    EXPECT_LT(e.rest, 1e-6) << "seed " << seed;
+  }
+  // Bones without a rig, or a bone the rig lacks: input errors naming the region.
+  EXPECT_THROW(PressureRegions(s.garment, {top}, "test"), InputError);
+  PressureRegion tail = top;
+  tail.bones = {"tail"};
+  try {
+    PressureRegions(s.garment, {tail}, "test", &rig, 0.012);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"tail\""), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tightfit

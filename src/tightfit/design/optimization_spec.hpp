@@ -39,12 +39,14 @@
 /// seam traction N, seam length and boundary spacing m², boundary smoothness 1/m,
 /// compactness dimensionless. Weights are >= 0; weight 0 switches a term off.
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "tightfit/design/optimization_problem.hpp"
+#include "tightfit/body/skin_weights.hpp"
 #include "tightfit/design/pressure_region.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
 #include "tightfit/design/regularizer_compactness.hpp"
@@ -83,6 +85,8 @@ struct PressureObjectiveSpec {
   double max_pa = 0.0;  ///< Pa
   std::vector<PressureRegion> regions;  ///< when scene_regions
   std::string regions_source;           ///< the scene file, for errors about the regions
+  std::shared_ptr<const SkinWeights> rig;  ///< skin weights of bone regions (may be null)
+  double rig_radius = 0.03;                ///< m
 };
 
 struct SeamTractionObjectiveSpec {

@@ -44,6 +44,16 @@ PressureRegion parse_pressure_region(JsonFields f) {
       r.pieces.push_back(p.get<std::string>());
     }
   }
+  if (f.has("bones")) {
+    const nlohmann::json& bones = f.raw("bones");
+    if (!bones.is_array() || bones.empty())
+      f.fail("expected a non-empty array of bone names", "bones");
+    for (const nlohmann::json& b : bones) {
+      if (!b.is_string() || b.get<std::string>().empty())
+        f.fail("expected a non-empty array of bone names", "bones");
+      r.bones.push_back(b.get<std::string>());
+    }
+  }
   if (auto p = f.object("above")) r.above = parse_plane(*p);
   if (auto p = f.object("below")) r.below = parse_plane(*p);
   r.transition = f.positive("transition", r.transition, true);

@@ -51,6 +51,8 @@ OptimizationScene read_optimization_scene(const std::string& file) {
                              "give the targets there or here, not both");
     pressure->regions = s.scene.pressure_regions;
     pressure->regions_source = file;
+    pressure->rig = s.scene.pressure_rig;
+    pressure->rig_radius = s.scene.pressure_rig_radius;
   }
   return s;
 }
@@ -98,7 +100,8 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
         return std::make_shared<PressureObjective>(g, sim.materials().fabric,
                                                    spec.pressure->min_pa, spec.pressure->max_pa);
       const std::string& source = spec.pressure->regions_source;
-      PressureRegions regions(g, spec.pressure->regions, source);
+      PressureRegions regions(g, spec.pressure->regions, source, spec.pressure->rig.get(),
+                              spec.pressure->rig_radius);
       const Points3& x = sim.garment_positions();
       regions.check_covered(Eigen::Map<const VecX>(x.data(), x.size()), source);
       return std::make_shared<PressureObjective>(g, sim.materials().fabric, std::move(regions));

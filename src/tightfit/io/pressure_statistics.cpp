@@ -95,11 +95,12 @@ PressureHistogram pressure_histogram(const VecX& p, const std::vector<double>& a
 }
 
 std::vector<FitRegion> resolve_fit_regions(const GarmentSimulation& sim,
-                                           const std::vector<PressureRegion>& regions,
+                                           const PressureRegionSet& regions,
                                            const std::string& source) {
   std::vector<FitRegion> out;
   if (regions.empty()) return out;
-  const PressureRegions resolved(sim.garment(), regions, source);
+  const PressureRegions resolved(sim.garment(), regions.regions, source, regions.rig,
+                                 regions.rig_radius);
   const Points3& x = sim.garment_positions();
   const MatX w = resolved.weights(Eigen::Map<const VecX>(x.data(), x.size()));
   for (int r = 0; r < resolved.size(); ++r) {
@@ -154,7 +155,7 @@ nlohmann::json region_statistics_json(const FitRegion& region, const VecX& p,
 }
 
 nlohmann::json pressure_region_statistics(const GarmentSimulation& sim, const VecX& p,
-                                          const std::vector<PressureRegion>& regions,
+                                          const PressureRegionSet& regions,
                                           const std::string& source) {
   nlohmann::json out = nlohmann::json::array();
   const Garment& g = sim.garment();

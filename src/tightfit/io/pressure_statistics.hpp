@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tightfit/body/skin_weights.hpp"
 #include "tightfit/design/pressure_region.hpp"
 #include "tightfit/io/fit_view.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
@@ -49,11 +50,19 @@ struct PressureHistogram {
 PressureHistogram pressure_histogram(const VecX& p, const std::vector<double>& areas,
                                      const std::vector<int>& faces, int target_bins = 24);
 
+/// A scene's pressure regions with the rig their bone regions need (may be null).
+struct PressureRegionSet {
+  std::vector<PressureRegion> regions;
+  const SkinWeights* rig = nullptr;
+  double rig_radius = 0.03;  ///< m
+  bool empty() const { return regions.empty(); }
+};
+
 /// The faces of each region at the simulation's equilibrium (membership weight >= ½).
 /// Throws InputError (source `source`) for regions that do not resolve on the garment
 /// (pressure_regions.hpp).
 std::vector<FitRegion> resolve_fit_regions(const GarmentSimulation& sim,
-                                           const std::vector<PressureRegion>& regions,
+                                           const PressureRegionSet& regions,
                                            const std::string& source);
 
 /// Statistics of one region: {"name", "faces", "area_m2", "target_pa" {min, max},
@@ -67,7 +76,7 @@ nlohmann::json region_statistics_json(const FitRegion& region, const VecX& p,
 
 /// region_statistics_json of every region resolved at the simulation's equilibrium.
 nlohmann::json pressure_region_statistics(const GarmentSimulation& sim, const VecX& p,
-                                          const std::vector<PressureRegion>& regions,
+                                          const PressureRegionSet& regions,
                                           const std::string& source);
 
 }  // namespace tightfit

@@ -1,5 +1,7 @@
 #include "tightfit/io/scene_spec.hpp"
 
+#include <memory>
+
 #include "tightfit/common/json_fields.hpp"
 
 namespace tightfit {
@@ -124,6 +126,22 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
                               : ShapeOperatorKind::kLimitSurface;
     for (JsonFields& region : f->objects("regions"))
       s.pressure_regions.push_back(parse_pressure_region(region));
+    if (auto rig = f->object("rig")) {
+      auto resolve = [&](const std::string& key) {
+        const std::string name = rig->string(key);
+        if (name.empty()) rig->fail("must name a file", key);
+        std::filesystem::path p(name);
+        return p.is_relative() ? base_dir / p : p;
+      };
+      const std::filesystem::path mesh = resolve("mesh"), weights = resolve("weights");
+      s.pressure_rig_radius = rig->positive("radius", s.pressure_rig_radius);
+      rig->finish();
+      s.pressure_rig = std::make_shared<const SkinWeights>(read_skin_weights(mesh, weights));
+    }
+    for (std::size_t k = 0; k < s.pressure_regions.size(); ++k)
+      if (!s.pressure_regions[k].bones.empty() && !s.pressure_rig)
+        f->fail("names bones but the scene has no /pressure/rig",
+                "regions/" + std::to_string(k) + "/bones");
     f->finish();
   }
   if (root.has("optimize")) {
@@ -132,18 +150,6 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   }
   root.finish();
   return s;
-}
-
-std::vector<PressureRegion> scene_pressure_regions(const nlohmann::json& document,
-                                                   const std::string& file) {
-  std::vector<PressureRegion> regions;
-  if (!document.is_object() || !document.contains("pressure")) return regions;
-  const nlohmann::json& pressure = document["pressure"];
-  if (!pressure.is_object() || !pressure.contains("regions")) return regions;
-  const nlohmann::json section = {{"regions", pressure["regions"]}};
-  JsonFields f(section, file, "/pressure");
-  for (JsonFields& region : f.objects("regions")) regions.push_back(parse_pressure_region(region));
-  return regions;
 }
 
 SceneSpec read_scene(const std::filesystem::path& file) {

@@ -20,14 +20,18 @@
 ///     "solver": {"relative_force_tolerance": 1e-9, "max_iterations": 100,
 ///                "limit_level": 8},
 ///     "pressure": {"shape_operator": "mid_edge" | "limit_surface",
-///                  "regions": [...design/pressure_region.hpp...]}
+///                  "regions": [...design/pressure_region.hpp...],
+///                  "rig": {"mesh": "body.obj", "weights": "default_weights.mhw",
+///                          "radius": 0.03}}
 ///   }
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "tightfit/body/body_spec.hpp"
+#include "tightfit/body/skin_weights.hpp"
 #include "tightfit/design/pressure_region.hpp"
 #include "tightfit/garment/layout_spec.hpp"
 #include "tightfit/garment/pattern_options.hpp"
@@ -61,15 +65,14 @@ struct SceneSpec {
   /// Pressure targets by region: reported by every command that simulates, and the
   /// pressure objective's targets when it gives no range of its own.
   std::vector<PressureRegion> pressure_regions;
+  /// The rig of bone regions ("pressure": {"rig": {...}}, design/pressure_region.hpp),
+  /// loaded; null when the scene gives none.
+  std::shared_ptr<const SkinWeights> pressure_rig;
+  double pressure_rig_radius = 0.03;  ///< m
   /// The "optimize" section (objectives, regularizers, optimizer settings), validated by
   /// the design layer's parser when a command optimizes; null when absent.
   nlohmann::json optimize;
 };
-
-/// The pressure regions of a scene document (its "/pressure/regions"; empty when
-/// absent), e.g. of the scene saved in a run's state.json. Throws InputError (`file`).
-std::vector<PressureRegion> scene_pressure_regions(const nlohmann::json& document,
-                                                   const std::string& file);
 
 /// Reads and validates a scene file.
 SceneSpec read_scene(const std::filesystem::path& file);

@@ -57,7 +57,7 @@ std::vector<MeshField> garment_vertex_fields(const FitAnalysis& fit) {
 }
 
 nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
-                              ShapeOperatorKind op, const std::vector<PressureRegion>& regions,
+                              ShapeOperatorKind op, const PressureRegionSet& regions,
                               const std::string& source) {
   const VecX& p = chosen_pressure(fit, op);
   const int n = static_cast<int>(fit.elements.size());

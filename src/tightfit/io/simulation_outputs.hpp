@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "tightfit/design/pressure_region.hpp"
+#include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/fit_view.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
@@ -34,7 +34,7 @@ const VecX& chosen_pressure(const FitAnalysis& fit, ShapeOperatorKind op);
 /// when `regions` is not empty; `source` names the scene in errors).
 nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
                               ShapeOperatorKind pressure_operator,
-                              const std::vector<PressureRegion>& regions = {},
+                              const PressureRegionSet& regions = {},
                               const std::string& source = "scene");
 
 /// JSON of a Newton report (iterations, residuals, time split).

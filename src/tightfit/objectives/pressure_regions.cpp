@@ -10,8 +10,10 @@
 namespace tightfit {
 
 PressureRegions::PressureRegions(const Garment& garment, std::vector<PressureRegion> regions,
-                                 const std::string& source)
+                                 const std::string& source, const SkinWeights* rig,
+                                 double radius)
     : regions_(std::move(regions)), triangles_(garment.garment_triangles) {
+  bone_fields_.resize(regions_.size());
   const std::vector<PatternPiece>& pieces = garment.pattern.pieces;
   std::set<std::string> names;
   std::vector<std::vector<char>> selects(regions_.size(), std::vector<char>(pieces.size(), 0));
@@ -33,6 +35,14 @@ PressureRegions::PressureRegions(const Garment& garment, std::vector<PressureReg
         throw InputError(source, what + ": a band plane needs a finite point and a non-zero normal");
       (*plane)->normal /= length;
     }
+    if (!region.bones.empty()) {
+      if (rig == nullptr)
+        throw InputError(source, what + " names bones but the scene has no rig "
+                                        "(\"pressure\": {\"rig\": {\"mesh\", \"weights\"}})");
+      if (!(radius > 0.0)) throw InputError(source, "the rig's interpolation radius must be > 0");
+      bone_fields_[r] = std::make_shared<const PointField>(rig->vertices,
+                                                           rig->summed(region.bones, what), radius);
+    }
     if (region.pieces.empty()) {
       std::fill(selects[r].begin(), selects[r].end(), 1);
       continue;
@@ -49,6 +59,11 @@ PressureRegions::PressureRegions(const Garment& garment, std::vector<PressureReg
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e)
     for (std::size_t r = 0; r < regions_.size(); ++r)
       if (selects[r][garment.triangle_piece[e]]) candidates_[e].push_back(static_cast<int>(r));
+}
+
+PointField::Evaluation PressureRegions::bone_weight(int r, const Vec3& point) const {
+  if (!bone_fields_[r]) return {1.0, Vec3::Zero()};
+  return bone_fields_[r]->evaluate(point);
 }
 
 MatX PressureRegions::weights(const VecX& x) const {
@@ -69,7 +84,7 @@ void PressureRegions::check_covered(const VecX& x, const std::string& source) co
       uncovered += (uncovered.empty() ? "\"" : ", \"") + regions_[r].name + "\"";
   if (!uncovered.empty())
     throw InputError(source, "no garment triangle lies in pressure region " + uncovered +
-                                 " (check its pieces and band planes)");
+                                 " (check its pieces, bones and band planes)");
 }
 
 }  // namespace tightfit

@@ -2,25 +2,32 @@
 /// Pressure targets by region (compression garments: a stocking's ankle, calf and thigh
 /// bands; a mask's cheeks and forehead): where on the garment a target range applies.
 ///
-/// A region selects garment triangles by piece and/or by a band of the body between two
-/// planes. Its membership weight w_e ∈ [0, 1] of garment triangle e is
-///   w_e = [piece of e selected] · S(d_above(c_e) / δ) · S(−d_below(c_e) / δ),
+/// A region selects garment triangles by piece, by a band of the body between two planes
+/// and/or by skeleton bones. Its membership weight w_e ∈ [0, 1] of garment triangle e is
+///   w_e = [piece of e selected] · S(d_above(c_e) / δ) · S(−d_below(c_e) / δ) · b(c_e),
 /// with c_e the centroid of the DEFORMED triangle (m), d the signed distance (m) to a
 /// plane (positive on the side its normal points to), S the C¹ smoothstep rising from 0
 /// at −½ to 1 at +½ (3u² − 2u³, u = t + ½), and δ the band's transition width (m;
-/// δ = 0 gives a hard step). The weight is a function of the garment positions, not of a
+/// δ = 0 gives a hard step), and b the summed skin weight of the region's bones carried
+/// from the rig's vertices to c_e by a smooth compact-kernel interpolation (PointField,
+/// radius from the rig spec; b = 1 without bones): the surface "dominated" by the bones
+/// is where b >= ½. The weight is a function of the garment positions, not of a
 /// state frozen when the objective was built: a triangle that slides across a band's
 /// plane moves smoothly from one target to the next, and the objective stays C¹.
 /// Regions may overlap; the pressure objective sums them (pressure_objective.hpp).
 #include <array>
+#include <memory>
 #include <optional>
+#include <type_traits>
 #include <string>
 #include <vector>
 
 #include "tightfit/common/types.hpp"
 #include "tightfit/design/pressure_region.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/body/skin_weights.hpp"
 #include "tightfit/objectives/autodiff.hpp"
+#include "tightfit/objectives/point_field.hpp"
 
 namespace tightfit {
 
@@ -30,8 +37,12 @@ class PressureRegions {
   /// Throws InputError (source `source`) for an unnamed or duplicated region, a piece
   /// name the garment does not have (naming the region and the piece), a zero normal,
   /// a negative transition, or a non-finite or inverted range.
+  /// `rig` (may be null when no region names bones) gives the skin weights, `radius`
+  /// (m) their interpolation radius; a region naming bones without a rig, or a bone the
+  /// rig does not have, is an InputError naming it.
   PressureRegions(const Garment& garment, std::vector<PressureRegion> regions,
-                  const std::string& source);
+                  const std::string& source, const SkinWeights* rig = nullptr,
+                  double radius = 0.03);
 
   int size() const { return static_cast<int>(regions_.size()); }
   const PressureRegion& operator[](int r) const { return regions_[r]; }
@@ -45,6 +56,9 @@ class PressureRegions {
   template <typename S>
   S band_weight(int r, const std::array<autodiff::Vec3T<S>, 3>& corners) const;
 
+  /// The bone factor b of region r at a point (value and gradient), 1 without bones.
+  PointField::Evaluation bone_weight(int r, const Vec3& point) const;
+
   /// w_{r,e} for every region r (rows) and garment triangle e (columns) at positions x
   /// (3·n_g, m).
   MatX weights(const VecX& x) const;
@@ -56,6 +70,7 @@ class PressureRegions {
  private:
   std::vector<PressureRegion> regions_;
   std::vector<std::vector<int>> candidates_;  ///< per garment triangle
+  std::vector<std::shared_ptr<const PointField>> bone_fields_;  ///< per region, null: no bones
   Triangles triangles_;                       ///< garment triangles
 };
 
@@ -71,6 +86,20 @@ S smoothstep(const S& t) {
   if (value_of(t) >= 0.5) return S(1.0);
   const S u = t + 0.5;
   return u * u * (3.0 - 2.0 * u);
+}
+
+/// A scalar with value v and gradient g (w.r.t. the point c) as an S: the chain rule
+/// through c's derivatives for automatic-differentiation scalars.
+template <typename S>
+S chain(double v, const Vec3& g, const Vec3T<S>& c) {
+  if constexpr (std::is_same_v<S, double>) {
+    return v;
+  } else {
+    S out(v);
+    out.derivatives() = g.x() * c.x().derivatives() + g.y() * c.y().derivatives() +
+                        g.z() * c.z().derivatives();
+    return out;
+  }
 }
 
 /// Side weight of one plane: S(sign · d / δ), a hard step for δ = 0.
@@ -91,6 +120,12 @@ S PressureRegions::band_weight(int r, const std::array<autodiff::Vec3T<S>, 3>& c
   S w(1.0);
   if (region.above) w = w * side_weight<S>(*region.above, 1.0, region.transition, c);
   if (region.below) w = w * side_weight<S>(*region.below, -1.0, region.transition, c);
+  if (bone_fields_[r]) {
+    Vec3 cv;
+    for (int k = 0; k < 3; ++k) cv[k] = value_of(c[k]);
+    const PointField::Evaluation b = bone_fields_[r]->evaluate(cv);
+    w = w * chain<S>(b.value, b.gradient, c);
+  }
   return w;
 }
 
