@@ -59,8 +59,9 @@ TEST_F(BodyCli, SpecFileWritesSurfaceVolumeAndSummary) {
             static_cast<int>(volume.point_fields[0].values.sum()));
   EXPECT_GT(summary["tets"]["min_dihedral"].get<double>(), 0.0);
   EXPECT_TRUE(summary["timings"].contains("tetrahedralize"));
-  // Nothing but the three outputs is left in the folder.
-  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 3);
+  // Nothing but the three outputs and tightfit's folder marker (no staging folder).
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 4);
+  EXPECT_TRUE(fs::exists(out / ".tightfit"));
 }
 
 TEST_F(BodyCli, FlagsWithoutSpec) {

@@ -58,34 +58,3 @@ TEST(AtomicFile, LeavesNoPartialFileOnFailure) {
 }  // namespace
 }  // namespace tightfit::test
 
-#include "tightfit/common/output_directory.hpp"
-
-namespace tightfit::test {
-namespace {
-
-TEST(OutputDirectory, IsAllOrNothing) {
-  const auto target = std::filesystem::temp_directory_path() / "tightfit_outdir_test";
-  std::filesystem::remove_all(target);
-  {
-    OutputDirectory out(target);
-    write_text_atomically(out.file("a.txt"), "a");
-  }  // no commit: nothing appears
-  EXPECT_FALSE(std::filesystem::exists(target));
-  {
-    OutputDirectory out(target);
-    write_text_atomically(out.file("b.txt"), "b");
-    out.commit();
-  }
-  EXPECT_TRUE(std::filesystem::exists(target / "b.txt"));
-  {
-    OutputDirectory out(target);
-    write_text_atomically(out.file("c.txt"), "c");
-    out.commit();
-  }
-  EXPECT_TRUE(std::filesystem::exists(target / "c.txt"));
-  EXPECT_FALSE(std::filesystem::exists(target / "b.txt"));
-  std::filesystem::remove_all(target);
-}
-
-}  // namespace
-}  // namespace tightfit::test

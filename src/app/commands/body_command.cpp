@@ -5,12 +5,12 @@
 #include <filesystem>
 #include <memory>
 #include <string>
-#include <unistd.h>
 
 #include "command_registry.hpp"
 #include "tightfit/body/body_spec.hpp"
 #include "tightfit/body/body_stats.hpp"
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/output_directory.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/json_fields.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
@@ -24,6 +24,7 @@ namespace fs = std::filesystem;
 struct BodyOptions {
   std::string spec;
   std::string out;
+  bool force = false;
   std::string generator;
   std::string mesh;
   std::string caps;
@@ -56,24 +57,13 @@ nlohmann::json spec_json(const BodyOptions& o, const CLI::App& cmd) {
   return j;
 }
 
-/// Writes the three outputs into a staging folder inside `out`, then moves them into
-/// place, so that a failure leaves none of them behind.
-void write_outputs(const fs::path& out, const Body& body, const nlohmann::json& summary) {
-  fs::create_directories(out);
-  const fs::path staging = out / (".staging." + std::to_string(::getpid()));
-  fs::create_directories(staging);
-  const char* names[] = {"surface.obj", "volume.vtu", "body.json"};
-  try {
-    write_tri_mesh(staging / names[0], body.surface);
-    write_vtu(staging / names[1], body.volume, body_point_fields(body), body_cell_fields(body));
-    write_text_atomically(staging / names[2], summary.dump(2) + "\n");
-    for (const char* name : names) commit_temporary(staging / name, out / name);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove_all(staging, ec);
-    throw;
-  }
-  fs::remove_all(staging);
+/// Writes the three outputs through an OutputDirectory (the rule of every command).
+void write_outputs(const fs::path& out, bool force, const Body& body, const nlohmann::json& summary) {
+  OutputDirectory folder(out, force, "body");
+  write_tri_mesh(folder.file("surface.obj"), body.surface);
+  write_vtu(folder.file("volume.vtu"), body.volume, body_point_fields(body), body_cell_fields(body));
+  write_text_atomically(folder.file("body.json"), summary.dump(2) + "\n");
+  folder.commit();
 }
 
 void run(const BodyOptions& o, const CLI::App& cmd) {
@@ -85,7 +75,7 @@ void run(const BodyOptions& o, const CLI::App& cmd) {
   const Body body = build_body(spec, &report);
   const nlohmann::json summary = body_summary_json(compute_body_stats(body), report);
   const fs::path out(o.out);
-  write_outputs(out, body, summary);
+  write_outputs(out, o.force, body, summary);
   for (const char* name : {"surface.obj", "volume.vtu", "body.json"})
     std::printf("%s\n", (out / name).string().c_str());
 }
@@ -97,7 +87,8 @@ const CommandRegistration kBody{"body", [](CLI::App& root) {
       "writes OUT/surface.obj, OUT/volume.vtu and OUT/body.json. Units: metres.");
   auto o = std::make_shared<BodyOptions>();
   cmd->add_option("spec", o->spec, "JSON body spec (flags below override its keys)");
-  cmd->add_option("--out", o->out, "Output folder")->required();
+  cmd->add_option("--out", o->out, kOutHelp)->required();
+  cmd->add_flag("--force", o->force, kForceHelp);
   cmd->add_option("--generator", o->generator, "Built-in body: cylinder or sphere");
   cmd->add_option("--mesh", o->mesh, "Closed surface mesh to import (OBJ, PLY, OFF, STL)");
   cmd->add_option("--caps", o->caps, "Cylinder caps: round or flat");

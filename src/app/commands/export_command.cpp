@@ -57,19 +57,7 @@ std::vector<std::string> export_layout(const LoadedScene& scene, const Garment& 
 }
 
 /// Copies the entries of `from` that `to` does not have (files export does not make).
-std::vector<std::string> keep_other_files(const fs::path& from, const fs::path& to) {
-  std::vector<std::string> kept;
-  for (const fs::directory_entry& e : fs::directory_iterator(from)) {
-    const fs::path target = to / e.path().filename();
-    if (fs::exists(target)) continue;
-    fs::copy(e.path(), target, fs::copy_options::recursive);
-    kept.push_back(e.path().filename().string());
-  }
-  std::sort(kept.begin(), kept.end());
-  return kept;
-}
-
-void run_export(const std::string& dir, const std::string& out_option) {
+void run_export(const std::string& dir, const std::string& out_option, bool force) {
   const fs::path state_file = fs::path(dir) / "state.json";
   const std::string source = state_file.string();
   // Everything is read and checked before the output folder is touched.
@@ -83,16 +71,12 @@ void run_export(const std::string& dir, const std::string& out_option) {
     throw InputError(source, "/command: a layout run of a garment without a pattern");
 
   const fs::path out_dir = out_option.empty() ? fs::path(dir) : fs::path(out_option);
-  const bool in_place = fs::exists(out_dir) && fs::equivalent(out_dir, dir);
-  OutputDirectory out(out_dir);
+  OutputDirectory out(out_dir, force, "export");
   const std::vector<std::string> files = state.command == "layout"
                                              ? export_layout(*scene, garment, state, out.staging())
                                              : export_fit(*scene, garment, state, out.staging());
-  const std::vector<std::string> kept =
-      in_place ? keep_other_files(dir, out.staging()) : std::vector<std::string>{};
   out.commit();
   for (const auto& f : files) std::printf("  %s\n", (out.target() / f).c_str());
-  for (const auto& f : kept) std::printf("  %s (kept)\n", (out.target() / f).c_str());
 }
 
 const CommandRegistration kExport{"export", [](CLI::App& root) {
@@ -106,10 +90,10 @@ const CommandRegistration kExport{"export", [](CLI::App& root) {
   auto dir = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   cmd->add_option("dir", *dir, "Output folder of an earlier run (holds state.json)")->required();
-  cmd->add_option("--out", *out,
-                  "Folder to write (default DIR; replaced as a whole when the export succeeds, "
-                  "files of DIR that export does not make are kept)");
-  cmd->callback([dir, out] { run_export(*dir, *out); });
+  auto force = std::make_shared<bool>(false);
+  cmd->add_option("--out", *out, std::string("Default DIR. ") + kOutHelp);
+  cmd->add_flag("--force", *force, kForceHelp);
+  cmd->callback([dir, out, force] { run_export(*dir, *out, *force); });
 }};
 
 }  // namespace

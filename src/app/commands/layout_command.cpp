@@ -11,8 +11,8 @@
 namespace tightfit::app {
 namespace {
 
-void run_layout(const std::string& scene_file, const std::string& out_dir) {
-  OutputDirectory out(out_dir);
+void run_layout(const std::string& scene_file, const std::string& out_dir, bool force) {
+  OutputDirectory out(out_dir, force, "layout");
   auto scene = load_scene(read_scene(scene_file));
   const Garment& g = scene->garment;
   if (g.pattern.pieces.size() > kMaxPatternPieces)
@@ -45,9 +45,11 @@ const CommandRegistration kLayout{"layout", [](CLI::App& root) {
       "state.json is the run state for `tightfit export`.");
   auto scene = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
+  auto force = std::make_shared<bool>(false);
   cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")->required();
-  cmd->add_option("--out", *out, "Output folder (replaced as a whole when the run succeeds)")->required();
-  cmd->callback([scene, out] { run_layout(*scene, *out); });
+  cmd->add_option("--out", *out, kOutHelp)->required();
+  cmd->add_flag("--force", *force, kForceHelp);
+  cmd->callback([scene, out, force] { run_layout(*scene, *out, *force); });
 }};
 
 }  // namespace

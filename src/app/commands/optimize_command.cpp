@@ -19,6 +19,7 @@
 #include "command_registry.hpp"
 #include "tightfit/io/optimization_setup.hpp"
 #include "run_outputs.hpp"
+#include "tightfit/common/output_directory.hpp"
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
@@ -61,13 +62,14 @@ void print_iteration(const OptimizationIteration& it, const std::vector<std::str
 }
 
 void run_optimize(const std::string& scene_file, const std::string& out_dir,
-                  const std::string& resume_dir, int max_iterations) {
+                  const std::string& resume_dir, int max_iterations, bool force) {
   const auto t_start = Clock::now();
   OptimizationScene input = read_optimization_scene(scene_file);
   if (max_iterations >= 0) input.optimization.optimizer.max_iterations = max_iterations;
   const OptimizationSpec& spec = input.optimization;
   const fs::path out(out_dir);
-  fs::create_directories(out);
+  prepare_output_folder(out, force);
+  mark_output_folder(out, "optimize");
 
   auto scene = load_scene(input.scene);
   auto sim = make_simulation(*scene);
@@ -176,7 +178,12 @@ const CommandRegistration kOptimize{
       auto out = std::make_shared<std::string>();
       auto resume = std::make_shared<std::string>();
       cmd->add_option("scene", *scene, "Scene file with an \"optimize\" section")->required();
-      cmd->add_option("--out", *out, "Output folder (files are replaced one by one)")->required();
+      cmd->add_option("--out", *out,
+                      std::string(kOutHelp) + "; history.json and checkpoint.json are "
+                      "written there while the run goes on")
+          ->required();
+      auto force = std::make_shared<bool>(false);
+      cmd->add_flag("--force", *force, kForceHelp);
       cmd->add_option("--resume", *resume,
                       "Continue from DIR/checkpoint.json of an earlier run of the same scene");
       auto max_iterations = std::make_shared<int>(-1);
@@ -184,8 +191,8 @@ const CommandRegistration kOptimize{
                       "Stop after this many L-BFGS iterations (overrides the scene's "
                       "optimize/max_iterations)")
           ->check(CLI::NonNegativeNumber);
-      cmd->callback([scene, out, resume, max_iterations] {
-        run_optimize(*scene, *out, *resume, *max_iterations);
+      cmd->callback([scene, out, resume, max_iterations, force] {
+        run_optimize(*scene, *out, *resume, *max_iterations, *force);
       });
     }};
 

@@ -18,9 +18,9 @@ double seconds_since(Clock::time_point t0) {
 
 double energy_of(const Energy* e, const VecX& x) { return e ? e->value(x) : 0.0; }
 
-void run_simulate(const std::string& scene_file, const std::string& out_dir) {
+void run_simulate(const std::string& scene_file, const std::string& out_dir, bool force) {
   const auto t_start = Clock::now();
-  OutputDirectory out(out_dir);
+  OutputDirectory out(out_dir, force, "simulate");
   auto scene = load_scene(read_scene(scene_file));
   auto sim = make_simulation(*scene);
   std::printf("tightfit simulate: %d body vertices (%d tets), %d garment vertices, %d triangles\n",
@@ -81,11 +81,12 @@ const CommandRegistration kSimulate{"simulate", [](CLI::App& root) {
       "`tightfit export`).");
   auto scene = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
+  auto force = std::make_shared<bool>(false);
   cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")
       ->required();
-  cmd->add_option("--out", *out, "Output folder (replaced as a whole when the run succeeds)")
-      ->required();
-  cmd->callback([scene, out] { run_simulate(*scene, *out); });
+  cmd->add_option("--out", *out, kOutHelp)->required();
+  cmd->add_flag("--force", *force, kForceHelp);
+  cmd->callback([scene, out, force] { run_simulate(*scene, *out, *force); });
 }};
 
 }  // namespace

@@ -1,44 +1,109 @@
 #include "tightfit/common/output_directory.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <fstream>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
 
 namespace tightfit {
+namespace fs = std::filesystem;
 
-OutputDirectory::OutputDirectory(std::filesystem::path target) : target_(std::move(target)) {
-  if (target_.empty()) throw InputError("--out", "no output folder given");
-  if (!target_.has_filename()) target_ = target_.parent_path();
-  const auto parent = target_.has_parent_path() ? target_.parent_path() : std::filesystem::path(".");
+namespace {
+
+/// Whether `file` is a JSON object whose "format" names a tightfit document.
+bool has_tightfit_format(const fs::path& file) {
   std::error_code ec;
-  std::filesystem::create_directories(parent, ec);
-  if (ec) throw InputError(target_.string(), "cannot create the parent folder: " + ec.message());
-  staging_ = temporary_path_for(target_);
-  std::filesystem::create_directory(staging_, ec);
-  if (ec) throw InputError(target_.string(), "cannot create a staging folder: " + ec.message());
+  if (!fs::is_regular_file(file, ec) || fs::file_size(file, ec) > (std::uintmax_t{1} << 30))
+    return false;
+  std::ifstream in(file);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  return j.is_object() && j.contains("format") && j["format"].is_string() &&
+         j["format"].get<std::string>().starts_with("tightfit-");
+}
+
+}  // namespace
+
+bool is_tightfit_folder(const fs::path& folder) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) return false;
+  if (fs::is_empty(folder, ec) && !ec) return true;
+  if (fs::exists(folder / kOutputMarker, ec)) return true;
+  for (const char* name : {"state.json", "checkpoint.json"})
+    if (has_tightfit_format(folder / name)) return true;
+  return false;
+}
+
+bool prepare_output_folder(const fs::path& target, bool force) {
+  if (target.empty()) throw InputError("--out", "no output folder given");
+  std::error_code ec;
+  if (fs::exists(target, ec)) {
+    if (!fs::is_directory(target, ec))
+      throw InputError(target.string(), "is a file, not a folder: choose another output folder");
+    if (!force && !is_tightfit_folder(target))
+      throw InputError(target.string(),
+                       "is not empty and was not written by tightfit: refusing to write into it "
+                       "(choose another output folder, or pass --force: tightfit then writes only "
+                       "its own files there and deletes nothing)");
+    return false;
+  }
+  fs::create_directories(target, ec);
+  if (ec) throw InputError(target.string(), "cannot create the output folder: " + ec.message());
+  return true;
+}
+
+void mark_output_folder(const fs::path& folder, const std::string& command) {
+  write_text_atomically(folder / kOutputMarker,
+                        "This folder was written by `tightfit " + command +
+                            "`. tightfit replaces its own files here and deletes nothing else.\n");
+}
+
+OutputDirectory::OutputDirectory(fs::path target, bool force, std::string command)
+    : target_(std::move(target)), command_(std::move(command)) {
+  created_target_ = prepare_output_folder(target_, force);
+  static std::atomic<int> counter{0};
+  staging_ = target_ / (".tightfit-staging." + std::to_string(::getpid()) + "." +
+                        std::to_string(counter++));
+  std::error_code ec;
+  fs::create_directory(staging_, ec);
+  if (ec) {
+    if (created_target_) fs::remove(target_, ec);
+    throw InputError(target_.string(), "cannot create a staging folder in it: " + ec.message());
+  }
 }
 
 OutputDirectory::~OutputDirectory() {
-  if (!committed_) {
-    std::error_code ec;
-    std::filesystem::remove_all(staging_, ec);
-  }
+  if (committed_) return;
+  std::error_code ec;
+  fs::remove_all(staging_, ec);
+  if (created_target_ && fs::is_empty(target_, ec)) fs::remove(target_, ec);
 }
 
-void OutputDirectory::commit() {
+std::vector<std::string> OutputDirectory::commit() {
+  std::vector<std::string> moved;
   std::error_code ec;
-  std::filesystem::path old;
-  if (std::filesystem::exists(target_)) {
-    old = temporary_path_for(target_);
-    std::filesystem::rename(target_, old, ec);
-    if (ec) throw InputError(target_.string(), "cannot replace the existing folder: " + ec.message());
+  for (const fs::directory_entry& e : fs::directory_iterator(staging_)) {
+    const fs::path to = target_ / e.path().filename();
+    if (fs::exists(to, ec) && fs::is_directory(to, ec) != e.is_directory())
+      throw InputError(to.string(), "exists and is not a " +
+                                        std::string(e.is_directory() ? "folder" : "file") +
+                                        ": cannot put the result there");
+    if (e.is_directory()) fs::remove_all(to, ec);
+    fs::rename(e.path(), to, ec);
+    if (ec) throw InputError(to.string(), "cannot move the result into place: " + ec.message());
+    moved.push_back(e.path().filename().string());
   }
-  std::filesystem::rename(staging_, target_, ec);
-  if (ec) {
-    if (!old.empty()) std::filesystem::rename(old, target_, ec);
-    throw InputError(target_.string(), "cannot move the results into place");
-  }
+  mark_output_folder(target_, command_);
   committed_ = true;
-  if (!old.empty()) std::filesystem::remove_all(old, ec);
+  fs::remove_all(staging_, ec);
+  std::sort(moved.begin(), moved.end());
+  return moved;
 }
 
 }  // namespace tightfit
