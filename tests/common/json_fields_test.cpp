@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
+#include "tightfit/common/error.hpp"
+
 namespace tightfit {
 namespace {
 
@@ -50,6 +54,29 @@ TEST(JsonFields, RejectsNonPositiveAndBadChoices) {
   EXPECT_THROW(f.positive("e"), InputError);
   EXPECT_THROW(f.choice("m", {"a", "b"}), InputError);
   EXPECT_THROW(f.number("absent"), InputError);
+}
+
+TEST(JsonText, DeepNestingIsAnInputErrorBeforeParsing) {
+  // A million brackets would overflow the stack in nlohmann's recursive copy and dump.
+  const std::string deep = std::string(1000000, '[') + std::string(1000000, ']');
+  try {
+    parse_json_text(deep, "deep.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("deep.json: invalid JSON: nested deeper than 256"),
+              std::string::npos)
+        << e.what();
+  }
+  std::string objects;
+  for (int k = 0; k < 300; ++k) objects += "{\"a\":";
+  objects += "1" + std::string(300, '}');
+  EXPECT_THROW(parse_json_text(objects, "x"), InputError);
+  // At the limit it parses; brackets inside strings (with escaped quotes) do not count.
+  const std::string at_limit = std::string(kMaxJsonDepth, '[') + std::string(kMaxJsonDepth, ']');
+  EXPECT_NO_THROW(parse_json_text(at_limit, "x"));
+  const nlohmann::json j = parse_json_text(R"({"s": "[[[{{{\"[[[", "t": [1]})", "x");
+  EXPECT_EQ(j["t"][0], 1);
+  EXPECT_THROW(parse_json_text("{\"a\": ", "x"), InputError);
 }
 
 }  // namespace

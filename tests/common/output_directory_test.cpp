@@ -72,6 +72,12 @@ TEST(OutputDirectory, RefusesFoldersTightfitDidNotMakeUnlessForced) {
   EXPECT_TRUE(is_tightfit_folder(old_run));
   write_text_atomically(old_run / "state.json", R"({"format": "something else"})");
   EXPECT_FALSE(is_tightfit_folder(old_run));
+  // A killed run's staging folder alone does not make a folder foreign.
+  const auto killed = std::filesystem::temp_directory_path() / "tightfit_outdir_killed";
+  std::filesystem::remove_all(killed);
+  std::filesystem::create_directories(killed / ".tightfit-staging.123.0");
+  EXPECT_TRUE(is_tightfit_folder(killed));
+  std::filesystem::remove_all(killed);
   // A file is not a folder; "dir/." is the folder itself.
   EXPECT_THROW(OutputDirectory(target / "thesis.tex"), InputError);
   {

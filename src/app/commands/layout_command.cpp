@@ -12,8 +12,9 @@ namespace tightfit::app {
 namespace {
 
 void run_layout(const std::string& scene_file, const std::string& out_dir, bool force) {
+  SceneSpec spec = read_scene(scene_file);  // bad input fails before the folder is touched
   OutputDirectory out(out_dir, force, "layout");
-  auto scene = load_scene(read_scene(scene_file));
+  auto scene = load_scene(std::move(spec));
   const Garment& g = scene->garment;
   if (g.pattern.pieces.size() > kMaxPatternPieces)
     throw InputError(scene_file, "this garment has one piece per triangle (a cover); it has no "

@@ -20,8 +20,9 @@ double energy_of(const Energy* e, const VecX& x) { return e ? e->value(x) : 0.0;
 
 void run_simulate(const std::string& scene_file, const std::string& out_dir, bool force) {
   const auto t_start = Clock::now();
+  SceneSpec spec = read_scene(scene_file);  // bad input fails before the folder is touched
   OutputDirectory out(out_dir, force, "simulate");
-  auto scene = load_scene(read_scene(scene_file));
+  auto scene = load_scene(std::move(spec));
   auto sim = make_simulation(*scene);
   std::printf("tightfit simulate: %d body vertices (%d tets), %d garment vertices, %d triangles\n",
               scene->body.num_vertices(), scene->body.volume.num_tets(),

@@ -155,14 +155,44 @@ void JsonFields::finish() const {
     if (!known_.count(it.key())) fail("unknown key \"" + it.key() + "\"", it.key());
 }
 
-nlohmann::json read_json_file(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file, "cannot open file");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(file, std::string("invalid JSON: ") + e.what());
+nlohmann::json parse_json_text(const std::string& text, const std::string& source) {
+  // Nesting depth outside strings: nlohmann's copy and dump recurse once per level, so a
+  // file of a million brackets would overflow the stack later, far from the parser.
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  std::size_t line = 1;
+  for (const char c : text) {
+    if (c == '\n') ++line;
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') in_string = true;
+    else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        throw InputError(source, "invalid JSON: nested deeper than " +
+                                     std::to_string(kMaxJsonDepth) + " levels (line " +
+                                     std::to_string(line) + ")");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
   }
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(source, std::string("invalid JSON: ") + e.what());
+  }
+}
+
+nlohmann::json read_json_file(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file, "cannot open file");
+  std::stringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(file, "cannot read file");
+  return parse_json_text(text.str(), file);
 }
 
 }  // namespace tightfit

@@ -60,6 +60,14 @@ class JsonFields {
   std::set<std::string> known_;
 };
 
+/// Deepest nesting of arrays and objects a JSON document may have (scenes, states and
+/// checkpoints need fewer than 12).
+inline constexpr int kMaxJsonDepth = 256;
+
+/// Parses JSON text; InputError (source `source`) for a syntax error (with line and
+/// column) or nesting deeper than kMaxJsonDepth, checked before parsing.
+nlohmann::json parse_json_text(const std::string& text, const std::string& source);
+
 /// Reads a JSON file; InputError names the file (and line/column on a syntax error).
 nlohmann::json read_json_file(const std::string& file);
 

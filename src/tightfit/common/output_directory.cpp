@@ -7,10 +7,9 @@
 #include <fstream>
 #include <utility>
 
-#include <nlohmann/json.hpp>
-
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/json_fields.hpp"
 
 namespace tightfit {
 namespace fs = std::filesystem;
@@ -22,8 +21,12 @@ bool has_tightfit_format(const fs::path& file) {
   std::error_code ec;
   if (!fs::is_regular_file(file, ec) || fs::file_size(file, ec) > (std::uintmax_t{1} << 30))
     return false;
-  std::ifstream in(file);
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  nlohmann::json j;
+  try {
+    j = read_json_file(file.string());
+  } catch (const InputError&) {
+    return false;
+  }
   return j.is_object() && j.contains("format") && j["format"].is_string() &&
          j["format"].get<std::string>().starts_with("tightfit-");
 }
@@ -35,6 +38,10 @@ bool is_tightfit_folder(const fs::path& folder) {
   if (!fs::is_directory(folder, ec)) return false;
   if (fs::is_empty(folder, ec) && !ec) return true;
   if (fs::exists(folder / kOutputMarker, ec)) return true;
+  bool only_staging = true;  // leftovers of a killed run are tightfit's too
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec))
+    only_staging &= e.path().filename().string().starts_with(".tightfit-staging.");
+  if (only_staging && !ec) return true;
   for (const char* name : {"state.json", "checkpoint.json"})
     if (has_tightfit_format(folder / name)) return true;
   return false;
