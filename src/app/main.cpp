@@ -5,6 +5,7 @@
 
 #include "command_registry.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/interrupt.hpp"
 #include "tightfit/common/parallel.hpp"
 
 namespace tightfit::app {
@@ -40,6 +41,8 @@ int main(int argc, char** argv) {
     root.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return root.exit(e);
+  } catch (const Interrupted& e) {
+    return 128 + e.signal;
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

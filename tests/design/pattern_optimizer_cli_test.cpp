@@ -144,6 +144,45 @@ TEST_F(OptimizeCli, ResumeContinuesFromTheCheckpoint) {
   EXPECT_NE(r.output.find("checkpoint.json"), std::string::npos) << r.output;
 }
 
+TEST_F(OptimizeCli, InterruptedRunWritesItsResultsAndResumes) {
+  // The sphere-pressure example (about 0.7 s per iteration): interrupted with SIGINT once
+  // iteration 1 is reported, it finishes the iteration it is in, writes the outputs of the
+  // last accepted pattern and exits with 130; the folder exports and resumes.
+  const fs::path scene = fs::path(TIGHTFIT_SOURCE_DIR) / "examples/optimize_sphere_pressure.json";
+  const fs::path out = dir_ / "out", log = dir_ / "log.txt", code = dir_ / "code.txt";
+  const std::string script =
+      std::string(TIGHTFIT_CLI) + " optimize " + scene.string() + " --out " + out.string() +
+      " --max-iterations 100 > " + log.string() + " 2>&1 & pid=$!; " +
+      "for i in $(seq 1 600); do grep -q '^  it   1' " + log.string() +
+      " && break; sleep 0.1; done; kill -INT $pid; wait $pid; echo $? > " + code.string();
+  std::ofstream(dir_ / "interrupt.sh") << script << "\n";
+  ASSERT_EQ(std::system(("bash " + (dir_ / "interrupt.sh").string()).c_str()), 0);
+  std::ifstream code_in(code);
+  int exit_code = -1;
+  code_in >> exit_code;
+  std::ifstream log_in(log);
+  std::stringstream text;
+  text << log_in.rdbuf();
+  EXPECT_EQ(exit_code, 130) << text.str();
+  EXPECT_NE(text.str().find("--resume"), std::string::npos) << text.str();
+  const nlohmann::json result = read_json(out / "result.json");
+  EXPECT_TRUE(result["optimization"]["interrupted"].get<bool>());
+  const int iterations = result["optimization"]["iterations"].get<int>();
+  EXPECT_GE(iterations, 1);
+  EXPECT_LT(iterations, 100);
+  EXPECT_EQ(read_json(out / "checkpoint.json")["iteration"].get<int>(), iterations);
+  for (const char* f : {"state.json", "pattern.svg", "report.html", "history.json"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  CliRun r = run_cli("export " + out.string() + " --out " + (dir_ / "exported").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  r = run_cli("optimize " + scene.string() + " --out " + (dir_ / "resumed").string() +
+              " --resume " + out.string() + " --max-iterations " + std::to_string(iterations + 1));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto its = read_json(dir_ / "resumed" / "history.json")["iterations"];
+  EXPECT_EQ(its.size(), static_cast<size_t>(iterations + 2));
+  EXPECT_FALSE(read_json(dir_ / "resumed" / "result.json")["optimization"]["interrupted"].get<bool>());
+}
+
 TEST_F(OptimizeCli, ResumeAfterARemeshingEndsLikeTheUninterruptedRun) {
   const fs::path full = dir_ / "full";
   CliRun r = run_cli("optimize " + write_scene("full.json", remesh_scene(10)).string() +

@@ -22,6 +22,7 @@
 #include "tightfit/common/output_directory.hpp"
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/interrupt.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
 #include "tightfit/io/scene_loader.hpp"
@@ -107,13 +108,18 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
               sim->garment().pattern.pieces.size());
 
   const fs::path checkpoint_file = out / "checkpoint.json";
-  const OptimizationResult result = optimizer.run([&](const OptimizationIteration& it) {
-    print_iteration(it, names);
-    write_text_atomically(out / "history.json",
-                          history_json(optimizer.history(), names).dump(2) + "\n");
-    if (it.iteration % spec.checkpoint_every == 0)
-      write_checkpoint(checkpoint_file, optimizer.checkpoint(), names);
-  });
+  // Ctrl-C / SIGTERM: the current iteration finishes, then the run stops and writes the
+  // checkpoint and the outputs of the last accepted pattern as after a normal stop.
+  const InterruptGuard interrupts;
+  const OptimizationResult result = optimizer.run(
+      [&](const OptimizationIteration& it) {
+        print_iteration(it, names);
+        write_text_atomically(out / "history.json",
+                              history_json(optimizer.history(), names).dump(2) + "\n");
+        if (it.iteration % spec.checkpoint_every == 0)
+          write_checkpoint(checkpoint_file, optimizer.checkpoint(), names);
+      },
+      [] { return interrupt_requested(); });
   write_checkpoint(checkpoint_file, optimizer.checkpoint(), names);
   std::printf("  stopped: %s\n", result.stop_reason.c_str());
 
@@ -135,6 +141,7 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
   nlohmann::json& result_json = state.result;
   result_json["scene"] = scene_file;
   result_json["optimization"] = {{"converged", result.converged},
+                                 {"interrupted", result.interrupted},
                                  {"stop_reason", result.stop_reason},
                                  {"iterations", result.iterations},
                                  {"objective_initial", history.front().value},
@@ -163,6 +170,14 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
   std::vector<std::string> files = write_fit_run_outputs(out, *sim, fit, op, state);
   files.push_back("checkpoint.json");
   for (const auto& f : files) std::printf("  %s\n", (out / f).c_str());
+  if (result.interrupted) {
+    const int signal = interrupt_signal();
+    std::printf("  interrupted by %s: the files above hold the pattern of iteration %d; "
+                "continue with\n    tightfit optimize %s --out DIR --resume %s\n",
+                signal_name(signal), result.iterations, scene_file.c_str(), out.c_str());
+    std::fflush(stdout);
+    throw Interrupted{signal};
+  }
 }
 
 const CommandRegistration kOptimize{

@@ -138,7 +138,8 @@ OptimizationCheckpoint PatternOptimizer::checkpoint() const {
   return c;
 }
 
-OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) {
+OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
+                                         const std::function<bool()>& stop_requested) {
   const auto t_start = Clock::now();
   auto elapsed = [&] { return seconds_before_ + seconds_since(t_start); };
   OptimizationResult result;
@@ -201,6 +202,11 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration) 
     }
     if (iteration_ >= options_.max_iterations) {
       reason << "iteration limit " << options_.max_iterations << " reached";
+      break;
+    }
+    if (stop_requested && stop_requested()) {
+      reason << "interrupted after iteration " << iteration_;
+      result.interrupted = true;
       break;
     }
 

@@ -68,6 +68,7 @@ struct PatternOptimizerOptions {
 
 struct OptimizationResult {
   bool converged = false;  ///< stopped by a tolerance (not by the iteration limit/failure)
+  bool interrupted = false;  ///< stopped because `stop_requested` said so
   std::string stop_reason;
   int iterations = 0;  ///< last accepted iteration
   double initial_value = 0.0;
@@ -90,9 +91,12 @@ class PatternOptimizer {
   /// when the checkpoint does not fit the problem.
   void resume(const OptimizationCheckpoint& checkpoint);
 
-  /// Runs until a stopping criterion (see the header comment). Throws SolverError when
-  /// the starting point itself cannot be evaluated.
-  OptimizationResult run(const IterationCallback& on_iteration = {});
+  /// Runs until a stopping criterion (see the header comment), or until
+  /// `stop_requested` (polled before each iteration, after the previous one was accepted
+  /// and reported) returns true: the state is then that of the last accepted iteration.
+  /// Throws SolverError when the starting point itself cannot be evaluated.
+  OptimizationResult run(const IterationCallback& on_iteration = {},
+                         const std::function<bool()>& stop_requested = {});
 
   /// The state after the last accepted iteration.
   OptimizationCheckpoint checkpoint() const;
