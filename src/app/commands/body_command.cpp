@@ -28,6 +28,7 @@ struct BodyOptions {
   std::string generator;
   std::string mesh;
   std::string caps;
+  std::string units;
   double radius = 0.0;
   double length = 0.0;
   double edge_length = 0.0;
@@ -47,6 +48,7 @@ nlohmann::json spec_json(const BodyOptions& o, const CLI::App& cmd) {
   // A mesh named on the command line is relative to the current folder.
   set("--mesh", "mesh", o.mesh.empty() ? o.mesh : fs::absolute(o.mesh).string());
   set("--caps", "caps", o.caps);
+  set("--units", "units", o.units);
   set("--radius", "radius", o.radius);
   set("--length", "length", o.length);
   set("--edge-length", "edge_length", o.edge_length);
@@ -73,6 +75,7 @@ void run(const BodyOptions& o, const CLI::App& cmd) {
   const BodySpec spec = parse_body_spec(j, "", base_dir, source);
   BuildReport report;
   const Body body = build_body(spec, &report);
+  for (const std::string& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const nlohmann::json summary = body_summary_json(compute_body_stats(body), report);
   const fs::path out(o.out);
   write_outputs(out, o.force, body, summary);
@@ -91,6 +94,9 @@ const CommandRegistration kBody{"body", [](CLI::App& root) {
   cmd->add_flag("--force", o->force, kForceHelp);
   cmd->add_option("--generator", o->generator, "Built-in body: cylinder or sphere");
   cmd->add_option("--mesh", o->mesh, "Closed surface mesh to import (OBJ, PLY, OFF, STL)");
+  cmd->add_option("--units", o->units,
+                  "Units of the mesh file: m, cm or mm (default: guessed from the body's size, "
+                  "with a warning)");
   cmd->add_option("--caps", o->caps, "Cylinder caps: round or flat");
   cmd->add_option("--radius", o->radius, "Generator radius (m)");
   cmd->add_option("--length", o->length, "Cylinder length without caps (m)");

@@ -41,6 +41,9 @@ struct BuildReport {
   LimitFitResult limit_fit;
   int bone_points = 0;          ///< bone samples inserted as volume vertices
   std::string tetgen_switches;
+  /// What the import did to the input that the user should know (parts left out, units
+  /// guessed), one sentence each naming the file.
+  std::vector<std::string> warnings;
 
   void add_stage(const std::string& name, double seconds) { stage_seconds.emplace_back(name, seconds); }
   double total_seconds() const;

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "tightfit/body/loop_limit.hpp"
+#include "tightfit/body/scan_import.hpp"
 #include "tightfit/body/skeleton.hpp"
 #include "tightfit/body/stopwatch.hpp"
 #include "tightfit/body/surface_distance.hpp"
@@ -59,7 +60,12 @@ void parse_mesh(JsonFields& f, BodySpec& spec, const std::filesystem::path& base
   const std::string file = f.string("mesh");
   if (file.empty()) f.fail("expected a file name", "mesh");
   m.path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
+  m.scale_given = f.has("scale");
   m.scale = f.positive("scale", 1.0);
+  if (f.has("units")) {
+    const std::string units = f.choice("units", {"m", "cm", "mm"});
+    m.units = metres_per_unit(units, f.source());
+  }
   for (JsonFields& plane : f.objects("crop")) {
     CropPlane p;
     p.point = plane.vec3("point");
@@ -184,10 +190,17 @@ void fit_limit_to(TriMesh& surface, const TriMesh& target, BuildReport* report, 
 
 TriMesh prepare_mesh(const BodySpec& spec, BuildReport* report) {
   const MeshImport& m = spec.mesh;
+  std::vector<std::string> ignored_warnings;
   const std::string file = m.path.string();
   Stopwatch clock;
-  TriMesh surface = read_tri_mesh(m.path);
-  surface.vertices *= m.scale;
+  TriMesh surface = keep_largest_closed_component(read_tri_mesh(m.path), file,
+                                                  report ? report->warnings : ignored_warnings);
+  const double units = m.units > 0.0 ? m.units
+                       : m.scale_given
+                           ? 1.0
+                           : guess_units_to_metres(surface, file,
+                                                   report ? report->warnings : ignored_warnings);
+  surface.vertices *= units * m.scale;
   validate_surface(surface, file);  // closed, manifold, outward, no self-intersections
   if (report) {
     report->input_vertices = surface.num_vertices();

@@ -54,6 +54,10 @@ enum class BodySource { Cylinder, Sphere, Mesh };
 struct MeshImport {
   std::filesystem::path path;     ///< resolved against the spec's base folder
   double scale = 1.0;             ///< applied to the file's coordinates
+  /// Metres per file unit ("units": "m" / "cm" / "mm"); 0: guessed from the body's size
+  /// (scan_import.hpp) unless "scale" is given.
+  double units = 0.0;
+  bool scale_given = false;       ///< "scale" was in the spec: no guessing
   std::vector<CropPlane> crop;
   bool remesh = true;
   RemeshOptions remesh_options;   ///< edge_length is the spec's edge length

@@ -63,6 +63,7 @@ std::vector<MeshField> body_point_fields(const Body& body) {
 nlohmann::json body_summary_json(const BodyStats& s, const BuildReport& report) {
   nlohmann::json j;
   j["units"] = "SI: lengths m, areas m^2, volumes m^3, angles degrees, times s";
+  j["warnings"] = report.warnings;
   j["counts"] = {{"surface_vertices", s.surface_vertices}, {"surface_faces", s.surface_faces},
                  {"volume_vertices", s.volume_vertices},   {"tets", s.tets},
                  {"pinned_vertices", s.pinned},            {"bone_points", report.bone_points}};

@@ -1,6 +1,7 @@
 #include "tightfit/io/scene_loader.hpp"
 
 #include <chrono>
+#include <cstdio>
 
 #include "tightfit/common/error.hpp"
 
@@ -19,6 +20,7 @@ std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
   scene->spec = std::move(spec);
   auto t0 = Clock::now();
   scene->body = build_body(scene->spec.body, &scene->body_report);
+  for (const std::string& w : scene->body_report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   scene->stage_seconds.emplace_back("body", seconds_since(t0));
 
   t0 = Clock::now();

@@ -25,7 +25,8 @@ struct LoadedScene {
   LoadedScene& operator=(const LoadedScene&) = delete;
 };
 
-/// Builds the body, its limit surface and the initial garment.
+/// Builds the body, its limit surface and the initial garment. The body import's
+/// warnings (parts left out, units guessed) are printed to stderr as "warning: ...".
 std::unique_ptr<LoadedScene> load_scene(SceneSpec spec);
 
 /// A simulation of the loaded scene's garment (the scene must outlive it).
