@@ -412,6 +412,15 @@ function drawHistogram() {
     host.textContent = 'No pressure in this fit.';
     return;
   }
+  if (h.share_above_warning > 0) {
+    const warning = document.createElement('p');
+    warning.className = 'pressure-warning';
+    warning.textContent = `Warning: ${percent(h.share_above_warning)} of the garment presses harder than ` +
+      `${fmt(h.warning_mmhg)} mmHg (up to ${fmt(h.max_mmhg)} mmHg), above the compression classes for ` +
+      'garments worn all day (RAL-GZ 387 class III ends at 46 mmHg): a risk for skin and circulation. ' +
+      'Check the fabric, the pattern and the pressure targets.';
+    host.appendChild(warning);
+  }
   const edges = h.edges_mmhg, areas = h.area_m2;
   const total = areas.reduce((a, b) => a + b, 0) || 1;
   const shares = areas.map((a) => a / total);

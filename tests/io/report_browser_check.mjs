@@ -134,6 +134,7 @@ try {
   summary.histogramBars = await page.locator('#histogram rect.bar').count();
   summary.liftoffBars = await page.locator('#histogram rect.bar.liftoff').count();
   summary.targetLines = await page.locator('#histogram line.target').count();
+  summary.pressureWarnings = await page.locator('#histogram .pressure-warning').count();
 
   if (consoleErrors.length > 0) failures.push(`console errors: ${consoleErrors.join(' | ')}`);
   if (externalRequests.length > 0) failures.push(`network requests: ${externalRequests.join(' ')}`);

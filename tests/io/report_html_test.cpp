@@ -133,6 +133,8 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   EXPECT_GT(summary.at("histogramBars").get<int>(), 5);
   EXPECT_GT(summary.at("liftoffBars").get<int>(), 0);  // the back piece lifts off in a sector
   EXPECT_EQ(summary.at("targetLines"), 2);
+  // The synthetic pressure reaches 2800 Pa = 21 mmHg: no warning.
+  EXPECT_EQ(summary.at("pressureWarnings"), 0);
 }
 
 TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
@@ -141,9 +143,14 @@ TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
   view.history = nlohmann::json::array();
   view.parameters = nlohmann::json::object();
   std::erase_if(view.garment_fields, [](const FaceField& f) { return f.name == "regime"; });
+  // Five times the synthetic pressure: up to 105 mmHg, above the 40 mmHg warning.
+  for (FaceField& f : view.garment_fields)
+    if (f.name == "pressure_pa" || f.name == "pressure_mmhg") f.values *= 5.0;
   const auto summary = check_in_browser(view, "report_browser_sparse");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
   EXPECT_EQ(summary.at("colorings").size(), 3u);
+  EXPECT_EQ(summary.at("pressureWarnings"), 1);
+  EXPECT_EQ(summary.at("regionRows"), 0);
 }
 
 }  // namespace

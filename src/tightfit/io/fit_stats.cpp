@@ -19,24 +19,6 @@ double face_area(const TriMesh& mesh, int f) {
   return 0.5 * (b - a).cross(c - a).norm();
 }
 
-/// Area-weighted median of the finite values; NaN when there is none.
-double weighted_median(std::vector<std::pair<double, double>> value_area) {
-  std::erase_if(value_area, [](const auto& p) { return !std::isfinite(p.first); });
-  if (value_area.empty()) return kNaN;
-  std::sort(value_area.begin(), value_area.end());
-  double total = 0.0;
-  for (const auto& p : value_area) total += p.second;
-  if (total <= 0.0) return value_area[(value_area.size() - 1) / 2].first;
-  // Relative slack so that an exact half (up to rounding of the areas) picks the lower value.
-  const double half = 0.5 * total * (1.0 - 1e-12);
-  double cumulative = 0.0;
-  for (const auto& p : value_area) {
-    cumulative += p.second;
-    if (cumulative >= half) return p.first;
-  }
-  return value_area.back().first;
-}
-
 FaceSetStatistics statistics_of(const std::string& name, const std::vector<int>& faces,
                                 const std::vector<double>& areas, const FitView& view) {
   const FaceField* pressure = find_field(view.garment_fields, fit_fields::kPressurePa);
@@ -67,7 +49,7 @@ FaceSetStatistics statistics_of(const std::string& name, const std::vector<int>&
       s.pressure_min = lo;
       s.pressure_max = hi;
     }
-    s.pressure_median = weighted_median(std::move(samples));
+    s.pressure_median = area_weighted_median(std::move(samples));
     s.liftoff_share = s.area > 0.0 ? s.liftoff_area / s.area : 0.0;
   }
 
@@ -81,7 +63,7 @@ FaceSetStatistics statistics_of(const std::string& name, const std::vector<int>&
         s.stretch_max_max = std::isnan(s.stretch_max_max) ? v : std::max(s.stretch_max_max, v);
       }
     }
-    s.stretch_max_median = weighted_median(std::move(samples));
+    s.stretch_max_median = area_weighted_median(std::move(samples));
   }
 
   s.slack_share = s.wrinkled_share = s.taut_share = kNaN;
@@ -128,6 +110,23 @@ nlohmann::json face_set_json(const FaceSetStatistics& s) {
 }
 
 }  // namespace
+
+double area_weighted_median(std::vector<std::pair<double, double>> value_area) {
+  std::erase_if(value_area, [](const auto& p) { return !std::isfinite(p.first); });
+  if (value_area.empty()) return kNaN;
+  std::sort(value_area.begin(), value_area.end());
+  double total = 0.0;
+  for (const auto& p : value_area) total += p.second;
+  if (total <= 0.0) return value_area[(value_area.size() - 1) / 2].first;
+  // Relative slack so that an exact half (up to rounding of the areas) picks the lower value.
+  const double half = 0.5 * total * (1.0 - 1e-12);
+  double cumulative = 0.0;
+  for (const auto& p : value_area) {
+    cumulative += p.second;
+    if (cumulative >= half) return p.first;
+  }
+  return value_area.back().first;
+}
 
 FitStatistics compute_fit_statistics(const FitView& view) {
   const int n = view.garment.num_faces();

@@ -8,6 +8,7 @@
 /// finite value, are NaN (written as null in JSON).
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tightfit/io/fit_view.hpp"
@@ -35,6 +36,12 @@ struct FitStatistics {
   std::vector<FaceSetStatistics> pieces;  ///< one per pattern piece, in order
   FaceSetStatistics garment;              ///< all garment faces
 };
+
+/// Area-weighted median of (value, area) pairs: the value below which half of the area
+/// lies, the lower of the two middle values when the half falls exactly between them;
+/// non-finite values are skipped; NaN when none is left. The one median of every output
+/// (report, result.json, pressure regions).
+double area_weighted_median(std::vector<std::pair<double, double>> value_area);
 
 /// Statistics of a valid view (see validate_fit_view) from its fields pressure_pa,
 /// stretch_max and regime.

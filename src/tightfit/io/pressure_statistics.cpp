@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "tightfit/io/fit_stats.hpp"
 #include "tightfit/objectives/pressure_regions.hpp"
 
 namespace tightfit {
@@ -39,20 +40,6 @@ PressureMoments pressure_moments(const VecX& p, const std::vector<double>& areas
 
 namespace {
 
-/// Area-weighted median: the value below which half of the area lies.
-double weighted_median(std::vector<std::pair<double, double>> value_area) {
-  if (value_area.empty()) return 0.0;
-  std::sort(value_area.begin(), value_area.end());
-  double total = 0.0;
-  for (const auto& v : value_area) total += v.second;
-  double cumulative = 0.0;
-  for (const auto& v : value_area) {
-    cumulative += v.second;
-    if (cumulative >= 0.5 * total * (1.0 - 1e-12)) return v.first;
-  }
-  return value_area.back().first;
-}
-
 nlohmann::json pressure_summary(double lo, double median, const PressureMoments& m, double hi,
                                 double scale) {
   return {{"min", lo / scale}, {"median", median / scale}, {"mean", m.mean / scale},
@@ -68,6 +55,16 @@ double nice_width(double width) {
 }
 
 }  // namespace
+
+double share_above_warning(const VecX& p, const std::vector<double>& areas,
+                           const std::vector<int>& faces) {
+  double above = 0.0, total = 0.0;
+  for (int f : faces) {
+    total += areas[f];
+    if (p[f] > kPressureWarningMmHg * kPascalPerMmHg) above += areas[f];
+  }
+  return total > 0.0 ? above / total : 0.0;
+}
 
 PressureHistogram pressure_histogram(const VecX& p, const std::vector<double>& areas,
                                      const std::vector<int>& faces, int target_bins) {
@@ -139,7 +136,7 @@ nlohmann::json region_statistics_json(const FitRegion& region, const VecX& p,
     if (p[f] >= region.min_pa && p[f] <= region.max_pa) inside += areas[f];
     if (p[f] < 0.0) lift_off += areas[f];
   }
-  const double median = weighted_median(std::move(samples));
+  const double median = area_weighted_median(std::move(samples));
   const double median_mmhg = median / kPascalPerMmHg;
   j["pressure_pa"] = pressure_summary(lo, median, m, hi, 1.0);
   j["pressure_mmhg"] = pressure_summary(lo, median, m, hi, kPascalPerMmHg);

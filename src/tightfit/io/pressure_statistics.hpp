@@ -58,6 +58,15 @@ struct PressureRegionSet {
   bool empty() const { return regions.empty(); }
 };
 
+/// Pressure above which the outputs warn (mmHg): beyond the compression classes used for
+/// day-long wear (RAL-GZ 387 III tops at 46; 40 mmHg is the usual alarm for skin and
+/// circulation under a garment worn all day).
+inline constexpr double kPressureWarningMmHg = 40.0;
+
+/// Share of the area of `faces` whose pressure exceeds kPressureWarningMmHg.
+double share_above_warning(const VecX& p, const std::vector<double>& areas,
+                           const std::vector<int>& faces);
+
 /// The faces of each region at the simulation's equilibrium (membership weight >= ½).
 /// Throws InputError (source `source`) for regions that do not resolve on the garment
 /// (pressure_regions.hpp).

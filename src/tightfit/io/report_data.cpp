@@ -117,7 +117,11 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
     for (const FitRegion& region : view.pressure_regions)
       regions.push_back(region_statistics_json(region, p, areas));
     const PressureHistogram h = pressure_histogram(p, areas, all);
-    histogram = {{"edges_mmhg", h.edges_mmhg}, {"area_m2", h.area_m2}};
+    histogram = {{"edges_mmhg", h.edges_mmhg},
+                 {"area_m2", h.area_m2},
+                 {"warning_mmhg", kPressureWarningMmHg},
+                 {"share_above_warning", share_above_warning(p, areas, all)},
+                 {"max_mmhg", p.maxCoeff() / kPascalPerMmHg}};
   }
 
   return {{"title", title},

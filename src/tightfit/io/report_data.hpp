@@ -15,7 +15,8 @@
 ///   stats                 fit_statistics_json
 ///   parameters, history   as in FitView
 ///   pressure_regions[]    region_statistics_json of each FitView region (pressure_statistics.hpp)
-///   pressure_histogram    {edges_mmhg, area_m2} of the whole garment, null without pressure
+///   pressure_histogram    {edges_mmhg, area_m2, warning_mmhg, share_above_warning, max_mmhg}
+///                         of the whole garment, null without pressure
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "tightfit/io/fit_stats.hpp"
 #include "tightfit/io/pressure_statistics.hpp"
 
 #include <algorithm>
@@ -12,10 +13,15 @@
 namespace tightfit {
 namespace {
 
-nlohmann::json range_json(std::vector<double> v, double scale = 1.0) {
+/// min, area-weighted median and max of (value, area) pairs, divided by `scale`.
+nlohmann::json range_json(const std::vector<std::pair<double, double>>& v, double scale = 1.0) {
   if (v.empty()) return nullptr;
-  std::sort(v.begin(), v.end());
-  return {{"min", v.front() / scale}, {"median", v[v.size() / 2] / scale}, {"max", v.back() / scale}};
+  double lo = v.front().first, hi = lo;
+  for (const auto& [value, area] : v) {
+    lo = std::min(lo, value);
+    hi = std::max(hi, value);
+  }
+  return {{"min", lo / scale}, {"median", area_weighted_median(v) / scale}, {"max", hi / scale}};
 }
 
 }  // namespace
@@ -62,21 +68,23 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
   const VecX& p = chosen_pressure(fit, op);
   const int n = static_cast<int>(fit.elements.size());
   const int pieces = static_cast<int>(sim.garment().pattern.pieces.size());
-  std::vector<std::vector<double>> per_piece(pieces);
-  std::vector<double> all, smax, smin;
+  // (value, deformed area) samples: every median is area-weighted, as in the report.
+  std::vector<std::vector<std::pair<double, double>>> per_piece(pieces);
+  std::vector<std::pair<double, double>> all, smax, smin;
   double area[3] = {0, 0, 0}, total = 0, lift_off = 0;
   for (int e = 0; e < n; ++e) {
     const auto& el = fit.elements[e];
-    all.push_back(p[e]);
-    per_piece[sim.garment().triangle_piece[e]].push_back(p[e]);
-    smax.push_back(el.stretch[0]);
-    smin.push_back(el.stretch[1]);
+    all.emplace_back(p[e], el.deformed_area);
+    per_piece[sim.garment().triangle_piece[e]].emplace_back(p[e], el.deformed_area);
+    smax.emplace_back(el.stretch[0], el.deformed_area);
+    smin.emplace_back(el.stretch[1], el.deformed_area);
     area[static_cast<int>(el.regime)] += el.deformed_area;
     total += el.deformed_area;
     if (p[e] < 0) lift_off += el.deformed_area;
   }
   nlohmann::json j;
   j["pressure_operator"] = op == ShapeOperatorKind::kMidEdge ? "mid_edge" : "limit_surface";
+  j["medians"] = "area-weighted (deformed area)";
   j["pressure_pa"] = range_json(all);
   j["pressure_mmhg"] = range_json(all, kPascalPerMmHg);
   {
@@ -90,6 +98,7 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
     j["pressure_pa"]["area_weighted_mean"] = m.mean;
     j["pressure_pa"]["area_weighted_std"] = m.std;
     j["pressure_spread"] = m.mean != 0.0 ? m.std / std::abs(m.mean) : 0.0;
+    j["pressure_above_40mmhg_share"] = share_above_warning(p, areas, faces);
   }
   j["stretch_max"] = range_json(smax);
   j["stretch_min"] = range_json(smin);

@@ -26,7 +26,8 @@ std::vector<MeshField> garment_vertex_fields(const FitAnalysis& fit);
 /// Pressure per element with the chosen operator (Pa).
 const VecX& chosen_pressure(const FitAnalysis& fit, ShapeOperatorKind op);
 
-/// Statistics of the fit: pressure min/median/max (Pa and mmHg, overall and per piece),
+/// Statistics of the fit: pressure min/median/max (Pa and mmHg, overall and per piece;
+/// medians area-weighted like the report's, fit_stats.hpp),
 /// the area-weighted mean, standard deviation and spread (std / mean) of the pressure,
 /// area shares of slack / wrinkled / taut elements, lift-off area (negative pressure),
 /// stretch ranges, and per pressure region (pressure_statistics.hpp) its statistics
