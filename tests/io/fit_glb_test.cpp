@@ -53,8 +53,8 @@ TEST(FitGlb, PassesTheKhronosValidator) {
   EXPECT_NEAR(used.hi, 2800.0 / kPascalPerMmHg, 0.2);
 
   const auto result =
-      test::run_command("node " + test::quoted(test::source_path("tests/io/fit_glb_validate.mjs")) +
-                            " " + test::quoted(dir / "fit.glb"),
+      test::run_command("node " + test::shell_quote(test::source_path("tests/io/fit_glb_validate.mjs")) +
+                            " " + test::shell_quote(dir / "fit.glb"),
                         dir / "validator.log");
   ASSERT_EQ(result.exit_code, 0) << "gltf-validator (node, report/node_modules; see "
                                  << "scripts/install-deps.sh) reported errors or could not run:\n"

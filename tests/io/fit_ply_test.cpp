@@ -17,8 +17,8 @@ namespace {
 nlohmann::json read_with_meshio(const std::filesystem::path& ply, const test::TempDir& dir) {
   const auto out = dir / (ply.stem().string() + "_meshio.json");
   const auto result = test::run_command(
-      "/usr/bin/python3 " + test::quoted(test::source_path("tests/io/fit_ply_read.py")) + " " +
-          test::quoted(ply) + " " + test::quoted(out),
+      "/usr/bin/python3 " + test::shell_quote(test::source_path("tests/io/fit_ply_read.py")) + " " +
+          test::shell_quote(ply) + " " + test::shell_quote(out),
       dir / "meshio.log");
   EXPECT_EQ(result.exit_code, 0) << "meshio could not read " << ply << " (needs /usr/bin/python3 "
                                  << "with python3-meshio, see scripts/install-deps.sh):\n"
@@ -85,8 +85,8 @@ TEST(FitPly, MeshioReadsTheFieldsOfASimulateRun) {
                            "hoop_scale": 0.9, "axial_scale": 0.95, "edge_length": 0.016,
                            "pin_first_ring": true, "pin_last_ring": true}},
     "body_material": {"rigid": true}})";
-  const auto run = test::run_command(std::string(TIGHTFIT_CLI) + " simulate " + test::quoted(dir / "scene.json") +
-                                         " --out " + test::quoted(dir / "run"),
+  const auto run = test::run_command(std::string(TIGHTFIT_CLI) + " simulate " + test::shell_quote(dir / "scene.json") +
+                                         " --out " + test::shell_quote(dir / "run"),
                                      dir / "simulate.log");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   for (const char* file : {"garment.ply", "body.ply"}) {

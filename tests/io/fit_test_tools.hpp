@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "support/shell_command.hpp"
+
 namespace tightfit::test {
 
 /// A fresh empty directory under the system temp dir, removed on destruction.
@@ -36,26 +38,6 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
-
-struct CommandResult {
-  int exit_code = -1;  ///< the command's exit status; 127 when the shell cannot find it
-  std::string output;  ///< stdout and stderr together
-};
-
-/// Runs `command` with /bin/sh, capturing its output in `log`.
-inline CommandResult run_command(const std::string& command, const std::filesystem::path& log) {
-  const std::string full = command + " > '" + log.string() + "' 2>&1";
-  const int status = std::system(full.c_str());
-  CommandResult result;
-  result.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::ostringstream text;
-  text << in.rdbuf();
-  result.output = text.str();
-  return result;
-}
-
-inline std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
 
 inline std::filesystem::path source_path(const std::string& relative) {
   return std::filesystem::path(TIGHTFIT_SOURCE_DIR) / relative;

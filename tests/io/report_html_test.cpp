@@ -97,8 +97,8 @@ nlohmann::json check_in_browser(const FitView& view, const std::string& tag) {
                                std::filesystem::copy_options::overwrite_existing);
   }
   const auto result = test::run_command(
-      "node " + test::quoted(test::source_path("tests/io/report_browser_check.mjs")) + " " +
-          test::quoted(dir / "report.html") + " " + test::quoted(shots),
+      "node " + test::shell_quote(test::source_path("tests/io/report_browser_check.mjs")) + " " +
+          test::shell_quote(dir / "report.html") + " " + test::shell_quote(shots),
       dir / "browser.log");
   EXPECT_EQ(result.exit_code, 0) << "report.html failed in headless chromium (needs node, "
                                  << "/usr/bin/chromium and report/node_modules; see "

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "support/shell_command.hpp"
 #include "tightfit/common/types.hpp"
 
 namespace tightfit::test {
@@ -43,35 +44,12 @@ class ScratchDir {
 
 inline ScratchDir scratch_dir(const std::string& name) { return ScratchDir(name); }
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string output;  ///< stdout and stderr
-};
-
-/// Runs `command` with /bin/sh, capturing stdout and stderr.
-inline CommandResult run_command(const std::string& command) {
-  CommandResult result;
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
 /// Fails the test when a client program the test relies on is not installed.
 inline void require_program(const std::string& program) {
   ASSERT_TRUE(std::filesystem::exists(program))
       << program << " is not installed (run scripts/install-deps.sh)";
 }
 
-inline std::string shell_quote(const std::filesystem::path& path) {
-  std::string out = "'";
-  for (char c : path.string()) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
 
 /// A grey image, 0 = black … 255 = white, row-major.
 struct GrayImage {
