@@ -20,14 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::CliRun;
+using test::read_text;
 using test::run_cli;
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(read_text(file)); }
 

@@ -19,14 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::CliRun;
+using test::read_text;
 using test::run_cli;
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 class OutputFolderCli : public ::testing::Test {
  protected:

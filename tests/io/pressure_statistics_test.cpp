@@ -194,8 +194,8 @@ TEST(PressureRegionStatistics, RegionsOfACoverOnARigidSphere) {
   cap.min_pa = 2 * p0;  // nowhere inside
   cap.max_pa = 3 * p0;
   const nlohmann::json j =
-      fit_statistics(*c.sim, fit, ShapeOperatorKind::kMidEdge, PressureRegionSet{{all, cap}},
-                     "scene.json");
+      fit_statistics(*c.sim, fit, ShapeOperatorKind::kMidEdge,
+                     resolve_fit_regions(*c.sim, PressureRegionSet{{all, cap}}, "scene.json"));
   ASSERT_EQ(j["pressure_regions"].size(), 2u);
   const nlohmann::json& ja = j["pressure_regions"][0];
   const nlohmann::json& jc = j["pressure_regions"][1];
@@ -215,9 +215,7 @@ TEST(PressureRegionStatistics, RegionsOfACoverOnARigidSphere) {
   EXPECT_NEAR(histogram_area, ja["area_m2"].get<double>(), 1e-12);
   PressureRegion unknown = all;
   unknown.pieces = {"sleeve"};
-  EXPECT_THROW(fit_statistics(*c.sim, fit, ShapeOperatorKind::kMidEdge, PressureRegionSet{{unknown}},
-                              "scene.json"),
-               InputError);
+  EXPECT_THROW(resolve_fit_regions(*c.sim, PressureRegionSet{{unknown}}, "scene.json"), InputError);
 }
 
 }  // namespace

@@ -33,4 +33,12 @@ inline CliRun run_cli(const std::string& args, const std::string& cwd = "") {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
 }
 
+/// The whole content of a file (empty if it cannot be read).
+inline std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 }  // namespace tightfit::test

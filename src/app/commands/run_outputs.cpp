@@ -30,9 +30,10 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
                               {"youngs_modulus_pa_new", simulated / (1.0 - relaxation)}};
   }
   const SceneSpec scene = run_state_scene(state, state.scene_file);
-  const PressureRegionSet regions{scene.pressure_regions, scene.pressure_rig.get(),
-                                  scene.pressure_rig_radius};
-  state.result["fit"] = fit_statistics(sim, fit, pressure_operator, regions, state.scene_file);
+  const std::vector<FitRegion> regions = resolve_fit_regions(
+      sim, {scene.pressure_regions, scene.pressure_rig.get(), scene.pressure_rig_radius},
+      state.scene_file);
+  state.result["fit"] = fit_statistics(sim, fit, pressure_operator, regions);
   write_text_atomically(folder / "result.json", state.result.dump(2) + "\n");
   write_text_atomically(folder / "scene.json", state.scene.dump(2) + "\n");
   files.insert(files.end(), {"result.json", "scene.json"});
@@ -46,7 +47,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   write_run_state(folder / "state.json", state);
   files.push_back("state.json");
   FitView view = make_fit_view(sim, fit, pressure_operator, state.scene, records);
-  view.pressure_regions = resolve_fit_regions(sim, regions, state.scene_file);
+  view.pressure_regions = regions;
   write_fit_report(folder, view);
   files.insert(files.end(), {"report.html", "fit.glb"});
   return files;

@@ -28,32 +28,27 @@ RegionPlane parse_plane(JsonFields f) {
   return p;
 }
 
+/// A non-empty array of non-empty strings at `key`.
+std::vector<std::string> name_list(JsonFields& f, const std::string& key, const std::string& what) {
+  const nlohmann::json& list = f.raw(key);
+  const std::string expected = "expected a non-empty array of " + what + " names";
+  if (!list.is_array() || list.empty()) f.fail(expected, key);
+  std::vector<std::string> names;
+  for (const nlohmann::json& item : list) {
+    if (!item.is_string() || item.get<std::string>().empty()) f.fail(expected, key);
+    names.push_back(item.get<std::string>());
+  }
+  return names;
+}
+
 }  // namespace
 
 PressureRegion parse_pressure_region(JsonFields f) {
   PressureRegion r;
   r.name = f.string("name");
   if (r.name.empty()) f.fail("must not be empty", "name");
-  if (f.has("pieces")) {
-    const nlohmann::json& pieces = f.raw("pieces");
-    if (!pieces.is_array() || pieces.empty())
-      f.fail("expected a non-empty array of piece names", "pieces");
-    for (const nlohmann::json& p : pieces) {
-      if (!p.is_string() || p.get<std::string>().empty())
-        f.fail("expected a non-empty array of piece names", "pieces");
-      r.pieces.push_back(p.get<std::string>());
-    }
-  }
-  if (f.has("bones")) {
-    const nlohmann::json& bones = f.raw("bones");
-    if (!bones.is_array() || bones.empty())
-      f.fail("expected a non-empty array of bone names", "bones");
-    for (const nlohmann::json& b : bones) {
-      if (!b.is_string() || b.get<std::string>().empty())
-        f.fail("expected a non-empty array of bone names", "bones");
-      r.bones.push_back(b.get<std::string>());
-    }
-  }
+  if (f.has("pieces")) r.pieces = name_list(f, "pieces", "piece");
+  if (f.has("bones")) r.bones = name_list(f, "bones", "bone");
   if (auto p = f.object("above")) r.above = parse_plane(*p);
   if (auto p = f.object("below")) r.below = parse_plane(*p);
   r.transition = f.positive("transition", r.transition, true);

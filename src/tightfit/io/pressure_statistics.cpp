@@ -151,21 +151,4 @@ nlohmann::json region_statistics_json(const FitRegion& region, const VecX& p,
   return j;
 }
 
-nlohmann::json pressure_region_statistics(const GarmentSimulation& sim, const VecX& p,
-                                          const PressureRegionSet& regions,
-                                          const std::string& source) {
-  nlohmann::json out = nlohmann::json::array();
-  const Garment& g = sim.garment();
-  const Points3& x = sim.garment_positions();
-  std::vector<double> areas(static_cast<std::size_t>(g.garment_triangles.rows()));
-  for (Eigen::Index e = 0; e < g.garment_triangles.rows(); ++e) {
-    const Vec3 a = x.row(g.garment_triangles(e, 0)), b = x.row(g.garment_triangles(e, 1)),
-               c = x.row(g.garment_triangles(e, 2));
-    areas[e] = 0.5 * (b - a).cross(c - a).norm();
-  }
-  for (const FitRegion& region : resolve_fit_regions(sim, regions, source))
-    out.push_back(region_statistics_json(region, p, areas));
-  return out;
-}
-
 }  // namespace tightfit

@@ -83,9 +83,4 @@ std::vector<FitRegion> resolve_fit_regions(const GarmentSimulation& sim,
 nlohmann::json region_statistics_json(const FitRegion& region, const VecX& p,
                                       const std::vector<double>& areas);
 
-/// region_statistics_json of every region resolved at the simulation's equilibrium.
-nlohmann::json pressure_region_statistics(const GarmentSimulation& sim, const VecX& p,
-                                          const PressureRegionSet& regions,
-                                          const std::string& source);
-
 }  // namespace tightfit

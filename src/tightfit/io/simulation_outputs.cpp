@@ -63,8 +63,7 @@ std::vector<MeshField> garment_vertex_fields(const FitAnalysis& fit) {
 }
 
 nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
-                              ShapeOperatorKind op, const PressureRegionSet& regions,
-                              const std::string& source) {
+                              ShapeOperatorKind op, const std::vector<FitRegion>& regions) {
   const VecX& p = chosen_pressure(fit, op);
   const int n = static_cast<int>(fit.elements.size());
   const int pieces = static_cast<int>(sim.garment().pattern.pieces.size());
@@ -117,7 +116,13 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
                     {"pressure_pa", range_json(per_piece[k])},
                     {"pressure_mmhg", range_json(per_piece[k], kPascalPerMmHg)}});
   }
-  if (!regions.empty()) j["pressure_regions"] = pressure_region_statistics(sim, p, regions, source);
+  if (!regions.empty()) {
+    std::vector<double> areas(n);
+    for (int e = 0; e < n; ++e) areas[e] = fit.elements[e].deformed_area;
+    auto& jr = j["pressure_regions"];
+    jr = nlohmann::json::array();
+    for (const FitRegion& region : regions) jr.push_back(region_statistics_json(region, p, areas));
+  }
   return j;
 }
 

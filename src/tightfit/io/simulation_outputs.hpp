@@ -32,11 +32,10 @@ const VecX& chosen_pressure(const FitAnalysis& fit, ShapeOperatorKind op);
 /// area shares of slack / wrinkled / taut elements, lift-off area (negative pressure),
 /// stretch ranges, and per pressure region (pressure_statistics.hpp) its statistics
 /// against the target and the compression class reached ("pressure_regions", only
-/// when `regions` is not empty; `source` names the scene in errors).
+/// when `regions` is not empty; resolve_fit_regions gives them).
 nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
                               ShapeOperatorKind pressure_operator,
-                              const PressureRegionSet& regions = {},
-                              const std::string& source = "scene");
+                              const std::vector<FitRegion>& regions = {});
 
 /// JSON of a Newton report (iterations, residuals, time split).
 nlohmann::json newton_report_json(const NewtonReport& report);

@@ -1,7 +1,5 @@
 #include "tightfit/objectives/imls_surface.hpp"
 
-#include <nanoflann.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -10,40 +8,14 @@
 #include <vector>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/objectives/point_cloud_index.hpp"
 
 namespace tightfit {
 namespace {
 
 const std::string kSource = "shape target";
 
-/// nanoflann dataset adaptor over the rows of a Points3.
-struct Cloud {
-  const Points3* points = nullptr;
-  std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points->rows()); }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const {
-    return (*points)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box& /*box*/) const {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
-                                                   Cloud, 3, std::size_t>;
-
 }  // namespace
-
-struct ImlsSurface::Index {
-  Points3 points;  // own copy: the tree refers to it
-  Cloud cloud;
-  std::unique_ptr<KdTree> tree;
-
-  explicit Index(const Points3& p) : points(p) {
-    cloud.points = &points;
-    tree = std::make_unique<KdTree>(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  }
-};
 
 ImlsSurface::ImlsSurface(Points3 points, Points3 normals, double radius)
     : points_(std::move(points)), normals_(std::move(normals)), radius_(radius) {
@@ -60,35 +32,18 @@ ImlsSurface::ImlsSurface(Points3 points, Points3 normals, double radius)
       throw InputError(kSource, "normal " + std::to_string(k) + " is zero or not finite");
     normals_.row(k) /= len;
   }
-  index_ = std::make_shared<const Index>(points_);
+  index_ = std::make_shared<const PointCloudIndex>(points_);
 }
 
 ImlsSurface::Evaluation ImlsSurface::evaluate(const Vec3& x) const {
   Evaluation ev;
   const double h2 = radius_ * radius_;
-  std::vector<std::pair<std::size_t, double>> found;
-  index_->tree->radiusSearch(x.data(), h2, found, nanoflann::SearchParams(32, 0.0f, false));
-
-  struct Neighbour {
-    Eigen::Index k;
-    double u;  // 1 − r²/h² > 0
-  };
-  std::vector<Neighbour> near;
-  near.reserve(found.size());
+  const std::vector<PointCloudIndex::Neighbour> near = index_->within(x, radius_);
   double u_max = 0.0;
-  for (const auto& [k, d2_tree] : found) {
-    const auto kk = static_cast<Eigen::Index>(k);
-    const double u = 1.0 - (x - points_.row(kk).transpose()).squaredNorm() / h2;
-    if (u <= 0.0) continue;
-    near.push_back({kk, u});
-    u_max = std::max(u_max, u);
-  }
+  for (const PointCloudIndex::Neighbour& n : near) u_max = std::max(u_max, n.u);
 
   if (near.empty()) {
-    std::size_t nearest = 0;
-    double d2 = 0.0;
-    index_->tree->knnSearch(x.data(), 1, &nearest, &d2);
-    const auto k = static_cast<Eigen::Index>(nearest);
+    const Eigen::Index k = index_->nearest(x);
     ev.gradient = normals_.row(k).transpose();
     ev.value = ev.gradient.dot(x - points_.row(k).transpose());
     ev.fallback = true;

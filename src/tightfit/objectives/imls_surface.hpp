@@ -19,10 +19,11 @@
 ///
 /// Numerics: the kernel weights are evaluated relative to the largest one,
 /// w_k = (u_k / u_max)⁴ with u = 1 − r²/h², so nothing underflows near the cut-off.
-/// Neighbours come from a kd-tree (nanoflann).
+/// Neighbours come from PointCloudIndex (a kd-tree).
 #include <memory>
 
 #include "tightfit/common/types.hpp"
+#include "tightfit/objectives/point_cloud_index.hpp"
 
 namespace tightfit {
 
@@ -46,11 +47,10 @@ class ImlsSurface {
   double radius() const { return radius_; }
 
  private:
-  struct Index;
   Points3 points_;
   Points3 normals_;
   double radius_ = 0.0;
-  std::shared_ptr<const Index> index_;
+  std::shared_ptr<const PointCloudIndex> index_;
 };
 
 }  // namespace tightfit

@@ -7,10 +7,11 @@
 /// of the values within h (so it stays within their range) and C³ wherever a point lies
 /// within h; elsewhere f is the value of the NEAREST point (gradient 0), continuous where
 /// the last point leaves the h-ball. Kernel weights are taken relative to the largest,
-/// so nothing underflows near the cut-off. Neighbours come from a kd-tree (nanoflann).
+/// so nothing underflows near the cut-off. Neighbours: PointCloudIndex.
 #include <memory>
 
 #include "tightfit/common/types.hpp"
+#include "tightfit/objectives/point_cloud_index.hpp"
 
 namespace tightfit {
 
@@ -27,11 +28,10 @@ class PointField {
   Evaluation evaluate(const Vec3& x) const;
 
  private:
-  struct Index;
   Points3 points_;
   VecX values_;
   double radius_ = 0.0;
-  std::shared_ptr<const Index> index_;
+  std::shared_ptr<const PointCloudIndex> index_;
 };
 
 }  // namespace tightfit
