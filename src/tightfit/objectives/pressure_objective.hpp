@@ -60,8 +60,6 @@ class PressureObjective : public DesignTerm {
   VecX pressures(const DesignState& state) const;
   /// Λ_e (3×3, 1/m, world frame) for every garment triangle at positions x.
   std::vector<Mat3> shape_operators(const VecX& x) const;
-  /// The regions (empty for the per-element constructors).
-  const PressureRegions& regions() const { return regions_; }
 
  private:
   void check(const DesignState& state) const;

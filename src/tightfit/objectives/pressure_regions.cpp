@@ -61,11 +61,6 @@ PressureRegions::PressureRegions(const Garment& garment, std::vector<PressureReg
       if (selects[r][garment.triangle_piece[e]]) candidates_[e].push_back(static_cast<int>(r));
 }
 
-PointField::Evaluation PressureRegions::bone_weight(int r, const Vec3& point) const {
-  if (!bone_fields_[r]) return {1.0, Vec3::Zero()};
-  return bone_fields_[r]->evaluate(point);
-}
-
 MatX PressureRegions::weights(const VecX& x) const {
   MatX w = MatX::Zero(size(), triangles_.rows());
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {

@@ -46,7 +46,6 @@ class PressureRegions {
 
   int size() const { return static_cast<int>(regions_.size()); }
   const PressureRegion& operator[](int r) const { return regions_[r]; }
-  const std::vector<PressureRegion>& regions() const { return regions_; }
 
   /// Regions whose pieces include triangle e's piece (candidates for a weight > 0).
   const std::vector<int>& candidates(int e) const { return candidates_[e]; }
@@ -55,9 +54,6 @@ class PressureRegions {
   /// automatic differentiation. Does not check the piece (see `candidates`).
   template <typename S>
   S band_weight(int r, const std::array<autodiff::Vec3T<S>, 3>& corners) const;
-
-  /// The bone factor b of region r at a point (value and gradient), 1 without bones.
-  PointField::Evaluation bone_weight(int r, const Vec3& point) const;
 
   /// w_{r,e} for every region r (rows) and garment triangle e (columns) at positions x
   /// (3·n_g, m).
