@@ -41,4 +41,4 @@ BENCHMARK(LegsBody)->Arg(15)->Arg(10)->Unit(benchmark::kSecond)->Iterations(3);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+#include "bench_main.hpp"

@@ -231,4 +231,4 @@ BENCHMARK(BM_OptimizeExampleSoftSleeve)->Arg(10)->Unit(benchmark::kSecond)->Iter
 }  // namespace
 }  // namespace tightfit
 
-BENCHMARK_MAIN();
+#include "bench_main.hpp"

@@ -91,4 +91,4 @@ BENCHMARK(BM_SleeveWarmStart)->Arg(79)->Arg(40)->Arg(20)->Unit(benchmark::kSecon
 }  // namespace
 }  // namespace tightfit
 
-BENCHMARK_MAIN();
+#include "bench_main.hpp"

@@ -136,4 +136,4 @@ BENCHMARK(BM_Construction)->Unit(benchmark::kMillisecond);
 }  // namespace
 }  // namespace tightfit
 
-BENCHMARK_MAIN();
+#include "bench_main.hpp"

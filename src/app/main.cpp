@@ -6,6 +6,7 @@
 #include "command_registry.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/interrupt.hpp"
+#include "tightfit/common/memory_reuse.hpp"
 #include "tightfit/common/parallel.hpp"
 
 namespace tightfit::app {
@@ -17,6 +18,7 @@ std::vector<CommandEntry>& command_registry() {
 
 int main(int argc, char** argv) {
   using namespace tightfit;
+  keep_freed_memory_for_reuse();
   CLI::App root{
       "tightfit: physics-based pattern design for skintight garments "
       "(Montes et al., SIGGRAPH 2020).\nRun 'tightfit COMMAND --help' for a command's options."};

@@ -10,6 +10,35 @@ namespace {
 
 using test::laplacian_1d;
 
+/// The 5-point Laplacian of an m×m grid plus `shift`·I, with extra symmetric couplings
+/// −0.1 between the listed pairs of grid nodes (diagonals raised to keep it SPD).
+SparseMatrix grid_laplacian(int m, double shift,
+                            const std::vector<std::pair<int, int>>& extra = {}) {
+  std::vector<Triplet> t;
+  auto id = [m](int i, int j) { return i * m + j; };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      t.emplace_back(id(i, j), id(i, j), 4.0 + shift);
+      if (i + 1 < m) {
+        t.emplace_back(id(i, j), id(i + 1, j), -1.0);
+        t.emplace_back(id(i + 1, j), id(i, j), -1.0);
+      }
+      if (j + 1 < m) {
+        t.emplace_back(id(i, j), id(i, j + 1), -1.0);
+        t.emplace_back(id(i, j + 1), id(i, j), -1.0);
+      }
+    }
+  for (auto [a, b] : extra) {
+    t.emplace_back(a, b, -0.1);
+    t.emplace_back(b, a, -0.1);
+    t.emplace_back(a, a, 0.1);
+    t.emplace_back(b, b, 0.1);
+  }
+  SparseMatrix A(m * m, m * m);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
 TEST(SparseCholesky, SolvesAnSpdSystem) {
   const SparseMatrix A = laplacian_1d(50, 0.1);
   SparseCholesky chol;
@@ -27,6 +56,57 @@ TEST(SparseCholesky, ReusesSymbolicAnalysisForTheSamePattern) {
   EXPECT_EQ(chol.symbolic_analyses(), 1);
   ASSERT_TRUE(chol.factorize(laplacian_1d(31, 0.5)));
   EXPECT_EQ(chol.symbolic_analyses(), 2);
+}
+
+TEST(SparseCholesky, AnalysesANearbyPatternWithAGivenOrdering) {
+  const int m = 30;
+  SparseCholesky first;
+  ASSERT_TRUE(first.factorize(grid_laplacian(m, 0.1)));
+  const CholeskyOrdering ordering = first.ordering();
+  ASSERT_EQ(static_cast<int>(ordering.permutation.size()), m * m);
+  EXPECT_GT(ordering.factor_nonzeros, 0.0);
+  EXPECT_EQ(first.ordering_searches(), 1);
+
+  // A pattern with a few more couplings: analysed with the given ordering, no search.
+  const SparseMatrix B = grid_laplacian(m, 0.2, {{3, 40}, {100, 161}, {500, 533}});
+  SparseCholesky second;
+  ASSERT_TRUE(second.factorize(B, &ordering));
+  EXPECT_EQ(second.symbolic_analyses(), 1);
+  EXPECT_EQ(second.ordering_searches(), 0);
+  const VecX b = VecX::LinSpaced(m * m, -1.0, 2.0);
+  EXPECT_LT((B * second.solve(b) - b).norm(), 1e-12 * b.norm());
+
+  // The result is a function of the matrix and the ordering: a solver that analysed
+  // other patterns before gives the same factor bit for bit.
+  SparseCholesky third;
+  ASSERT_TRUE(third.factorize(grid_laplacian(m, 0.3)));
+  ASSERT_TRUE(third.factorize(B, &ordering));
+  EXPECT_EQ(third.solve(b), second.solve(b));
+  // The same pattern with and without the ordering are different analyses.
+  ASSERT_TRUE(third.factorize(B));
+  EXPECT_EQ(third.symbolic_analyses(), 3);
+  ASSERT_TRUE(third.factorize(B));
+  EXPECT_EQ(third.symbolic_analyses(), 3);
+}
+
+TEST(SparseCholesky, SearchesANewOrderingWhenTheGivenOneFillsTooMuch) {
+  const int m = 30;
+  SparseCholesky nested;
+  ASSERT_TRUE(nested.factorize(grid_laplacian(m, 0.1)));
+  // The natural (row by row) ordering of a grid fills a band of width m, several
+  // times what a nested dissection gives.
+  CholeskyOrdering natural;
+  natural.factor_nonzeros = nested.ordering().factor_nonzeros;
+  for (int i = 0; i < m * m; ++i) natural.permutation.push_back(i);
+  SparseCholesky chol;
+  ASSERT_TRUE(chol.factorize(grid_laplacian(m, 0.2), &natural));
+  EXPECT_EQ(chol.ordering_searches(), 1);
+  EXPECT_LT(chol.ordering().factor_nonzeros, 1.25 * natural.factor_nonzeros);
+  // With room for the fill, the natural ordering is used.
+  SparseCholesky lenient;
+  ASSERT_TRUE(lenient.factorize(grid_laplacian(m, 0.2), &natural, 100.0));
+  EXPECT_EQ(lenient.ordering_searches(), 0);
+  EXPECT_GT(lenient.ordering().factor_nonzeros, 1.25 * natural.factor_nonzeros);
 }
 
 TEST(SparseCholesky, ReportsIndefiniteMatrices) {

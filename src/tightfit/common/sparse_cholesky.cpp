@@ -16,6 +16,11 @@ struct SparseCholesky::Impl {
   std::vector<int> pattern_inner;
   Eigen::Index n = 0;
   int analyses = 0;
+  int searches = 0;
+  // The ordering the current analysis was asked to use (empty: none; it may have
+  // searched its own when that one filled too much), and the ordering it produced.
+  std::vector<int> requested;
+  CholeskyOrdering found;
   bool factor_valid = false;
   // Upper triangle of the last matrix, kept alive for CHOLMOD's view. Upper, not lower:
   // CHOLMOD's permuted supernodal factorization needs tril(PAPᵀ), one transpose away
@@ -64,16 +69,40 @@ struct SparseCholesky::Impl {
 SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
 SparseCholesky::~SparseCholesky() = default;
 
-bool SparseCholesky::factorize(const SparseMatrix& A) {
+bool SparseCholesky::factorize(const SparseMatrix& A) { return factorize(A, nullptr); }
+
+bool SparseCholesky::factorize(const SparseMatrix& A, const CholeskyOrdering* ordering,
+                               double max_fill_growth) {
   if (A.rows() != A.cols()) throw SolverError("SparseCholesky: matrix is not square");
   auto& d = *impl_;
   d.upper = A.triangularView<Eigen::Upper>();
   d.upper.makeCompressed();
   cholmod_sparse s = d.view();
-  if (!d.same_pattern()) {
+  if (ordering && static_cast<Eigen::Index>(ordering->permutation.size()) != A.rows())
+    ordering = nullptr;
+  const std::vector<int> no_ordering;
+  const std::vector<int>& wanted = ordering ? ordering->permutation : no_ordering;
+  if (!d.same_pattern() || d.requested != wanted) {
     if (d.factor) cholmod_free_factor(&d.factor, &d.common);
-    d.factor = cholmod_analyze(&s, &d.common);
+    d.requested = wanted;
+    if (ordering) {
+      // Only the given permutation (CHOLMOD's method 0), then the etree postorder.
+      const int methods = d.common.nmethods;
+      d.common.nmethods = 1;
+      d.factor = cholmod_analyze_p(&s, const_cast<int*>(ordering->permutation.data()), nullptr,
+                                   0, &d.common);
+      d.common.nmethods = methods;
+      if (d.factor && !(d.common.lnz <= max_fill_growth * ordering->factor_nonzeros))
+        cholmod_free_factor(&d.factor, &d.common);
+    }
+    if (!d.factor) {
+      d.factor = cholmod_analyze(&s, &d.common);
+      ++d.searches;
+    }
     if (!d.factor) throw SolverError("SparseCholesky: symbolic analysis failed");
+    d.found.permutation.assign(static_cast<const int*>(d.factor->Perm),
+                               static_cast<const int*>(d.factor->Perm) + d.factor->n);
+    d.found.factor_nonzeros = d.common.lnz;
     d.pattern_outer.assign(d.upper.outerIndexPtr(), d.upper.outerIndexPtr() + d.upper.cols() + 1);
     d.pattern_inner.assign(d.upper.innerIndexPtr(),
                            d.upper.innerIndexPtr() + d.upper.nonZeros());
@@ -112,6 +141,8 @@ MatX SparseCholesky::solve_columns(const MatX& B) const {
 }
 
 int SparseCholesky::symbolic_analyses() const { return impl_->analyses; }
+int SparseCholesky::ordering_searches() const { return impl_->searches; }
+const CholeskyOrdering& SparseCholesky::ordering() const { return impl_->found; }
 
 std::int64_t SparseCholesky::factor_nonzeros() const {
   const auto* f = impl_->factor;
@@ -123,10 +154,10 @@ Eigen::Index SparseCholesky::size() const { return impl_->n; }
 
 std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMatrix& A,
                                         const ShiftSequence& shifts, int& factorizations,
-                                        double* last_shift) {
+                                        double* last_shift, const CholeskyOrdering* ordering) {
   if (shifts.try_unshifted) {
     ++factorizations;
-    if (cholesky.factorize(A)) return 0.0;
+    if (cholesky.factorize(A, ordering)) return 0.0;
   }
   double mean_diag = A.diagonal().cwiseAbs().mean();
   if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
@@ -136,7 +167,7 @@ std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMa
   for (int k = 0; k < shifts.attempts; ++k) {
     if (last_shift) *last_shift = shift;
     ++factorizations;
-    if (cholesky.factorize(SparseMatrix(A + shift * identity))) return shift;
+    if (cholesky.factorize(SparseMatrix(A + shift * identity), ordering)) return shift;
     shift *= shifts.growth;
   }
   return std::nullopt;

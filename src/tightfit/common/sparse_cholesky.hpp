@@ -2,13 +2,25 @@
 /// The one wrapper around the sparse Cholesky factorization (CHOLMOD, SuiteSparse).
 /// Symmetric positive definite matrices only; the symbolic analysis (fill-reducing
 /// ordering, supernode structure) is reused while the sparsity pattern stays the same.
+/// A matrix whose pattern differs only a little from one already analysed (a Newton
+/// Hessian after garment vertices slid onto other faces) can be analysed with that
+/// analysis' ordering instead of a new one (METIS and AMD are the costly part).
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "tightfit/common/types.hpp"
 
 namespace tightfit {
+
+/// A fill-reducing ordering found by a symbolic analysis: the permutation (CHOLMOD's
+/// final one, postordered) and the number of nonzeros of L it gave, for judging it on
+/// another pattern.
+struct CholeskyOrdering {
+  std::vector<int> permutation;  ///< n entries, a permutation of 0 … n−1
+  double factor_nonzeros = 0.0;  ///< nnz(L) of the analysis that found it
+};
 
 class SparseCholesky {
  public:
@@ -21,6 +33,13 @@ class SparseCholesky {
   /// read). Returns false when `A` is not positive definite (or the factorization
   /// failed numerically); the previous factor is then unusable.
   bool factorize(const SparseMatrix& A);
+  /// As factorize(A); when A's pattern needs a new symbolic analysis and `ordering` is
+  /// given (and of A's size), the analysis uses `ordering.permutation` instead of
+  /// searching one — unless L would get more than `max_fill_growth` times the
+  /// nonzeros that ordering gave on its own pattern, then a new ordering is searched.
+  /// The result is a function of A and `ordering` only (not of earlier calls).
+  bool factorize(const SparseMatrix& A, const CholeskyOrdering* ordering,
+                 double max_fill_growth = 1.25);
 
   /// Solves A x = b with the last successful factorization. `b` has n rows.
   VecX solve(const VecX& b) const;
@@ -29,6 +48,10 @@ class SparseCholesky {
 
   /// Number of symbolic analyses done so far (grows only when the pattern changes).
   int symbolic_analyses() const;
+  /// Of them: analyses that searched a new fill-reducing ordering (METIS/AMD).
+  int ordering_searches() const;
+  /// The ordering of the current symbolic analysis (empty permutation before the first).
+  const CholeskyOrdering& ordering() const;
   /// Number of stored entries of the Cholesky factor L of the last factorization.
   std::int64_t factor_nonzeros() const;
   /// Dimension n of the last factorized matrix.
@@ -53,8 +76,10 @@ struct ShiftSequence {
 /// δ (0 when A itself was positive definite), or nullopt when every shift failed (the
 /// factor is then unusable; `last_shift` receives the largest δ tried). `factorizations`
 /// counts the attempts.
+/// `ordering` (optional) is passed to SparseCholesky::factorize.
 std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMatrix& A,
                                         const ShiftSequence& shifts, int& factorizations,
-                                        double* last_shift = nullptr);
+                                        double* last_shift = nullptr,
+                                        const CholeskyOrdering* ordering = nullptr);
 
 }  // namespace tightfit

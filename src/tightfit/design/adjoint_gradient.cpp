@@ -100,8 +100,11 @@ std::optional<double> AdjointSolver::factorize_held(const SparseMatrix& H_newton
   const ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
                              options_.max_regularizations};
   ++generation_;
-  const auto shift = factorize_shifted(newton_factor_, H_newton, shifts, factorizations);
+  held_ordering_ = next_ordering_;
+  const auto shift = factorize_shifted(newton_factor_, H_newton, shifts, factorizations, nullptr,
+                                       held_ordering_.permutation.empty() ? nullptr : &held_ordering_);
   held_valid_ = shift.has_value();
+  if (held_valid_) next_ordering_ = newton_factor_.ordering();
   return shift;
 }
 

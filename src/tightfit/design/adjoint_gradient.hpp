@@ -131,6 +131,15 @@ class AdjointSolver {
     return held_valid_ ? &newton_factor_ : nullptr;
   }
   long generation() const { return generation_; }
+  /// The fill-reducing ordering the held factorization was analysed with (empty: it
+  /// searched its own). Each held factorization is analysed with the ordering the
+  /// previous one found (SparseCholesky's fill rule decides when a new one is
+  /// searched), so METIS runs once per garment topology, not once per iteration. A
+  /// checkpoint stores it and set_next_ordering() gives it back on resume, so the
+  /// resumed run factorizes exactly as the uninterrupted one did.
+  const CholeskyOrdering& held_ordering() const { return held_ordering_; }
+  /// The ordering the next held factorization is analysed with.
+  void set_next_ordering(CholeskyOrdering ordering) { next_ordering_ = std::move(ordering); }
   /// Factorizes Newton's matrix at the simulation's current state as solve() does (it
   /// becomes the held factorization; a new generation). Returns false when it is not
   /// positive definite even with the largest shift (nothing is held then).
@@ -147,6 +156,8 @@ class AdjointSolver {
   SparseCholesky exact_factor_;
   bool held_valid_ = false;
   long generation_ = 0;
+  CholeskyOrdering held_ordering_;  // what the held factorization was analysed with
+  CholeskyOrdering next_ordering_;  // what the next one will be
 };
 
 /// The design state (x, Xbar) of the simulation's current garment: x flat (3·n_g, m)

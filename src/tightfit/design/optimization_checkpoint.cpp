@@ -192,6 +192,9 @@ nlohmann::json checkpoint_json(const OptimizationCheckpoint& c,
                       {"state", {{"garment", garment}, {"body", body}}},
                       {"memory", {{"s", s}, {"y", y}}},
                       {"history", history}};
+  if (!c.held_ordering.permutation.empty())
+    j["held_ordering"] = {{"permutation", c.held_ordering.permutation},
+                          {"factor_nonzeros", c.held_ordering.factor_nonzeros}};
   if (c.remeshed) {
     nlohmann::json mesh_rest = nlohmann::json::array();
     for (const Points2& rest : c.remeshed->mesh_rest) {
@@ -245,6 +248,25 @@ OptimizationCheckpoint checkpoint_from_json(const nlohmann::json& j,
   if (c.memory.s.size() != c.memory.y.size()) memory->fail("s and y differ in length");
   memory->finish();
 
+  if (auto ordering = f.object("held_ordering")) {
+    const nlohmann::json& perm = ordering->raw("permutation");
+    if (!perm.is_array() || perm.empty())
+      ordering->fail("expected a non-empty array of indices", "permutation");
+    std::vector<char> seen(perm.size(), 0);
+    for (size_t i = 0; i < perm.size(); ++i) {
+      const nlohmann::json& e = perm[i];
+      if (!e.is_number_integer() || e.get<std::int64_t>() < 0 ||
+          e.get<std::int64_t>() >= static_cast<std::int64_t>(perm.size()) ||
+          seen[e.get<size_t>()])
+        throw InputError(source, "/held_ordering/permutation/" + std::to_string(i) +
+                                     ": not a permutation of 0 … " +
+                                     std::to_string(perm.size() - 1));
+      seen[e.get<size_t>()] = 1;
+      c.held_ordering.permutation.push_back(e.get<int>());
+    }
+    c.held_ordering.factor_nonzeros = ordering->positive("factor_nonzeros");
+    ordering->finish();
+  }
   if (auto remeshed = f.object("remeshed")) {
     RemeshedDesign d;
     d.pattern = pattern_record_from_json(remeshed->raw("pattern"), source, "/remeshed/pattern");

@@ -6,6 +6,9 @@
 ///   "iteration": k, "parameters": [p...] (m),
 ///   "state": {"garment": [[face, u, v], ...], "body": [[x, y, z], ...] (m)},
 ///   "memory": {"s": [[...], ...], "y": [[...], ...]}, "history": [iteration records],
+///   "held_ordering" (optional): {"permutation": [n indices], "factor_nonzeros"}, the
+///     fill-reducing ordering the adjoint's factorization at the accepted point was
+///     analysed with (adjoint_gradient.hpp), so that a resumed run factorizes alike,
 ///   "remeshed" (only after a remeshing): {"pattern": the complete pattern with the
 ///     reference rest positions (garment/pattern_record.hpp), "mesh_rest": per piece
 ///     [[x, y], ...] (m), the rest positions its mesh was made with}}

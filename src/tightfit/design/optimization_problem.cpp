@@ -380,6 +380,8 @@ void DesignProblem::accept() {
   accepted_p_ = current_p_;
   accepted_state_ = sim_.problem().state();
   accepted_generation_ = gradient_generation_;
+  if (accepted_generation_ >= 0 && accepted_generation_ == adjoint_.generation())
+    accepted_ordering_ = adjoint_.held_ordering();
 }
 
 void DesignProblem::restore_accepted() {
@@ -389,7 +391,8 @@ void DesignProblem::restore_accepted() {
   last_ok_ = false;
 }
 
-void DesignProblem::set_accepted(const VecX& p, const EmbeddedState& state) {
+void DesignProblem::set_accepted(const VecX& p, const EmbeddedState& state,
+                                 const CholeskyOrdering& held_ordering) {
   if (p.size() != num_parameters())
     throw InputError("checkpoint", "it has " + std::to_string(p.size()) +
                                        " design parameters, the garment needs " +
@@ -400,6 +403,8 @@ void DesignProblem::set_accepted(const VecX& p, const EmbeddedState& state) {
   accepted_p_ = p;
   accepted_state_ = state;
   accepted_generation_ = -1;
+  accepted_ordering_ = held_ordering;
+  adjoint_.set_next_ordering(held_ordering);
   restore_accepted();
 }
 

@@ -138,10 +138,16 @@ class DesignProblem {
   void restore_accepted();
   /// Sets the accepted point directly (resuming from a checkpoint); the simulation is
   /// put there too. Throws InputError when sizes do not match this problem.
-  void set_accepted(const VecX& p, const EmbeddedState& state);
+  /// `held_ordering`: the checkpoint's ordering for the factorization at the accepted
+  /// point (accepted_ordering()); empty: search one.
+  void set_accepted(const VecX& p, const EmbeddedState& state,
+                    const CholeskyOrdering& held_ordering = {});
 
   const VecX& accepted_parameters() const { return accepted_p_; }
   const EmbeddedState& accepted_state() const { return accepted_state_; }
+  /// The fill-reducing ordering the adjoint's factorization at the accepted point was
+  /// analysed with (AdjointSolver::held_ordering; empty: its own search).
+  const CholeskyOrdering& accepted_ordering() const { return accepted_ordering_; }
 
   /// Xbar(p) (n_p×2, m). Throws std::invalid_argument for a wrong length.
   Points2 rest_positions(const VecX& p) const;
@@ -202,6 +208,7 @@ class DesignProblem {
   bool remeshed_ = false;               // a remesh() succeeded (or one was restored)
   VecX accepted_p_;
   EmbeddedState accepted_state_;
+  CholeskyOrdering accepted_ordering_;
   VecX current_p_;  // parameters the simulation's rest positions are set to
   bool last_ok_ = false;
   long gradient_generation_ = -1;  // adjoint factorization made at the last evaluation

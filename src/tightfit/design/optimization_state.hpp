@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "tightfit/common/sparse_cholesky.hpp"
 #include "tightfit/common/types.hpp"
 #include "tightfit/garment/pattern.hpp"
 #include "tightfit/solve/embedded_equilibrium.hpp"
@@ -88,6 +89,9 @@ struct OptimizationCheckpoint {
   LbfgsMemory memory;   ///< pairs since the last remeshing (it clears the memory)
   std::vector<OptimizationIteration> history;
   std::optional<RemeshedDesign> remeshed;  ///< set once a remeshing succeeded
+  /// The ordering the adjoint's factorization at the accepted point was analysed with
+  /// (DesignProblem::accepted_ordering; empty: its own search).
+  CholeskyOrdering held_ordering;
 };
 
 }  // namespace tightfit

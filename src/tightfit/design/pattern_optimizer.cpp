@@ -98,7 +98,7 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
   for (size_t k = 0; k < checkpoint.memory.s.size(); ++k)
     if (checkpoint.memory.s[k].size() != n || checkpoint.memory.y[k].size() != n)
       throw InputError("checkpoint", "its L-BFGS memory does not match the design parameters");
-  problem_.set_accepted(checkpoint.parameters, checkpoint.state);
+  problem_.set_accepted(checkpoint.parameters, checkpoint.state, checkpoint.held_ordering);
   memory_ = checkpoint.memory;
   while (static_cast<int>(memory_.s.size()) > options_.memory) {
     memory_.s.erase(memory_.s.begin());
@@ -135,6 +135,7 @@ OptimizationCheckpoint PatternOptimizer::checkpoint() const {
   c.memory = memory_;
   c.history = history_;
   c.remeshed = problem_.remeshed_design();
+  c.held_ordering = problem_.accepted_ordering();
   return c;
 }
 

@@ -17,7 +17,8 @@ double seconds_since(Clock::time_point t0) {
 
 }  // namespace
 
-double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factorizations) {
+double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factorizations,
+                                           const CholeskyOrdering* ordering) {
   ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
                        options_.max_regularizations};
   // After a shifted iteration, start one step below the shift that worked (the
@@ -32,7 +33,7 @@ double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factoriza
     }
   }
   double last = 0.0;
-  if (const auto shift = factorize_shifted(cholesky_, H, shifts, factorizations, &last)) {
+  if (const auto shift = factorize_shifted(cholesky_, H, shifts, factorizations, &last, ordering)) {
     shift_hint_ = *shift;
     return *shift;
   }
@@ -94,7 +95,8 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
       record.seconds_assembly = seconds_since(t0);
       report.hessian_nonzeros = H.nonZeros();
       t0 = Clock::now();
-      record.regularization = factorize_regularized(H, report.factorizations);
+      record.regularization = factorize_regularized(
+          H, report.factorizations, held ? &held->ordering() : nullptr);
       record.seconds_factorization = seconds_since(t0);
       report.factor_nonzeros = cholesky_.factor_nonzeros();
       factor = &cholesky_;

@@ -87,7 +87,10 @@ class NewtonSolver {
   /// stop after
   /// options.max_chord_steps in a row or when one contracts the force norm by less than
   /// options.chord_contraction, and a new Hessian is factorized; the convergence test
-  /// is the same for every step. A `held` of another size is ignored. When a Hessian
+  /// is the same for every step. A `held` of another size is ignored. Newton's own
+  /// factorizations reuse `held`'s fill-reducing ordering (their patterns differ from
+  /// held's only where garment vertices slid onto other faces), so the result of a
+  /// solve is a function of the problem and `held`. When a Hessian
   /// needs a diagonal shift, the next one in the same solve starts its shifts one step
   /// below the shift that worked.
   NewtonReport solve(NewtonProblem& problem, ChordSteps chords = {});
@@ -100,8 +103,10 @@ class NewtonSolver {
 
  private:
   /// Factorizes H + δI with the smallest δ of the growing sequence that succeeds.
-  /// Counts the attempts in `factorizations`.
-  double factorize_regularized(const SparseMatrix& H, int& factorizations);
+  /// Counts the attempts in `factorizations`. A new symbolic analysis uses `ordering`
+  /// when given (SparseCholesky::factorize).
+  double factorize_regularized(const SparseMatrix& H, int& factorizations,
+                               const CholeskyOrdering* ordering);
 
   NewtonOptions options_;
   SparseCholesky cholesky_;
