@@ -30,6 +30,7 @@ const body = data.body ? { positions: typedArray(data.body.positions), indices: 
 const colorings = data.colorings.map((c) => ({ ...c, values: typedArray(c.values) }));
 const pieces = data.pieces.map((p) => ({
   ...p, rest: typedArray(p.rest), triangles: typedArray(p.triangles), faces: typedArray(p.faces),
+  initial: p.initial_outline ? typedArray(p.initial_outline) : null,
 }));
 
 // ---- numbers ---------------------------------------------------------------------
@@ -225,9 +226,11 @@ function drawPattern() {
   const placed = [];
   for (const p of pieces) {
     let minX = Infinity, maxX = -Infinity, minY = Infinity, maxY = -Infinity;
-    for (let i = 0; i < p.rest.length; i += 2) {
-      minX = Math.min(minX, p.rest[i]); maxX = Math.max(maxX, p.rest[i]);
-      minY = Math.min(minY, p.rest[i + 1]); maxY = Math.max(maxY, p.rest[i + 1]);
+    for (const xy of [p.rest, p.initial ?? []]) {
+      for (let i = 0; i < xy.length; i += 2) {
+        minX = Math.min(minX, xy[i]); maxX = Math.max(maxX, xy[i]);
+        minY = Math.min(minY, xy[i + 1]); maxY = Math.max(maxY, xy[i + 1]);
+      }
     }
     if (!Number.isFinite(minX)) { minX = maxX = minY = maxY = 0; }
     placed.push({ p, dx: x0 - minX, minX, maxX, minY, maxY });
@@ -254,6 +257,19 @@ function drawPattern() {
       path.setAttribute('stroke-width', stroke / 2);
       g.appendChild(path);
       patternTriangles.push({ element: path, face: p.faces[t] });
+    }
+    if (p.initial && p.initial.length >= 6) {
+      // The outline before the optimization, dashed, above the fill and below the new one.
+      const before = document.createElementNS(SVG_NS, 'polygon');
+      const points = [];
+      for (let i = 0; i < p.initial.length; i += 2) points.push(`${p.initial[i] + dx},${-p.initial[i + 1]}`);
+      before.setAttribute('points', points.join(' '));
+      before.setAttribute('class', 'initial-outline');
+      before.setAttribute('fill', 'none');
+      before.setAttribute('stroke', '#c2410c');
+      before.setAttribute('stroke-width', stroke * 1.2);
+      before.setAttribute('stroke-dasharray', `${stroke * 6} ${stroke * 4}`);
+      g.appendChild(before);
     }
     if (p.boundary.length > 1) {
       const outline = document.createElementNS(SVG_NS, 'polygon');
@@ -289,6 +305,10 @@ function drawPattern() {
     label.textContent = p.name;
     g.appendChild(label);
     svg.appendChild(g);
+  }
+  if (pieces.some((p) => p.initial)) {
+    document.getElementById('pattern-hint').textContent +=
+      ' Dashed orange: the outline before the optimization; solid black: the optimized outline (same frame, so the overlay shows how each edge moved).';
   }
   const bar = document.createElementNS(SVG_NS, 'path');
   const barY = -bottom + labelSpace * 0.8;
@@ -462,37 +482,125 @@ function drawHistogram() {
   host.appendChild(svg);
 }
 
+/// Ticks of a log axis from lo to hi (both powers of ten): every decade (every second
+/// or more when there are many, at most about eight), with 2 and 5 over few decades.
+function logTicks(lo, hi) {
+  const ticks = [];
+  const k0 = Math.round(Math.log10(lo)), k1 = Math.round(Math.log10(hi));
+  const every = Math.max(1, Math.ceil((k1 - k0) / 8));
+  const mantissas = k1 - k0 <= 2 ? [1, 2, 5] : [1];
+  for (let k = k0; k <= k1; k += every)
+    for (const m of mantissas) {
+      const v = m * 10 ** k;
+      if (v <= hi * (1 + 1e-9)) ticks.push(v);
+    }
+  return ticks;
+}
+
+/// A log-axis tick label: "1e-4", "2e-4", or plain numbers from 0.01 to 1000.
+function logTickLabel(v) {
+  if (v >= 0.01 && v <= 1000) return Number(v.toPrecision(1)).toString();
+  const [m, e] = v.toExponential(0).split('e');
+  return `${m}e${Number(e)}`;
+}
+
+/// Integer ticks on [x0, x1], about six of them.
+function iterationTicks(x0, x1) {
+  if (x1 <= x0) return [x0];
+  const raw = (x1 - x0) / 6;
+  const p = 10 ** Math.floor(Math.log10(Math.max(raw, 1)));
+  const step = Math.max(1, [1, 2, 5, 10].map((m) => m * p).find((s) => s >= raw) ?? p * 10);
+  const ticks = [];
+  for (let v = Math.ceil(x0 / step) * step; v <= x1; v += step) ticks.push(v);
+  return ticks;
+}
+
+const TERM_COLORS = ['#d97706', '#059669', '#7c3aed', '#db2777', '#0891b2', '#65a30d', '#9f1239', '#475569'];
+
 function drawHistory() {
   const host = document.getElementById('history');
   const entries = Array.isArray(data.history) ? data.history : [];
-  const points = entries.map((e, i) => [typeof e.iteration === 'number' ? e.iteration : i, e.objective])
-    .filter(([x, y]) => typeof y === 'number' && Number.isFinite(y));
-  if (points.length === 0) {
+  const iterationOf = (e, i) => (typeof e.iteration === 'number' ? e.iteration : i);
+  const series = [{ name: 'objective (total)', color: '#2a6fdb', width: 2.5,
+    points: entries.map((e, i) => [iterationOf(e, i), e.objective]) }];
+  const names = [];
+  for (const e of entries)
+    if (e.terms && typeof e.terms === 'object')
+      for (const n of Object.keys(e.terms)) if (!names.includes(n)) names.push(n);
+  names.forEach((n, k) => series.push({ name: n, color: TERM_COLORS[k % TERM_COLORS.length], width: 1.5,
+    points: entries.map((e, i) => [iterationOf(e, i), e.terms ? e.terms[n] : undefined]) }));
+  for (const s of series) s.points = s.points.filter(([, y]) => typeof y === 'number' && Number.isFinite(y));
+  if (series[0].points.length === 0) {
     host.textContent = 'No optimization history in this fit.';
     return;
   }
-  const ys = points.map((p) => p[1]);
-  const yMin = Math.min(...ys), yMax = Math.max(...ys);
-  const log = yMin > 0 && yMax / yMin > 100;
-  const fy = (y) => (log ? Math.log10(y) : y);
-  const [x0, x1] = [points[0][0], points[points.length - 1][0]];
-  const [l0, l1] = [fy(yMin), fy(yMax)];
-  const W = 520, H = 200, L = 64, R = 12, T = 10, B = 34;
+  // A log axis over the positive values; zeros (a term inside its admissible range)
+  // sit on the bottom edge.
+  const positive = series.flatMap((s) => s.points.map((p) => p[1])).filter((y) => y > 0);
+  const log = positive.length > 0;
+  let lo = log ? Math.min(...positive) : Math.min(...series[0].points.map((p) => p[1]));
+  let hi = log ? Math.max(...positive) : Math.max(...series[0].points.map((p) => p[1]));
+  if (log) { lo = 10 ** Math.floor(Math.log10(lo)); hi = 10 ** Math.ceil(Math.log10(hi)); }
+  if (!(hi > lo)) { hi = lo + 1; }
+  const fy = (y) => (log ? Math.log10(Math.max(y, lo)) : y);
+  const xs = series[0].points.map((p) => p[0]);
+  const [x0, x1] = [Math.min(...xs), Math.max(...xs)];
+  const W = 900, H = 280, L = 60, R = 330, T = 10, B = 36;
   const sx = (x) => L + (x1 === x0 ? 0.5 : (x - x0) / (x1 - x0)) * (W - L - R);
-  const sy = (y) => T + (l1 === l0 ? 0.5 : 1 - (fy(y) - l0) / (l1 - l0)) * (H - T - B);
+  const sy = (y) => T + (1 - (fy(y) - fy(lo)) / (fy(hi) - fy(lo))) * (H - T - B);
+  let body = `<rect x="${L}" y="${T}" width="${W - L - R}" height="${H - T - B}" fill="#f7f8fa" stroke="#d5dae0"/>`;
+  const yTicks = log ? logTicks(lo, hi) : [lo, (lo + hi) / 2, hi];
+  for (const v of yTicks) {
+    body += `<line class="ytick" x1="${L}" x2="${W - R}" y1="${sy(v)}" y2="${sy(v)}" stroke="#e3e7ec"/>` +
+      `<text class="ytick-label" x="${L - 6}" y="${sy(v) + 4}" text-anchor="end" font-size="11">${log ? logTickLabel(v) : fmt(v)}</text>`;
+  }
+  for (const v of iterationTicks(x0, x1)) {
+    body += `<text class="xtick-label" x="${sx(v)}" y="${H - B + 14}" text-anchor="middle" font-size="11">${v}</text>`;
+  }
+  series.forEach((s, k) => {
+    if (s.points.length === 0) return;
+    body += `<polyline class="history-curve" data-term="${s.name}" fill="none" stroke="${s.color}" stroke-width="${s.width}" points="${s.points.map(([x, y]) => `${sx(x)},${sy(y)}`).join(' ')}"><title>${s.name}</title></polyline>`;
+    const last = s.points[s.points.length - 1][1];
+    body += `<rect x="${W - R + 10}" y="${T + 4 + 16 * k}" width="14" height="4" fill="${s.color}"/>` +
+      `<text x="${W - R + 30}" y="${T + 10 + 16 * k}" font-size="11">${s.name}: ${fmt(s.points[0][1])} → ${fmt(last)}</text>`;
+  });
+  body += `<text x="${(L + W - R) / 2}" y="${H - 4}" text-anchor="middle" font-size="12">L-BFGS iteration</text>` +
+    `<text x="12" y="${(T + H - B) / 2}" font-size="12" transform="rotate(-90 12 ${(T + H - B) / 2})" text-anchor="middle">weighted term w·T${log ? ' (log scale)' : ''}</text>`;
   const svg = document.createElementNS(SVG_NS, 'svg');
   svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
   svg.setAttribute('width', W);
   svg.setAttribute('height', H);
-  svg.innerHTML = `<rect x="${L}" y="${T}" width="${W - L - R}" height="${H - T - B}" fill="#f7f8fa" stroke="#d5dae0"/>` +
-    `<polyline fill="none" stroke="#2a6fdb" stroke-width="2" points="${points.map(([x, y]) => `${sx(x)},${sy(y)}`).join(' ')}"/>` +
-    `<text x="${L - 6}" y="${T + 10}" text-anchor="end" font-size="11">${fmt(yMax)}</text>` +
-    `<text x="${L - 6}" y="${H - B}" text-anchor="end" font-size="11">${fmt(yMin)}</text>` +
-    `<text x="${L}" y="${H - B + 14}" font-size="11">${x0}</text>` +
-    `<text x="${W - R}" y="${H - B + 14}" text-anchor="end" font-size="11">${x1}</text>` +
-    `<text x="${(L + W - R) / 2}" y="${H - 4}" text-anchor="middle" font-size="12">iteration</text>` +
-    `<text x="12" y="${(T + H - B) / 2}" font-size="12" transform="rotate(-90 12 ${(T + H - B) / 2})" text-anchor="middle">objective${log ? ' (log)' : ''}</text>`;
+  svg.innerHTML = body;
   host.appendChild(svg);
+}
+
+/// The run at a glance (data.summary) under the title.
+function drawSummary() {
+  const host = document.getElementById('summary');
+  const s = data.summary ?? {};
+  const items = [];
+  const add = (label, value, cls) => { if (value !== undefined && value !== null) items.push([label, value, cls]); };
+  add('command', s.command);
+  add('scene', s.scene);
+  add('status', s.status, s.status === 'converged' ? 'ok' : 'warn');
+  add('stop reason', s.stop_reason);
+  add('iterations', s.iterations);
+  add('Newton iterations', s.newton_iterations);
+  if (s.objective_initial !== undefined && s.objective_final !== undefined)
+    add('objective', `${fmt(s.objective_initial, 4)} → ${fmt(s.objective_final, 4)} (ratio ${fmt(s.objective_final / s.objective_initial, 3)})`);
+  if (typeof s.seconds === 'number') add('time', `${fmt(s.seconds, 3)} s`);
+  if (typeof s.force_residual_n === 'number') add('force residual', `${fmt(s.force_residual_n, 3)} N`);
+  add('version', s.version ? `tightfit ${s.version}` : undefined);
+  add('date', s.date);
+  if (items.length === 0) { host.hidden = true; return; }
+  for (const [label, value, cls] of items) {
+    const span = document.createElement('span');
+    span.className = 'item' + (cls ? ' ' + cls : '');
+    const b = document.createElement('b');
+    b.textContent = label + ': ';
+    span.append(b, String(value));
+    host.appendChild(span);
+  }
 }
 
 function drawParameters() {
@@ -536,6 +644,7 @@ if (data.missing_colorings.length > 0) {
   missing.textContent = 'Not available in this fit: ' + data.missing_colorings.join(', ');
 }
 
+drawSummary();
 drawPattern();
 drawStats();
 drawRegions();

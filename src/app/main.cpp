@@ -8,6 +8,7 @@
 #include "tightfit/common/interrupt.hpp"
 #include "tightfit/common/memory_reuse.hpp"
 #include "tightfit/common/parallel.hpp"
+#include "tightfit/common/version.hpp"
 
 namespace tightfit::app {
 std::vector<CommandEntry>& command_registry() {
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   CLI::App root{
       "tightfit: physics-based pattern design for skintight garments "
       "(Montes et al., SIGGRAPH 2020).\nRun 'tightfit COMMAND --help' for a command's options."};
+  root.set_version_flag("--version", std::string("tightfit ") + tightfit_version());
   root.require_subcommand(1);
   root.fallthrough();  // --threads may also follow the command's name
   try {

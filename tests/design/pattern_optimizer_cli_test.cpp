@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cli_run.hpp"
+#include "tightfit/common/version.hpp"
 
 namespace tightfit {
 namespace {
@@ -116,6 +117,22 @@ TEST_F(OptimizeCli, StretchRunBringsEveryElementIntoRange) {
   EXPECT_GE(smin, 1.02 - 1e-6);
   EXPECT_LT(result["optimization"]["objective_final"].get<double>(),
             1e-6 * result["optimization"]["objective_initial"].get<double>());
+  // Who made it, when; the final equilibrium's force residual.
+  EXPECT_EQ(result["run"]["command"], "optimize");
+  EXPECT_EQ(result["run"]["version"], tightfit_version());
+  EXPECT_EQ(result["run"]["date"].get<std::string>().size(), 20u);  // 2026-12-02T03:41:07Z
+  EXPECT_LT(result["optimization"]["force_residual_n"].get<double>(), 1e-6);
+  // The report is an optimization report with the run summary and the overlay.
+  const std::string html = test::read_text(out / "report.html");
+  EXPECT_NE(html.find("<title>tightfit optimization report — scene</title>"), std::string::npos);
+  EXPECT_NE(html.find("\"initial_outline\""), std::string::npos);
+  EXPECT_NE(html.find("\"stop_reason\""), std::string::npos);
+}
+
+TEST_F(OptimizeCli, VersionFlagPrintsTheVersion) {
+  const CliRun r = run_cli("--version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.output, std::string("tightfit ") + tightfit_version() + "\n");
 }
 
 TEST_F(OptimizeCli, ResumeContinuesFromTheCheckpoint) {

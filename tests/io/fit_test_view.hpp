@@ -136,7 +136,10 @@ inline FitView band_on_sphere(int cols = 24, int rows = 6) {
       {"body", {{"generator", "sphere"}, {"radius_m", kSphereRadius}}},
       {"fabric", {{"thickness_m", 1e-4}, {"young_modulus_pa", 5.4e6}, {"poisson", 0.33}}}};
   for (int it = 0; it < 12; ++it) {
-    view.history.push_back({{"iteration", it}, {"objective", 2.0 * std::exp(-0.5 * it) + 0.01}});
+    const double stretch = 2.0 * std::exp(-0.5 * it), spacing = it == 0 ? 0.0 : 0.01;
+    view.history.push_back({{"iteration", it},
+                            {"objective", stretch + spacing},
+                            {"terms", {{"stretch", stretch}, {"boundary spacing", spacing}}}});
   }
   return view;
 }

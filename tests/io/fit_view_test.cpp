@@ -89,6 +89,20 @@ TEST(FitView, RejectsBadInput) {
   }
   {
     FitView v = good;
+    v.summary = nlohmann::json::array();
+    expect_input_error(v, "summary must be a JSON object");
+  }
+  {
+    FitView v = good;
+    v.initial_outlines = {Points2::Zero(4, 2)};  // one outline, two pieces
+    expect_input_error(v, "1 initial outlines for 2 pieces");
+    v.initial_outlines = {Points2::Zero(4, 2), Points2::Constant(3, 2, std::nan(""))};
+    expect_input_error(v, "is not a polygon of finite points");
+    v.initial_outlines = {Points2::Zero(4, 2), Points2()};  // no outline for the second
+    EXPECT_NO_THROW(validate_fit_view(v, "report.html"));
+  }
+  {
+    FitView v = good;
     v.body.vertices(0, 0) = std::nan("");
     expect_input_error(v, "body has non-finite vertex positions");
   }

@@ -135,6 +135,11 @@ try {
   summary.liftoffBars = await page.locator('#histogram rect.bar.liftoff').count();
   summary.targetLines = await page.locator('#histogram line.target').count();
   summary.pressureWarnings = await page.locator('#histogram .pressure-warning').count();
+  summary.initialOutlines = await page.locator('#pattern polygon.initial-outline').count();
+  summary.historyCurves = await page.locator('#history polyline.history-curve').evaluateAll((els) => els.map((e) => e.getAttribute('data-term')));
+  summary.historyTicks = await page.locator('#history text.ytick-label').allTextContents();
+  summary.summaryText = await page.locator('#summary').textContent();
+  summary.title = await page.title();
 
   if (consoleErrors.length > 0) failures.push(`console errors: ${consoleErrors.join(' | ')}`);
   if (externalRequests.length > 0) failures.push(`network requests: ${externalRequests.join(' ')}`);

@@ -120,6 +120,17 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   front.faces = resolved_piece_faces(view)[0];
   std::sort(front.faces.begin(), front.faces.end());
   view.pressure_regions = {front, alternate};
+  // An optimization run: the pieces' outlines before it (shrunk by 5 %), a summary.
+  for (const PatternPiece& piece : view.pattern.pieces) {
+    Points2 outline(static_cast<Eigen::Index>(piece.boundary.size()), 2);
+    for (size_t i = 0; i < piece.boundary.size(); ++i)
+      outline.row(static_cast<Eigen::Index>(i)) = 0.95 * piece.rest.row(piece.boundary[i]);
+    view.initial_outlines.push_back(outline);
+  }
+  view.summary = {{"command", "optimize"}, {"scene", "band.json"}, {"status", "converged"},
+                  {"stop_reason", "gradient norm 1e-9 <= 1e-8"}, {"iterations", 11},
+                  {"objective_initial", 2.0}, {"objective_final", 0.018}, {"seconds", 12.5},
+                  {"version", "0.1.0"}};
   const auto summary = check_in_browser(view, "report_browser");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
   EXPECT_GT(summary.at("pixels").at("notBackground").get<double>(), 0.05);
@@ -135,6 +146,17 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   EXPECT_EQ(summary.at("targetLines"), 2);
   // The synthetic pressure reaches 2800 Pa = 21 mmHg: no warning.
   EXPECT_EQ(summary.at("pressureWarnings"), 0);
+  // The before/after overlay: one dashed initial outline per piece.
+  EXPECT_EQ(summary.at("initialOutlines"), 2);
+  // The total and each term, on a log axis with decade labels.
+  EXPECT_EQ(summary.at("historyCurves"),
+            (nlohmann::json{"objective (total)", "boundary spacing", "stretch"}));
+  const auto ticks = summary.at("historyTicks").get<std::vector<std::string>>();
+  EXPECT_NE(std::find(ticks.begin(), ticks.end(), "0.01"), ticks.end()) << summary.dump(2);
+  EXPECT_NE(std::find(ticks.begin(), ticks.end(), "1"), ticks.end()) << summary.dump(2);
+  const std::string run = summary.at("summaryText").get<std::string>();
+  for (const char* word : {"optimize", "converged", "gradient norm", "11", "0.1.0", "ratio 0.009"})
+    EXPECT_NE(run.find(word), std::string::npos) << word << " missing in: " << run;
 }
 
 TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
@@ -151,6 +173,8 @@ TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
   EXPECT_EQ(summary.at("colorings").size(), 3u);
   EXPECT_EQ(summary.at("pressureWarnings"), 1);
   EXPECT_EQ(summary.at("regionRows"), 0);
+  EXPECT_EQ(summary.at("initialOutlines"), 0);
+  EXPECT_EQ(summary.at("historyCurves").size(), 0u);
 }
 
 }  // namespace

@@ -46,7 +46,8 @@ std::vector<std::string> export_fit(const LoadedScene& scene, const Garment& gar
                                     : "NOT an equilibrium (the scene, its files or tightfit "
                                       "changed since the run?)");
   const FitAnalysis fit = sim->analyze();
-  return write_fit_run_outputs(folder, *sim, fit, scene.spec.pressure_operator, state);
+  return write_fit_run_outputs(folder, *sim, fit, scene.spec.pressure_operator, state,
+                               &scene.garment.pattern);
 }
 
 /// Regenerates the outputs of a layout state into `folder`; returns the files.

@@ -139,6 +139,7 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
     final_terms[names[k]] = history.back().term_values[k];
   }
   nlohmann::json& result_json = state.result;
+  result_json["run"] = run_identity_json("optimize");
   result_json["scene"] = scene_file;
   result_json["optimization"] = {{"converged", result.converged},
                                  {"interrupted", result.interrupted},
@@ -151,6 +152,8 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
                                  {"gradient_norm_initial", history.front().gradient_norm},
                                  {"gradient_norm_final", history.back().gradient_norm},
                                  {"design_parameters", problem.num_parameters()},
+                                 {"force_residual_n",
+                                  sim->problem().force_norm(sim->problem().gradient())},
                                  {"seconds_optimization", history.back().seconds}};
   result_json["compute"] = compute_json();
   result_json["counts"] = {{"body_vertices", scene->body.num_vertices()},
@@ -167,7 +170,8 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
   result_json["seconds"] = seconds;
   std::printf("  objective %.6e -> %.6e in %d iterations (%.1f s)\n", history.front().value,
               history.back().value, result.iterations, history.back().seconds);
-  std::vector<std::string> files = write_fit_run_outputs(out, *sim, fit, op, state);
+  std::vector<std::string> files =
+      write_fit_run_outputs(out, *sim, fit, op, state, &scene->garment.pattern);
   files.push_back("checkpoint.json");
   for (const auto& f : files) std::printf("  %s\n", (out / f).c_str());
   if (result.interrupted) {

@@ -2,6 +2,7 @@
 
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/parallel.hpp"
+#include "tightfit/common/version.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/pattern_outputs.hpp"
 #include "tightfit/io/pressure_statistics.hpp"
@@ -15,7 +16,8 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
                                                const GarmentSimulation& sim,
                                                const FitAnalysis& fit,
                                                ShapeOperatorKind pressure_operator,
-                                               RunState& state) {
+                                               RunState& state,
+                                               const Pattern* initial_pattern) {
   std::vector<std::string> files = {"garment.ply", "body.ply"};
   write_fit_meshes(folder, sim, fit, pressure_operator);
   if (sim.garment().pattern.pieces.size() <= kMaxPatternPieces)
@@ -48,7 +50,24 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   files.push_back("state.json");
   FitView view = make_fit_view(sim, fit, pressure_operator, state.scene, records);
   view.pressure_regions = regions;
-  write_fit_report(folder, view);
+  view.summary = report_summary(state);
+  if (initial_pattern && state.command == "optimize") {
+    for (const PatternPiece& piece : view.pattern.pieces) {
+      Points2 outline;
+      for (const PatternPiece& before : initial_pattern->pieces)
+        if (before.name == piece.name) {
+          outline.resize(static_cast<Eigen::Index>(before.boundary.size()), 2);
+          for (size_t i = 0; i < before.boundary.size(); ++i)
+            outline.row(static_cast<Eigen::Index>(i)) = before.rest.row(before.boundary[i]);
+        }
+      view.initial_outlines.push_back(std::move(outline));
+    }
+  }
+  const std::string scene_name = std::filesystem::path(state.scene_file).stem().string();
+  write_fit_report(folder, view,
+                   std::string(state.command == "optimize" ? "tightfit optimization report"
+                                                           : "tightfit fit report") +
+                       (scene_name.empty() ? "" : " — " + scene_name));
   files.insert(files.end(), {"report.html", "fit.glb"});
   return files;
 }
@@ -67,6 +86,34 @@ std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& f
   write_run_state(folder / "state.json", state);
   files.insert(files.end(), {"garment_embedded.ply", "layout.json", "state.json"});
   return files;
+}
+
+nlohmann::json run_identity_json(const std::string& command) {
+  return {{"command", command}, {"version", tightfit_version()}, {"date", utc_timestamp()}};
+}
+
+nlohmann::json report_summary(const RunState& state) {
+  nlohmann::json s = {{"command", state.command}, {"scene", state.scene_file}};
+  const nlohmann::json& r = state.result;
+  if (r.contains("run") && r["run"].is_object())
+    for (const char* key : {"version", "date"})
+      if (r["run"].contains(key)) s[key] = r["run"][key];
+  if (const auto o = r.find("optimization"); o != r.end() && o->is_object()) {
+    const bool interrupted = o->value("interrupted", false);
+    s["status"] = interrupted ? "interrupted" : o->value("converged", false) ? "converged" : "stopped";
+    for (const char* key : {"stop_reason", "iterations", "objective_initial", "objective_final",
+                            "force_residual_n"})
+      if (o->contains(key)) s[key] = (*o)[key];
+    if (o->contains("seconds_optimization")) s["seconds"] = (*o)["seconds_optimization"];
+  } else if (const auto n = r.find("newton"); n != r.end() && n->is_object()) {
+    s["status"] = n->value("converged", false) ? "converged" : "not converged";
+    if (n->contains("message")) s["stop_reason"] = (*n)["message"];
+    if (n->contains("iterations")) s["newton_iterations"] = (*n)["iterations"];
+    if (n->contains("final_force_residual_n")) s["force_residual_n"] = (*n)["final_force_residual_n"];
+    if (n->contains("force_tolerance_n")) s["force_tolerance_n"] = (*n)["force_tolerance_n"];
+    if (r.contains("seconds") && r["seconds"].contains("total")) s["seconds"] = r["seconds"]["total"];
+  }
+  return s;
 }
 
 nlohmann::json compute_json() {

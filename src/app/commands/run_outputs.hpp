@@ -24,13 +24,25 @@ constexpr size_t kMaxPatternPieces = 64;
 /// pattern files, result.json (`state.result` with "fit" set to the fit statistics),
 /// scene.json, history.json (optimize runs), state.json, report.html (with the
 /// objective history of optimize runs), fit.glb. `state` is the run's state with the
-/// simulation's pattern and equilibrium; its result gets the "fit" member. Returns the
-/// names of the files written.
+/// simulation's pattern and equilibrium; its result gets the "fit" member.
+/// `initial_pattern` (optimize runs: the scene's pattern before the optimization) gives
+/// the report's before/after overlay; pieces are matched by name. The report is titled
+/// and headed by its run summary (report_summary). Returns the names of the files
+/// written.
 std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& folder,
                                                const GarmentSimulation& sim,
                                                const FitAnalysis& fit,
                                                ShapeOperatorKind pressure_operator,
-                                               RunState& state);
+                                               RunState& state,
+                                               const Pattern* initial_pattern = nullptr);
+
+/// result.json's "run": {"command", "version", "date" (UTC, ISO 8601)}.
+nlohmann::json run_identity_json(const std::string& command);
+
+/// The report's run summary from a fit run's state (command, scene, version, date and,
+/// from its result: status, stop reason, iterations, seconds, force residual,
+/// objective before and after).
+nlohmann::json report_summary(const RunState& state);
 
 /// Writes the outputs of a layout run into `folder`: the pattern files of `garment`,
 /// garment_embedded.ply (each garment vertex at its limit-surface point over the

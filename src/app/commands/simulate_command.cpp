@@ -44,6 +44,7 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir, boo
   const VecX yf = Eigen::Map<const VecX>(y.data(), y.size());
   RunState state = make_run_state("simulate", scene->spec, sim->garment(), sim->problem().state());
   nlohmann::json& result = state.result;
+  result["run"] = run_identity_json("simulate");
   result["scene"] = scene_file;
   result["counts"] = {{"body_vertices", scene->body.num_vertices()},
                       {"body_tets", scene->body.volume.num_tets()},

@@ -108,6 +108,19 @@ void validate_fit_view(const FitView& view, const std::string& source) {
   validate_pattern_mapping(view, source);
   if (!view.parameters.is_object()) throw InputError(source, "parameters must be a JSON object");
   if (!view.history.is_array()) throw InputError(source, "history must be a JSON array");
+  if (!view.summary.is_object()) throw InputError(source, "summary must be a JSON object");
+  if (!view.initial_outlines.empty()) {
+    if (view.initial_outlines.size() != view.pattern.pieces.size())
+      throw InputError(source, std::to_string(view.initial_outlines.size()) +
+                                   " initial outlines for " +
+                                   std::to_string(view.pattern.pieces.size()) + " pieces");
+    for (size_t k = 0; k < view.initial_outlines.size(); ++k) {
+      const Points2& o = view.initial_outlines[k];
+      if (o.rows() == 1 || o.rows() == 2 || !o.allFinite())
+        throw InputError(source, "the initial outline of piece \"" + view.pattern.pieces[k].name +
+                                     "\" is not a polygon of finite points");
+    }
+  }
   for (const FitRegion& region : view.pressure_regions) {
     if (!(region.min_pa <= region.max_pa))
       throw InputError(source, "pressure region \"" + region.name + "\" has min > max");

@@ -73,11 +73,21 @@ struct FitView {
   nlohmann::json history = nlohmann::json::array();
   /// Pressure target regions; may be empty.
   std::vector<FitRegion> pressure_regions;
+  /// Per piece (empty, or one per pattern piece): the piece's outline before the
+  /// optimization (n×2, m, the pattern's frame), drawn dashed under the optimized one.
+  /// An empty entry: nothing to compare (e.g. a piece the scene does not have).
+  std::vector<Points2> initial_outlines;
+  /// The run at a glance, shown at the top of the report (an object; may be empty):
+  /// e.g. {"command", "scene", "version", "date", "status", "stop_reason",
+  /// "iterations", "seconds", "force_residual_n", "objective_initial",
+  /// "objective_final"}.
+  nlohmann::json summary = nlohmann::json::object();
 };
 
 /// Checks shapes and indices: faces index existing vertices, every field has one row
 /// per face of its mesh and a valid unique name, the pattern triangles map one-to-one
-/// onto the garment faces, `history` is an array and `parameters` an object.
+/// onto the garment faces, `history` is an array and `parameters` and `summary` objects,
+/// `initial_outlines` is empty or has one finite n×2 outline (n ≠ 1, 2) per piece.
 /// Throws InputError with `source` (e.g. the output file) naming the problem.
 void validate_fit_view(const FitView& view, const std::string& source);
 

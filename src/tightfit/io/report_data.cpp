@@ -97,6 +97,8 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
                       {"faces", u32(faces)},
                       {"boundary", piece.boundary},
                       {"grain", {piece.grain.x(), piece.grain.y()}}});
+    if (!view.initial_outlines.empty() && view.initial_outlines[k].rows() > 0)
+      pieces.back()["initial_outline"] = f32(flat_doubles(view.initial_outlines[k]));
   }
 
   // Pressure by region and the garment's pressure histogram (mmHg), one definition
@@ -133,6 +135,7 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
           {"stats", fit_statistics_json(compute_fit_statistics(view))},
           {"parameters", view.parameters},
           {"history", view.history},
+          {"summary", view.summary},
           {"pressure_regions", regions},
           {"pressure_histogram", histogram}};
 }

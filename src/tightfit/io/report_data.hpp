@@ -11,7 +11,9 @@
 ///                          negative_color: [r,g,b] bytes for values < 0 (lift-off), optional}
 ///   missing_colorings[]   labels of requested colourings whose field the fit lacks
 ///   pieces[]              {name, rest: f32 n×2 (m), triangles: u32 t×3, faces: u32 t
-///                          (garment face of each triangle), boundary: [vertex], grain: [x,y]}
+///                          (garment face of each triangle), boundary: [vertex], grain: [x,y],
+///                          initial_outline: f32 n×2 (m), optional: before optimization}
+///   summary               the run at a glance (FitView::summary), an object
 ///   stats                 fit_statistics_json
 ///   parameters, history   as in FitView
 ///   pressure_regions[]    region_statistics_json of each FitView region (pressure_statistics.hpp)

@@ -187,9 +187,12 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, Shap
   return view;
 }
 
-void write_fit_report(const std::filesystem::path& folder, const FitView& view) {
+void write_fit_report(const std::filesystem::path& folder, const FitView& view,
+                      const std::string& title) {
   write_fit_glb(folder / "fit.glb", view);
-  write_report_html(folder / "report.html", view);
+  ReportOptions options;
+  options.title = title;
+  write_report_html(folder / "report.html", view, options);
 }
 
 void write_fit_meshes(const std::filesystem::path& folder, const GarmentSimulation& sim,

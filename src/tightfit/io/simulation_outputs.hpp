@@ -8,6 +8,7 @@
 #include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/fit_view.hpp"
+#include "tightfit/io/report_html.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit {
@@ -48,8 +49,10 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit,
                       const nlohmann::json& history = nlohmann::json::array());
 
 /// Writes fit.glb (garment coloured by max stretch, with the body) and report.html
-/// (three.js viewer, colour maps, pieces, statistics) into `folder`.
-void write_fit_report(const std::filesystem::path& folder, const FitView& view);
+/// (three.js viewer, colour maps, pieces, statistics) into `folder`; `title` heads the
+/// report (ReportOptions::title).
+void write_fit_report(const std::filesystem::path& folder, const FitView& view,
+                      const std::string& title = ReportOptions{}.title);
 
 /// Writes garment.ply, body.ply (deformed surface; per-vertex displacement in m) into
 /// `folder` (atomic per file).
