@@ -27,7 +27,11 @@ function typedArray(text) {
 
 const garment = { positions: typedArray(data.garment.positions), indices: typedArray(data.garment.indices) };
 const body = data.body ? { positions: typedArray(data.body.positions), indices: typedArray(data.body.indices) } : null;
-const colorings = data.colorings.map((c) => ({ ...c, values: typedArray(c.values) }));
+// Each colouring keeps its robust range (percentiles) and can switch to the data's own.
+const colorings = data.colorings.map((c) => ({
+  ...c, values: typedArray(c.values), robust: [c.lo, c.hi], fixed: c.range_rule === 'fixed',
+}));
+let fullRange = false;
 const pieces = data.pieces.map((p) => ({
   ...p, rest: typedArray(p.rest), triangles: typedArray(p.triangles), faces: typedArray(p.faces),
   initial: p.initial_outline ? typedArray(p.initial_outline) : null,
@@ -178,6 +182,11 @@ function drawLegend(coloring) {
   }
   const ticks = document.createElement('div');
   ticks.className = 'ticks';
+  // Enough digits that neighbouring ticks differ: the range's span sets the last digit.
+  const span = coloring.hi - coloring.lo;
+  const magnitude = Math.max(Math.abs(coloring.lo), Math.abs(coloring.hi));
+  const digits = Math.min(8, Math.max(3, Math.ceil(Math.log10(magnitude / span)) + 2));
+  const clampedLow = coloring.data_min < coloring.lo, clampedHigh = coloring.data_max > coloring.hi;
   // Ends, middle and zero (when inside the range), leaving out ticks that would overlap.
   const candidates = [coloring.lo, coloring.hi];
   if (coloring.lo < 0 && coloring.hi > 0) candidates.push(0);
@@ -191,7 +200,9 @@ function drawLegend(coloring) {
     const t = (v - coloring.lo) / (coloring.hi - coloring.lo);
     const tick = document.createElement('span');
     tick.style.left = `${Math.min(Math.max(t, 0.04), 0.96) * 100}%`;
-    tick.textContent = fmt(v);
+    const prefix = v === coloring.lo && clampedLow ? '≤ ' : v === coloring.hi && clampedHigh ? '≥ ' : '';
+    tick.textContent = prefix + fmt(v, digits);
+    if (prefix) tick.className = 'clamped';
     ticks.appendChild(tick);
   }
   box.append(canvas, ticks);
@@ -205,7 +216,11 @@ function drawLegend(coloring) {
   }
   const note = document.createElement('span');
   note.className = 'hint';
-  note.textContent = 'values outside the range are clamped; grey: no value';
+  const rule = coloring.fixed ? 'fixed range'
+    : fullRange ? 'full data range' : '1st–99th percentile of the faces';
+  const outside = clampedLow || clampedHigh
+    ? ` (data ${fmt(coloring.data_min, digits)} to ${fmt(coloring.data_max, digits)}; ≤/≥ ends are clamped)` : '';
+  note.textContent = `scale: ${rule}${coloring.include_zero ? ', with 0' : ''}${outside}; grey: no value`;
   legend.appendChild(note);
 }
 
@@ -638,6 +653,14 @@ colorings.forEach((c, i) => {
   select.appendChild(option);
 });
 select.addEventListener('change', () => applyColoring(Number(select.value)));
+document.getElementById('full-range').addEventListener('change', (e) => {
+  fullRange = e.target.checked;
+  for (const c of colorings) {
+    if (c.categories || c.fixed) continue;
+    [c.lo, c.hi] = fullRange ? [c.data_min, c.data_max] : c.robust;
+  }
+  applyColoring(report.coloring);
+});
 if (data.missing_colorings.length > 0) {
   const missing = document.getElementById('missing');
   missing.hidden = false;

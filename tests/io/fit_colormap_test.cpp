@@ -52,7 +52,7 @@ FaceField scalar(std::vector<double> v) {
   return f;
 }
 
-TEST(FitColormap, DefaultRangeIsDataRange) {
+TEST(FitColormap, DefaultRangeOfFewValuesIsTheirRange) {
   FieldColoring c;
   c.field = "f";
   const auto r = resolve_coloring(c, scalar({2.0, 5.0, std::nan(""), 3.0}), "x");
@@ -62,6 +62,30 @@ TEST(FitColormap, DefaultRangeIsDataRange) {
   expect_rgb_near(r.color(r.values[2]), kNoValueColor, 0.0);
   expect_rgb_near(r.color(2.0), colormap_color(ColorMap::kViridis, 0.0), 1e-12);
   expect_rgb_near(r.color(9.0), colormap_color(ColorMap::kViridis, 1.0), 1e-12);  // clamped
+  EXPECT_DOUBLE_EQ(r.data_min, 2.0);
+  EXPECT_DOUBLE_EQ(r.data_max, 5.0);
+  EXPECT_FALSE(r.explicit_range);
+}
+
+TEST(FitColormap, DefaultRangeLeavesOutliers) {
+  // 1000 faces stretched 1.25-1.35 and three at 1.78 (a spike): the colours span the
+  // garment, not the spike; the data range is kept for the legend.
+  std::vector<double> v;
+  for (int i = 0; i < 1000; ++i) v.push_back(1.25 + 0.1 * i / 999.0);
+  for (int i = 0; i < 3; ++i) v.push_back(1.78);
+  FieldColoring c;
+  c.field = "f";
+  const auto r = resolve_coloring(c, scalar(v), "x");
+  EXPECT_NEAR(r.lo, 1.251, 1e-3);  // the 1st percentile
+  EXPECT_NEAR(r.hi, 1.349, 1e-3);  // the 99th
+  EXPECT_DOUBLE_EQ(r.data_min, 1.25);
+  EXPECT_DOUBLE_EQ(r.data_max, 1.78);
+  // include_zero widens both ranges.
+  c.include_zero = true;
+  const auto z = resolve_coloring(c, scalar(v), "x");
+  EXPECT_EQ(z.lo, 0.0);
+  EXPECT_EQ(z.data_min, 0.0);
+  EXPECT_NEAR(z.hi, 1.349, 1e-3);
 }
 
 TEST(FitColormap, ScaleIncludeZeroAndExplicitRange) {

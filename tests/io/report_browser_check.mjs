@@ -140,6 +140,10 @@ try {
   summary.historyTicks = await page.locator('#history text.ytick-label').allTextContents();
   summary.summaryText = await page.locator('#summary').textContent();
   summary.title = await page.title();
+  // The colour scale: percentiles by default, the data's own range on request.
+  await page.check('#full-range');
+  await settle();
+  summary.legendFullRange = await page.locator('#legend').textContent();
 
   if (consoleErrors.length > 0) failures.push(`console errors: ${consoleErrors.join(' | ')}`);
   if (externalRequests.length > 0) failures.push(`network requests: ${externalRequests.join(' ')}`);
@@ -150,6 +154,8 @@ try {
   if (fillsA.length === 0) failures.push('the pattern view has no coloured triangles');
   if (summary.patternFillsChanged < fillsA.length / 4) failures.push(`switching the colour map changed only ${summary.patternFillsChanged} of ${fillsA.length} pattern triangles`);
   if (legendA === legendB) failures.push('the legend did not change with the colour map');
+  if (!/scale: 1st–99th percentile/.test(legendB)) failures.push(`the legend does not state its scale: ${legendB}`);
+  if (!/scale: full data range/.test(summary.legendFullRange)) failures.push(`the full-range switch did not change the legend: ${summary.legendFullRange}`);
 } catch (e) {
   failures.push(`browser check failed: ${e.stack ?? e}`);
 } finally {

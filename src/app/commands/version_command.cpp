@@ -1,8 +1,10 @@
-/// `tightfit version`: prints the program version and the linked library versions.
+/// `tightfit version` (and `tightfit --version`, main.cpp): prints the program version
+/// (common/version.hpp) and the linked library versions.
 #include <Eigen/Core>
 #include <cstdio>
 
 #include "command_registry.hpp"
+#include "tightfit/common/version.hpp"
 
 namespace tightfit::app {
 namespace {
@@ -10,8 +12,8 @@ namespace {
 const CommandRegistration kVersion{"version", [](CLI::App& root) {
   auto* cmd = root.add_subcommand("version", "Print the tightfit version and library versions");
   cmd->callback([] {
-    std::printf("tightfit 0.1.0 (Eigen %d.%d.%d)\n", EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION,
-                EIGEN_MINOR_VERSION);
+    std::printf("tightfit %s (Eigen %d.%d.%d)\n", tightfit_version(), EIGEN_WORLD_VERSION,
+                EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION);
   });
 }};
 

@@ -123,36 +123,45 @@ ResolvedColoring resolve_coloring(const FieldColoring& coloring, const FaceField
   ResolvedColoring out;
   out.coloring = coloring;
   out.values.resize(static_cast<std::size_t>(field.values.rows()));
-  double lo = std::numeric_limits<double>::infinity();
-  double hi = -lo;
+  std::vector<double> finite;
   for (Eigen::Index i = 0; i < field.values.rows(); ++i) {
     const double v = field.values(i, 0) * coloring.scale;
     out.values[static_cast<std::size_t>(i)] = std::isfinite(v) ? v : std::nan("");
-    if (std::isfinite(v)) {
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
-    }
+    if (std::isfinite(v)) finite.push_back(v);
   }
-  if (!std::isfinite(lo)) {
-    lo = 0.0;
-    hi = 1.0;
+  double lo = 0.0, hi = 1.0, data_min = 0.0, data_max = 1.0;
+  if (!finite.empty()) {
+    std::sort(finite.begin(), finite.end());
+    const auto last = static_cast<double>(finite.size() - 1);
+    lo = finite[static_cast<size_t>(std::floor(0.01 * last))];
+    hi = finite[static_cast<size_t>(std::ceil(0.99 * last))];
+    data_min = finite.front();
+    data_max = finite.back();
   }
   if (coloring.include_zero) {
     lo = std::min(lo, 0.0);
     hi = std::max(hi, 0.0);
+    data_min = std::min(data_min, 0.0);
+    data_max = std::max(data_max, 0.0);
   }
   if (coloring.lo) lo = *coloring.lo;
   if (coloring.hi) hi = *coloring.hi;
   if (!std::isfinite(lo) || !std::isfinite(hi) || lo > hi) {
     throw InputError(source, "colour range for '" + field.name + "' must be finite with lo <= hi");
   }
-  if (lo == hi) {
-    const double pad = std::max(1e-9, 1e-6 * std::abs(lo));
-    lo -= pad;
-    hi += pad;
-  }
+  auto widen = [](double& a, double& b) {
+    if (a != b) return;
+    const double pad = std::max(1e-9, 1e-6 * std::abs(a));
+    a -= pad;
+    b += pad;
+  };
+  widen(lo, hi);
+  widen(data_min, data_max);
   out.lo = lo;
   out.hi = hi;
+  out.data_min = data_min;
+  out.data_max = data_max;
+  out.explicit_range = coloring.lo.has_value() || coloring.hi.has_value();
   return out;
 }
 

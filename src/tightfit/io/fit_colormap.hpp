@@ -4,9 +4,12 @@
 ///
 /// Range rule (documented in the outputs too): a value v is mapped to
 /// t = (v - lo) / (hi - lo) clamped to [0, 1]. Unless given explicitly, [lo, hi] is
-/// the [min, max] of the field's finite values (widened to include 0 when
-/// `include_zero`, so that negative pressure — lift-off — is always told apart from
-/// positive); if lo == hi the range is widened to lo ± max(1e-9, 1e-6 |lo|).
+/// the 1st to 99th percentile of the field's finite values (nearest rank over the
+/// faces), so that one outlier does not turn the rest of the garment into one colour;
+/// the data's own [min, max] is kept beside it (the report marks clamped ends and can
+/// switch to it). Both are widened to include 0 when `include_zero`, so that negative
+/// pressure — lift-off — is always told apart from positive; if lo == hi the range is
+/// widened to lo ± max(1e-9, 1e-6 |lo|).
 /// NaN values get the neutral grey kNoValueColor.
 #include <array>
 #include <optional>
@@ -77,6 +80,10 @@ struct ResolvedColoring {
   std::vector<double> values;  ///< scaled value per face (NaN where none)
   double lo = 0.0;
   double hi = 1.0;
+  /// The finite values' [min, max] (with 0 when include_zero; lo ± pad when equal).
+  double data_min = 0.0;
+  double data_max = 1.0;
+  bool explicit_range = false;  ///< lo and hi came from the coloring, not the data
 
   /// Colour of a scaled value under the range rule (kNoValueColor for NaN).
   Rgb color(double value) const;

@@ -52,6 +52,10 @@ nlohmann::json coloring_json(const ResolvedColoring& c) {
                       {"colormap", colormap_name(c.coloring.colormap)},
                       {"lo", c.lo},
                       {"hi", c.hi},
+                      {"data_min", c.data_min},
+                      {"data_max", c.data_max},
+                      {"range_rule", c.explicit_range ? "fixed" : "percentiles"},
+                      {"include_zero", c.coloring.include_zero},
                       {"values", f32(c.values)}};
   if (c.coloring.negative_color) j["negative_color"] = bytes(*c.coloring.negative_color);
   if (c.coloring.colormap == ColorMap::kRegime) {

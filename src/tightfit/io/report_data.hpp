@@ -5,7 +5,9 @@
 ///
 ///   title                 string
 ///   body, garment         {positions: f32 n×3 (m), indices: u32 m×3} (body null if empty)
-///   colorings[]           {field, label, unit, colormap, lo, hi, values: f32 per garment
+///   colorings[]           {field, label, unit, colormap, lo, hi (the colour range: 1st–99th
+///                          percentile unless fixed), data_min, data_max, range_rule
+///                          ("percentiles" | "fixed"), include_zero, values: f32 per garment
 ///                          face (scaled), lut: 256×3 sRGB bytes (continuous maps) or
 ///                          categories: [{value, label, color: [r,g,b] bytes}],
 ///                          negative_color: [r,g,b] bytes for values < 0 (lift-off), optional}
