@@ -25,13 +25,23 @@ function typedArray(text) {
   throw new Error('unknown array encoding ' + kind);
 }
 
-const garment = { positions: typedArray(data.garment.positions), indices: typedArray(data.garment.indices) };
+const garment = { positions: typedArray(data.garment.positions), indices: typedArray(data.garment.indices),
+  normals: data.garment.normals ? typedArray(data.garment.normals) : null };
 const body = data.body ? { positions: typedArray(data.body.positions), indices: typedArray(data.body.indices) } : null;
 // Each colouring keeps its robust range (percentiles) and can switch to the data's own.
 const colorings = data.colorings.map((c) => ({
   ...c, values: typedArray(c.values), robust: [c.lo, c.hi], fixed: c.range_rule === 'fixed',
 }));
 let fullRange = false;
+// Colour by piece: a categorical colouring made here from the pieces' faces.
+const PIECE_COLORS = [[31, 119, 180], [255, 127, 14], [44, 160, 44], [214, 39, 40], [148, 103, 189],
+  [140, 86, 75], [227, 119, 194], [127, 127, 127], [188, 189, 34], [23, 190, 207]];
+if (data.pieces.length > 0 && data.pieces.length <= 64) {
+  const values = new Float32Array(garment.indices.length / 3).fill(NaN);
+  data.pieces.forEach((p, k) => { for (const f of typedArray(p.faces)) values[f] = k; });
+  colorings.push({ field: 'piece', label: 'Piece', unit: '', values, fixed: true,
+    categories: data.pieces.map((p, k) => ({ value: k, label: p.name, color: PIECE_COLORS[k % PIECE_COLORS.length] })) });
+}
 const pieces = data.pieces.map((p) => ({
   ...p, rest: typedArray(p.rest), triangles: typedArray(p.triangles), faces: typedArray(p.faces),
   initial: p.initial_outline ? typedArray(p.initial_outline) : null,
@@ -81,6 +91,25 @@ const headlight = new THREE.DirectionalLight(0xffffff, 1.2);
 camera.add(headlight);
 scene.add(camera);
 
+// Display lift: the garment and its body are both triangulations of the same limit
+// surface, so where the garment's triangles are longer their chords sag below the
+// body's and the body would show through. The garment is drawn lifted along the body's
+// outward normal by a tenth of its mean edge (stated under the view); the numbers are
+// the simulated positions.
+const garmentEdge = (() => {
+  let sum = 0;
+  const p = garment.positions, t = garment.indices;
+  for (let f = 0; f < t.length; f += 3)
+    for (let k = 0; k < 3; ++k) {
+      const a = 3 * t[f + k], b = 3 * t[f + (k + 1) % 3];
+      sum += Math.hypot(p[a] - p[b], p[a + 1] - p[b + 1], p[a + 2] - p[b + 2]);
+    }
+  return t.length > 0 ? sum / t.length : 0;
+})();
+const displayLift = garment.normals ? 0.1 * garmentEdge : 0;
+const lifted = new Float32Array(garment.positions.length);
+for (let i = 0; i < lifted.length; ++i) lifted[i] = garment.positions[i] + (garment.normals ? displayLift * garment.normals[i] : 0);
+
 // Garment: one vertex per face corner so that every face shows its own colour.
 const garmentGeometry = new THREE.BufferGeometry();
 {
@@ -88,7 +117,7 @@ const garmentGeometry = new THREE.BufferGeometry();
   const positions = new Float32Array(3 * n);
   for (let i = 0; i < n; ++i) {
     const v = garment.indices[i];
-    positions.set(garment.positions.subarray(3 * v, 3 * v + 3), 3 * i);
+    positions.set(lifted.subarray(3 * v, 3 * v + 3), 3 * i);
   }
   garmentGeometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
   garmentGeometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
@@ -111,6 +140,51 @@ if (body) {
   }));
   scene.add(bodyMesh);
 }
+
+// Seams (edges between faces of two pieces), pinned edges (both ends held on the body:
+// cuffs, waistbands) and free garment edges, drawn as lines a little above the garment.
+const faceCount = garment.indices.length / 3;
+const facePiece = new Int32Array(faceCount).fill(-1);
+pieces.forEach((p, k) => { for (const f of p.faces) facePiece[f] = k; });
+const pinned = new Set(Array.isArray(data.pinned) ? data.pinned : []);
+const edgeLines = { seam: [], pinned: [], free: [] };
+{
+  const faceOfEdge = new Map();
+  const t = garment.indices;
+  for (let f = 0; f < faceCount; ++f)
+    for (let k = 0; k < 3; ++k) {
+      const a = t[3 * f + k], b = t[3 * f + (k + 1) % 3];
+      const key = a < b ? `${a},${b}` : `${b},${a}`;
+      const other = faceOfEdge.get(key);
+      if (other === undefined) { faceOfEdge.set(key, f); continue; }
+      faceOfEdge.set(key, -1 - other);  // seen twice
+      if (facePiece[other] !== facePiece[f]) edgeLines.seam.push(a, b);
+    }
+  for (const [key, f] of faceOfEdge) {
+    if (f < 0) continue;
+    const [a, b] = key.split(',').map(Number);
+    (pinned.has(a) && pinned.has(b) ? edgeLines.pinned : edgeLines.free).push(a, b);
+  }
+}
+const edgeGroup = new THREE.Group();
+for (const [kind, color] of [['seam', 0x111111], ['pinned', 0xd42a2a], ['free', 0x5b6570]]) {
+  const ends = edgeLines[kind];
+  if (ends.length === 0) continue;
+  const positions = new Float32Array(3 * ends.length);
+  ends.forEach((v, i) => {
+    for (let c = 0; c < 3; ++c)
+      positions[3 * i + c] = garment.positions[3 * v + c] + (garment.normals ? 1.5 * displayLift * garment.normals[3 * v + c] : 0);
+  });
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  const lines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color }));
+  lines.name = kind;
+  edgeGroup.add(lines);
+}
+scene.add(edgeGroup);
+report.edges = { seam: edgeLines.seam.length / 2, pinned: edgeLines.pinned.length / 2, free: edgeLines.free.length / 2 };
+document.getElementById('view-hint').textContent +=
+  ` Lines: black seams, red pinned edges (cuffs, waistbands), grey free edges. The garment is drawn ${fmt(1000 * displayLift, 2)} mm above the body (a tenth of its mean edge) so that the body never shows through; the numbers are the simulated positions.`;
 
 const controls = new OrbitControls(camera, renderer.domElement);
 {
@@ -146,6 +220,10 @@ function resize() {
 controls.addEventListener('change', render);
 new ResizeObserver(resize).observe(container);
 
+document.getElementById('show-edges').addEventListener('change', (e) => {
+  edgeGroup.visible = e.target.checked;
+  render();
+});
 document.getElementById('show-body').addEventListener('change', (e) => {
   if (bodyMesh) bodyMesh.visible = e.target.checked;
   render();

@@ -103,6 +103,14 @@ TEST(FitView, RejectsBadInput) {
   }
   {
     FitView v = good;
+    v.garment_normals = Points3::Zero(v.garment.vertices.rows() - 1, 3);
+    expect_input_error(v, "one per garment vertex");
+    v.garment_normals = Points3::Zero(v.garment.vertices.rows(), 3);
+    v.pinned_vertices = {static_cast<int>(v.garment.vertices.rows())};
+    expect_input_error(v, "is not a garment vertex");
+  }
+  {
+    FitView v = good;
     v.body.vertices(0, 0) = std::nan("");
     expect_input_error(v, "body has non-finite vertex positions");
   }

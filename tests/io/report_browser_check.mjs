@@ -144,6 +144,15 @@ try {
   await page.check('#full-range');
   await settle();
   summary.legendFullRange = await page.locator('#legend').textContent();
+  // Seams and edges in 3D, and the colouring by piece.
+  summary.edges = await page.evaluate(() => window.tightfitReport.edges);
+  const pieceOption = options.indexOf('Piece');
+  if (pieceOption >= 0) {
+    await page.selectOption('#coloring', String(pieceOption));
+    await page.waitForFunction((i) => window.tightfitReport.coloring === i, pieceOption);
+    await settle();
+    summary.legendPiece = await page.locator('#legend').textContent();
+  }
 
   if (consoleErrors.length > 0) failures.push(`console errors: ${consoleErrors.join(' | ')}`);
   if (externalRequests.length > 0) failures.push(`network requests: ${externalRequests.join(' ')}`);

@@ -131,6 +131,7 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
                   {"stop_reason", "gradient norm 1e-9 <= 1e-8"}, {"iterations", 11},
                   {"objective_initial", 2.0}, {"objective_final", 0.018}, {"seconds", 12.5},
                   {"version", "0.1.0"}};
+  view.pinned_vertices = {0, 1, 2, 3};
   const auto summary = check_in_browser(view, "report_browser");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
   EXPECT_GT(summary.at("pixels").at("notBackground").get<double>(), 0.05);
@@ -154,6 +155,13 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   const auto ticks = summary.at("historyTicks").get<std::vector<std::string>>();
   EXPECT_NE(std::find(ticks.begin(), ticks.end(), "0.01"), ticks.end()) << summary.dump(2);
   EXPECT_NE(std::find(ticks.begin(), ticks.end(), "1"), ticks.end()) << summary.dump(2);
+  // The 3D view draws seams between the pieces and the garment's free edges; a colouring
+  // by piece names the pieces.
+  EXPECT_GT(summary.at("edges").at("seam").get<int>(), 0) << summary.dump(2);
+  EXPECT_GT(summary.at("edges").at("free").get<int>(), 0) << summary.dump(2);
+  const std::string legend_piece = summary.value("legendPiece", "");
+  for (const PatternPiece& piece : view.pattern.pieces)
+    EXPECT_NE(legend_piece.find(piece.name), std::string::npos) << legend_piece;
   const std::string run = summary.at("summaryText").get<std::string>();
   for (const char* word : {"optimize", "converged", "gradient norm", "11", "0.1.0", "ratio 0.009"})
     EXPECT_NE(run.find(word), std::string::npos) << word << " missing in: " << run;
@@ -170,7 +178,7 @@ TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
     if (f.name == "pressure_pa" || f.name == "pressure_mmhg") f.values *= 5.0;
   const auto summary = check_in_browser(view, "report_browser_sparse");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
-  EXPECT_EQ(summary.at("colorings").size(), 3u);
+  EXPECT_EQ(summary.at("colorings").size(), 4u);  // stretch max/min, pressure, piece
   EXPECT_EQ(summary.at("pressureWarnings"), 1);
   EXPECT_EQ(summary.at("regionRows"), 0);
   EXPECT_EQ(summary.at("initialOutlines"), 0);

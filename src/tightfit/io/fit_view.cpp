@@ -109,6 +109,13 @@ void validate_fit_view(const FitView& view, const std::string& source) {
   if (!view.parameters.is_object()) throw InputError(source, "parameters must be a JSON object");
   if (!view.history.is_array()) throw InputError(source, "history must be a JSON array");
   if (!view.summary.is_object()) throw InputError(source, "summary must be a JSON object");
+  if (view.garment_normals.rows() > 0 &&
+      (view.garment_normals.rows() != view.garment.vertices.rows() ||
+       !view.garment_normals.allFinite()))
+    throw InputError(source, "garment normals must be finite, one per garment vertex");
+  for (const int v : view.pinned_vertices)
+    if (v < 0 || v >= view.garment.vertices.rows())
+      throw InputError(source, "pinned vertex " + std::to_string(v) + " is not a garment vertex");
   if (!view.initial_outlines.empty()) {
     if (view.initial_outlines.size() != view.pattern.pieces.size())
       throw InputError(source, std::to_string(view.initial_outlines.size()) +

@@ -61,6 +61,11 @@ struct FitView {
   TriMesh body;                           ///< deformed body surface (m)
   std::vector<FaceField> body_fields;     ///< per body face; may be empty
   TriMesh garment;                        ///< garment in 3D (m), welded across seams
+  /// Outward unit normals of the body surface at the garment vertices (n_g×3), which
+  /// the report lifts the garment along for display (may be empty).
+  Points3 garment_normals;
+  /// Garment vertices held on the body (sorted; pinned cuffs and waistbands).
+  std::vector<int> pinned_vertices;
   std::vector<FaceField> garment_fields;  ///< per garment face (see fit_fields)
   Pattern pattern;                        ///< 2D pieces (m) and seams
   /// piece_faces[k][t]: the garment face of triangle t of piece k. Empty means the

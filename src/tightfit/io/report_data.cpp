@@ -130,9 +130,12 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
                  {"max_mmhg", p.maxCoeff() / kPascalPerMmHg}};
   }
 
+  nlohmann::json garment_json = mesh_json(view.garment);
+  if (view.garment_normals.rows() > 0) garment_json["normals"] = f32(flat_doubles(view.garment_normals));
   return {{"title", title},
           {"body", view.body.num_faces() > 0 ? mesh_json(view.body) : nlohmann::json()},
-          {"garment", mesh_json(view.garment)},
+          {"garment", garment_json},
+          {"pinned", view.pinned_vertices},
           {"colorings", coloring_list},
           {"missing_colorings", missing},
           {"pieces", pieces},

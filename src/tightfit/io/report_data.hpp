@@ -4,7 +4,9 @@
 /// ("f32:" float32, "u32:" uint32 prefixes), which keeps large meshes compact:
 ///
 ///   title                 string
-///   body, garment         {positions: f32 n×3 (m), indices: u32 m×3} (body null if empty)
+///   body, garment         {positions: f32 n×3 (m), indices: u32 m×3} (body null if empty);
+///                         garment.normals: f32 n×3, outward, optional
+///   pinned                [garment vertex] held on the body
 ///   colorings[]           {field, label, unit, colormap, lo, hi (the colour range: 1st–99th
 ///                          percentile unless fixed), data_min, data_max, range_rule
 ///                          ("percentiles" | "fixed"), include_zero, values: f32 per garment

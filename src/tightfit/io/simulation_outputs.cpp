@@ -160,9 +160,22 @@ nlohmann::json newton_report_json(const NewtonReport& r) {
 FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, ShapeOperatorKind op,
                       const nlohmann::json& parameters, const nlohmann::json& history) {
   FitView view;
+  // The body as its limit surface (the control mesh pokes out of it, through the
+  // garment that lies on it).
   const int ns = sim.body().num_surface_vertices();
-  view.body = TriMesh{sim.body_positions().topRows(ns), sim.body().surface.faces};
+  Points3 limit = sim.body_positions().topRows(ns);
+  const Triangles& faces = sim.body().surface.faces;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const SurfacePoint corner{static_cast<int>(f), k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
+      limit.row(faces(f, k)) = sim.surface().position(corner, sim.body_positions()).transpose();
+    }
+  view.body = TriMesh{limit, faces};
   view.garment = TriMesh{sim.garment_positions(), sim.garment().garment_triangles};
+  view.garment_normals.resize(sim.garment_positions().rows(), 3);
+  for (Eigen::Index i = 0; i < view.garment_normals.rows(); ++i)
+    view.garment_normals.row(i) = sim.problem().garment_normal(static_cast<int>(i)).transpose();
+  view.pinned_vertices = sim.garment().pinned;
   const auto n = static_cast<Eigen::Index>(fit.elements.size());
   MatX smax(n, 1), smin(n, 1), dir(n, 3), regime(n, 1), force(n, 1);
   const VecX& p = chosen_pressure(fit, op);
