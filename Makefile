@@ -12,7 +12,7 @@ GENERATOR ?= Ninja
 configure = if [ -f $(1)/CMakeCache.txt ] && ! grep -qx 'CMAKE_GENERATOR:INTERNAL=$(GENERATOR)' $(1)/CMakeCache.txt; \
 	  then rm -rf $(1)/CMakeCache.txt $(1)/CMakeFiles; fi; cmake -S . -B $(1) -G '$(GENERATOR)'
 
-.PHONY: deps build build-asan test test-asan test-memcheck demo bench clean format
+.PHONY: deps build build-asan test test-asan test-memcheck demo bench fuzz clean format
 
 deps:
 	bash scripts/install-deps.sh
@@ -44,6 +44,10 @@ test-memcheck: build
 
 demo: build
 	bash scripts/demo.sh $(BUILD)/tightfit $(DEMO_OUT)
+
+# libFuzzer on every reader (scripts/fuzz.sh): FUZZ_SECONDS per target (default 60).
+fuzz: build
+	bash scripts/fuzz.sh
 
 bench: build
 	bash scripts/bench.sh $(BUILD)

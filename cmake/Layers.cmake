@@ -9,6 +9,11 @@ target_compile_options(tightfit_options INTERFACE -frounding-math)
 if(TIGHTFIT_WERROR)
   target_compile_options(tightfit_options INTERFACE -Werror)
 endif()
+if(TIGHTFIT_BUILD_FUZZERS)
+  # Coverage instrumentation for libFuzzer in every library (fuzz/CMakeLists.txt links
+  # the fuzzers' main); clang only.
+  target_compile_options(tightfit_options INTERFACE -fsanitize=fuzzer-no-link)
+endif()
 if(TIGHTFIT_SANITIZE)
   target_compile_options(tightfit_options INTERFACE -fsanitize=address,undefined
     -fno-omit-frame-pointer -fno-sanitize-recover=undefined)

@@ -22,6 +22,8 @@ CHECK_PKGS=(
 # machine that already has npm (e.g. a newer Node) keeps it. playwright-core is pinned
 # to 1.60, the last release that supports bookworm's Node 18 (1.62+ need Node 20).
 if ! command -v npm >/dev/null 2>&1; then CHECK_PKGS+=(nodejs npm); fi
+# `--fuzz` (scripts/fuzz.sh): clang with libFuzzer and the sanitizer runtimes.
+if [ "${1:-}" = "--fuzz" ]; then CHECK_PKGS+=(clang libclang-rt-dev); fi
 
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi

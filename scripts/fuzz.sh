@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Fuzzes every reader of tightfit with libFuzzer (`make fuzz`): builds fuzz/*_fuzz.cpp
+# with Debian's clang, AddressSanitizer and UBSan into build/fuzz, makes seed corpora
+# from the repository's test files plus files a real run writes (VTU, state.json,
+# checkpoint.json, pieces.json), and runs each target for FUZZ_SECONDS (default 60)
+# seconds. Findings (crash-*, timeout-*, oom-*) land in build/fuzz/findings/TARGET/;
+# the script exits 1 when any target found one.
+# Usage: scripts/fuzz.sh [TARGET...]   (default: all targets)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SECONDS_PER_TARGET="${FUZZ_SECONDS:-60}"
+BUILD=build/fuzz
+RELEASE="${TIGHTFIT_RELEASE_BUILD:-build/release}"
+
+bash scripts/install-deps.sh --fuzz
+cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  -DTIGHTFIT_BUILD_FUZZERS=ON -DTIGHTFIT_SANITIZE=ON -DTIGHTFIT_BUILD_TESTS=OFF \
+  -DTIGHTFIT_BUILD_BENCH=OFF -DTIGHTFIT_PCH=OFF > "$BUILD.configure.log"
+targets=("$@")
+if [ "${#targets[@]}" -eq 0 ]; then
+  for f in fuzz/*_fuzz.cpp; do targets+=("$(basename "$f" .cpp)"); done
+fi
+cmake --build "$BUILD" -j "$(nproc)" --target "${targets[@]}"
+
+# Seeds: the repository's files of each format, and the outputs of one small run of the
+# release build (made if missing).
+seeds="$BUILD/seeds"
+if [ ! -d "$seeds/run" ]; then
+  [ -x "$RELEASE/tightfit" ] || { echo "fuzz: $RELEASE/tightfit is missing (make build)"; exit 2; }
+  mkdir -p "$seeds"
+  rm -rf "$seeds/run.tmp" && mkdir -p "$seeds/run.tmp"
+  echo '{"generator": "sphere", "radius": 0.05, "edge_length": 0.02}' > "$seeds/run.tmp/body.json"
+  "$RELEASE/tightfit" body "$seeds/run.tmp/body.json" --out "$seeds/run.tmp/body" > /dev/null
+  "$RELEASE/tightfit" optimize examples/optimize_sleeve_stretch.json --max-iterations 2 \
+    --out "$seeds/run.tmp/optimize" > /dev/null
+  mv "$seeds/run.tmp" "$seeds/run"
+fi
+corpus_files() {
+  case "$1" in
+    mesh_obj_fuzz) ls tests/geometry/data/*.obj examples/data/*.obj "$seeds/run/body/surface.obj" ;;
+    mesh_ply_fuzz) ls tests/geometry/data/*.ply "$seeds/run/optimize/garment.ply" ;;
+    mesh_off_fuzz) ls tests/geometry/data/*.off ;;
+    mesh_stl_fuzz) ls tests/geometry/data/*.stl ;;
+    tet_vtu_fuzz) ls "$seeds/run/body/volume.vtu" ;;
+    scene_json_fuzz) ls examples/*.json ;;
+    run_state_fuzz) ls "$seeds/run/optimize/state.json" ;;
+    checkpoint_fuzz) ls "$seeds/run/optimize/checkpoint.json" ;;
+    pieces_json_fuzz) ls "$seeds/run/optimize/pieces.json" ;;
+    skeleton_fuzz) ls data/rig/mh_child.joints.json ;;
+    skin_weights_fuzz) printf '%s\n' '{"name": "w", "weights": {"root": [[0, 0.5], [1, 1.0]], "spine05": [[0, 0.5], [2, 1], [3, 1]]}}' > "$seeds/weights.mhw"; ls "$seeds/weights.mhw" ;;
+    layout_spec_fuzz) ls tests/garment/data/*.json ;;
+  esac
+}
+
+status=0
+for t in "${targets[@]}"; do
+  corpus="$BUILD/corpus/$t"
+  findings="$BUILD/findings/$t"
+  mkdir -p "$corpus" "$findings"
+  for f in $(corpus_files "$t"); do cp "$f" "$corpus/"; done
+  echo "fuzz: $t for ${SECONDS_PER_TARGET} s"
+  export TMPDIR="$BUILD/tmp"
+  mkdir -p "$TMPDIR"
+  if ! ASAN_OPTIONS=detect_leaks=0 "$BUILD/fuzz/$t" "$corpus" -max_total_time="$SECONDS_PER_TARGET" \
+      -max_len=262144 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+      -artifact_prefix="$findings/" > "$BUILD/$t.log" 2>&1; then
+    status=1
+    echo "fuzz: $t FOUND A PROBLEM: $(ls "$findings")"
+  fi
+  grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$BUILD/$t.log" | tr '\n' ' '
+  echo
+done
+exit $status
