@@ -1,6 +1,7 @@
 #include "tightfit/common/output_directory.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,24 @@
 
 namespace tightfit::test {
 namespace {
+
+TEST(OutputDirectory, RemovesOnlyWhatKilledRunsLeftUnfinished) {
+  namespace fs = std::filesystem;
+  const auto folder = fs::temp_directory_path() / ("tightfit_stale_" + std::to_string(::getpid()));
+  fs::remove_all(folder);
+  fs::create_directories(folder / ".tightfit-staging.999999999.0");  // no such process
+  const std::string own = std::to_string(::getpid());
+  const std::vector<std::string> kept = {"state.json.tmp." + own + ".1", "notes.tmp",
+                                         "photo.tmp.12.jpg", "result.json"};
+  for (const std::string& name : kept) std::ofstream(folder / name) << "x";
+  std::ofstream(folder / "report.html.tmp.999999999.3") << "x";
+  EXPECT_EQ(remove_stale_temporaries(folder), 2);
+  EXPECT_FALSE(fs::exists(folder / ".tightfit-staging.999999999.0"));
+  EXPECT_FALSE(fs::exists(folder / "report.html.tmp.999999999.3"));
+  // A live writer's file (this process), and names tightfit does not give, stay.
+  for (const std::string& name : kept) EXPECT_TRUE(fs::exists(folder / name)) << name;
+  fs::remove_all(folder);
+}
 
 TEST(OutputDirectory, IsAllOrNothingAndDeletesNothing) {
   const auto target = std::filesystem::temp_directory_path() / "tightfit_outdir_test";

@@ -200,6 +200,55 @@ TEST_F(OptimizeCli, InterruptedRunWritesItsResultsAndResumes) {
   EXPECT_FALSE(read_json(dir_ / "resumed" / "result.json")["optimization"]["interrupted"].get<bool>());
 }
 
+TEST_F(OptimizeCli, KilledTwelveTimesEndsBitIdenticalToAnUninterruptedRunSlow) {
+  // A finer stretch sleeve (about 2.5 s for 40 iterations, a checkpoint after each),
+  // killed with SIGKILL at twelve moments spread over setup, solves and file writes,
+  // and resumed from its own folder each time (started afresh while it has no
+  // checkpoint yet).
+  nlohmann::json s = stretch_scene(40);
+  s["garment"]["sleeve"]["edge_length"] = 0.01;
+  s["body"]["edge_length"] = 0.01;
+  s["optimize"]["checkpoint_every"] = 1;
+  s["optimize"]["regularizers"]["boundary_spacing"] = 0.1;
+  const fs::path scene = write_scene("scene.json", s);
+  const fs::path full = dir_ / "full", part = dir_ / "part";
+  CliRun r = run_cli("optimize " + scene.string() + " --out " + full.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  int kills_with_checkpoint = 0;
+  for (int k = 0; k < 12; ++k) {
+    const bool resume = fs::exists(part / "checkpoint.json");
+    const double delay = 0.12 + 0.06 * ((k * 7) % 12);  // 0.12 … 0.78 s, scrambled
+    const std::string script =
+        std::string(TIGHTFIT_CLI) + " optimize " + scene.string() + " --out " + part.string() +
+        (resume ? " --resume " + part.string() : std::string()) + " > /dev/null 2>&1 & pid=$!; " +
+        "sleep " + std::to_string(delay) + "; kill -KILL $pid 2>/dev/null; wait $pid; true";
+    std::ofstream(dir_ / "kill.sh") << script << "\n";
+    ASSERT_EQ(std::system(("bash " + (dir_ / "kill.sh").string()).c_str()), 0);
+    // Whatever moment the kill hit, a checkpoint that exists is complete.
+    if (fs::exists(part / "checkpoint.json")) {
+      ++kills_with_checkpoint;
+      const nlohmann::json c = read_json(part / "checkpoint.json");
+      EXPECT_EQ(c["format"], "tightfit-optimization-checkpoint") << "after kill " << k;
+    }
+  }
+  EXPECT_GE(kills_with_checkpoint, 6);
+  r = run_cli("optimize " + scene.string() + " --out " + part.string() +
+              (fs::exists(part / "checkpoint.json") ? " --resume " + part.string() : ""));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto a = read_json(full / "history.json")["iterations"];
+  const auto b = read_json(part / "history.json")["iterations"];
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k)
+    EXPECT_EQ(a[k]["objective"].get<double>(), b[k]["objective"].get<double>()) << "iteration " << k;
+  EXPECT_EQ(read_json(full / "pieces.json")["pieces"], read_json(part / "pieces.json")["pieces"]);
+  // No unfinished file of a killed run is left behind.
+  for (const fs::directory_entry& e : fs::directory_iterator(part)) {
+    const std::string name = e.path().filename().string();
+    EXPECT_EQ(name.find(".tmp."), std::string::npos) << name;
+    EXPECT_FALSE(name.starts_with(".tightfit-staging.")) << name;
+  }
+}
+
 TEST_F(OptimizeCli, ResumeAfterARemeshingEndsLikeTheUninterruptedRun) {
   const fs::path full = dir_ / "full";
   CliRun r = run_cli("optimize " + write_scene("full.json", remesh_scene(10)).string() +

@@ -1,8 +1,10 @@
 #include "tightfit/common/atomic_file.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <fstream>
-#include <unistd.h>
 
 #include "tightfit/common/error.hpp"
 
@@ -15,13 +17,35 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& path) {
   return tmp;
 }
 
+namespace {
+
+/// fsync of a file or folder by path; false when it cannot be opened or synced.
+bool sync_path(const std::filesystem::path& path, bool directory) {
+  const int fd = ::open(path.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  ::close(fd);
+  return ok;
+}
+
+}  // namespace
+
 void commit_temporary(const std::filesystem::path& temporary, const std::filesystem::path& path) {
+  // The data reaches the disk before the name does, and the rename before we return: a
+  // crash or power loss leaves the old file or the new one, never a torn one.
+  if (!sync_path(temporary, false)) {
+    std::error_code ec;
+    std::filesystem::remove(temporary, ec);
+    throw InputError(path.string(), "cannot flush the finished file to disk");
+  }
   std::error_code ec;
   std::filesystem::rename(temporary, path, ec);
   if (ec) {
     std::filesystem::remove(temporary, ec);
     throw InputError(path.string(), "cannot move the finished file into place");
   }
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
+  sync_path(folder, true);  // best effort: some file systems cannot sync a folder
 }
 
 void write_file_atomically(const std::filesystem::path& path,

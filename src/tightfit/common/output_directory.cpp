@@ -1,8 +1,11 @@
 #include "tightfit/common/output_directory.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <regex>
 #include <atomic>
 #include <fstream>
 #include <utility>
@@ -31,7 +34,33 @@ bool has_tightfit_format(const fs::path& file) {
          j["format"].get<std::string>().starts_with("tightfit-");
 }
 
+/// The process id in a name tightfit gives its unfinished files, or -1: "FILE.tmp.PID.N"
+/// (atomic_file.hpp) or ".tightfit-staging.PID.N".
+long writer_pid(const std::string& name) {
+  static const std::regex pattern(R"((?:^\.tightfit-staging|\.tmp)\.([0-9]{1,9})\.[0-9]+$)");
+  std::smatch m;
+  if (!std::regex_search(name, m, pattern)) return -1;
+  return std::stol(m[1].str());
+}
+
+bool process_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
+
 }  // namespace
+
+int remove_stale_temporaries(const fs::path& folder) {
+  int removed = 0;
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+    const long pid = writer_pid(e.path().filename().string());
+    if (pid > 0 && pid != ::getpid() && !process_alive(pid)) stale.push_back(e.path());
+  }
+  for (const fs::path& p : stale) {
+    std::error_code rm;
+    if (fs::remove_all(p, rm) > 0 && !rm) ++removed;
+  }
+  return removed;
+}
 
 bool is_tightfit_folder(const fs::path& folder) {
   std::error_code ec;
@@ -66,6 +95,7 @@ bool prepare_output_folder(const fs::path& target, bool force) {
 }
 
 void mark_output_folder(const fs::path& folder, const std::string& command) {
+  remove_stale_temporaries(folder);
   write_text_atomically(folder / kOutputMarker,
                         "This folder was written by `tightfit " + command +
                             "`. tightfit replaces its own files here and deletes nothing else.\n");

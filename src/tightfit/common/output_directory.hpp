@@ -29,7 +29,13 @@ bool is_tightfit_folder(const std::filesystem::path& folder);
 /// created the folder. Throws InputError naming `target`.
 bool prepare_output_folder(const std::filesystem::path& target, bool force);
 
-/// Writes the marker file into `folder` (atomically; a text naming `command`).
+/// Removes what killed tightfit runs left unfinished in `folder`: files "NAME.tmp.PID.N"
+/// (atomic_file.hpp) and staging folders ".tightfit-staging.PID.N" whose process PID is
+/// no longer running. Nothing else is touched. Returns how many it removed.
+int remove_stale_temporaries(const std::filesystem::path& folder);
+
+/// Writes the marker file into `folder` (atomically; a text naming `command`), after
+/// remove_stale_temporaries(folder).
 void mark_output_folder(const std::filesystem::path& folder, const std::string& command);
 
 class OutputDirectory {
