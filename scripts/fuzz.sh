@@ -4,7 +4,9 @@
 # from the repository's test files plus files a real run writes (VTU, state.json,
 # checkpoint.json, pieces.json), and runs each target for FUZZ_SECONDS (default 60)
 # seconds. Findings (crash-*, timeout-*, oom-*) land in build/fuzz/findings/TARGET/;
-# the script exits 1 when any target found one.
+# the script exits 1 when any target found one. Each finding, once fixed, goes into
+# tests/fuzz_regressions/READER/ (READER: the target's name without "_fuzz"), where
+# `make test` reads it again (tests/io/fuzz_regression_test.cpp).
 # Usage: scripts/fuzz.sh [TARGET...]   (default: all targets)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -38,18 +40,18 @@ if [ ! -d "$seeds/run" ]; then
 fi
 corpus_files() {
   case "$1" in
-    mesh_obj_fuzz) ls tests/geometry/data/*.obj examples/data/*.obj "$seeds/run/body/surface.obj" ;;
-    mesh_ply_fuzz) ls tests/geometry/data/*.ply "$seeds/run/optimize/garment.ply" ;;
-    mesh_off_fuzz) ls tests/geometry/data/*.off ;;
-    mesh_stl_fuzz) ls tests/geometry/data/*.stl ;;
-    tet_vtu_fuzz) ls "$seeds/run/body/volume.vtu" ;;
-    scene_json_fuzz) ls examples/*.json ;;
-    run_state_fuzz) ls "$seeds/run/optimize/state.json" ;;
+    obj_fuzz) ls tests/geometry/data/*.obj examples/data/*.obj "$seeds/run/body/surface.obj" ;;
+    ply_fuzz) ls tests/geometry/data/*.ply "$seeds/run/optimize/garment.ply" ;;
+    off_fuzz) ls tests/geometry/data/*.off ;;
+    stl_fuzz) ls tests/geometry/data/*.stl ;;
+    vtu_fuzz) ls "$seeds/run/body/volume.vtu" ;;
+    scene_fuzz) ls examples/*.json ;;
+    state_fuzz) ls "$seeds/run/optimize/state.json" ;;
     checkpoint_fuzz) ls "$seeds/run/optimize/checkpoint.json" ;;
-    pieces_json_fuzz) ls "$seeds/run/optimize/pieces.json" ;;
+    pieces_fuzz) ls "$seeds/run/optimize/pieces.json" ;;
     skeleton_fuzz) ls data/rig/mh_child.joints.json ;;
     skin_weights_fuzz) printf '%s\n' '{"name": "w", "weights": {"root": [[0, 0.5], [1, 1.0]], "spine05": [[0, 0.5], [2, 1], [3, 1]]}}' > "$seeds/weights.mhw"; ls "$seeds/weights.mhw" ;;
-    layout_spec_fuzz) ls tests/garment/data/*.json ;;
+    layout_fuzz) ls tests/garment/data/*.json ;;
   esac
 }
 

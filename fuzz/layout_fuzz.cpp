@@ -1,0 +1,4 @@
+/// libFuzzer target: the "layout" reader (readers.hpp).
+#include "fuzz_input.hpp"
+
+TIGHTFIT_FUZZ_READER("layout")

@@ -1,8 +1,0 @@
-/// libFuzzer target: the OFF reader.
-#include "fuzz_input.hpp"
-#include "tightfit/geometry/mesh_io.hpp"
-
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const auto path = tightfit::fuzz::scratch_file(data, size, ".off");
-  return tightfit::fuzz::expect_result_or_input_error([&] { tightfit::read_off(path); });
-}

@@ -1,0 +1,4 @@
+/// libFuzzer target: the "vtu" reader (readers.hpp).
+#include "fuzz_input.hpp"
+
+TIGHTFIT_FUZZ_READER("vtu")
