@@ -306,6 +306,14 @@ function drawLegend(coloring) {
 
 const patternTriangles = [];  // [{element, face}]
 
+/// A stable colour per seam name, so that the two sides of a seam match across pieces.
+const SEAM_COLORS = ['#1f77b4', '#2ca02c', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#bcbd22', '#ff7f0e'];
+function seamColor(name) {
+  let h = 0;
+  for (const ch of name) h = (h * 31 + ch.codePointAt(0)) >>> 0;
+  return SEAM_COLORS[h % SEAM_COLORS.length];
+}
+
 function drawPattern() {
   const host = document.getElementById('pattern');
   if (pieces.length === 0) {
@@ -339,7 +347,7 @@ function drawPattern() {
   svg.setAttribute('viewBox', `${-margin} ${-top - margin} ${width + 2 * margin} ${height + 2 * margin}`);
   svg.setAttribute('role', 'img');
   const stroke = width / 600;
-  for (const { p, dx, minX, maxX, minY } of placed) {
+  for (const { p, dx, minX, maxX, minY, maxY } of placed) {
     const g = document.createElementNS(SVG_NS, 'g');
     g.setAttribute('data-piece', p.name);
     const pt = (v) => [p.rest[2 * v] + dx, -p.rest[2 * v + 1]];
@@ -363,6 +371,38 @@ function drawPattern() {
       before.setAttribute('stroke-width', stroke * 1.2);
       before.setAttribute('stroke-dasharray', `${stroke * 6} ${stroke * 4}`);
       g.appendChild(before);
+    }
+    // Seam sides (each seam its own colour, named at its middle) and pinned edges (red).
+    for (const e of p.edges ?? []) {
+      if (e.vertices.length < 2) continue;
+      const line = document.createElementNS(SVG_NS, 'polyline');
+      line.setAttribute('points', e.vertices.map((v) => pt(v).join(',')).join(' '));
+      line.setAttribute('fill', 'none');
+      line.setAttribute('class', e.kind === 'pinned' ? 'pinned-edge' : 'seam-edge');
+      line.setAttribute('stroke', e.kind === 'pinned' ? '#d42a2a' : seamColor(e.name));
+      line.setAttribute('stroke-width', stroke * 4);
+      line.setAttribute('stroke-linecap', 'round');
+      const tip = document.createElementNS(SVG_NS, 'title');
+      tip.textContent = `${e.kind === 'pinned' ? 'pinned' : 'seam'}: ${e.name}`;
+      line.appendChild(tip);
+      g.appendChild(line);
+      // The name inside the piece: from the edge's middle towards the piece's centre.
+      const [ex, ey] = pt(e.vertices[Math.floor(e.vertices.length / 2)]);
+      const [ox, oy] = [(minX + maxX) / 2 + dx - ex, -(minY + maxY) / 2 - ey];
+      const reach = Math.min(Math.hypot(ox, oy), labelSpace * 0.12);
+      const scale = reach / (Math.hypot(ox, oy) || 1);
+      const label = document.createElementNS(SVG_NS, 'text');
+      label.setAttribute('x', ex + ox * scale);
+      label.setAttribute('y', ey + oy * scale);
+      label.setAttribute('class', 'edge-label');
+      label.setAttribute('font-size', labelSpace * 0.18);
+      label.setAttribute('text-anchor', Math.abs(ox) > Math.abs(oy) ? (ox > 0 ? 'start' : 'end') : 'middle');
+      label.setAttribute('dominant-baseline', 'middle');
+      label.setAttribute('paint-order', 'stroke');
+      label.setAttribute('stroke', '#ffffff');
+      label.setAttribute('stroke-width', stroke * 3);
+      label.textContent = e.name;
+      g.appendChild(label);
     }
     if (p.boundary.length > 1) {
       const outline = document.createElementNS(SVG_NS, 'polygon');
@@ -398,6 +438,10 @@ function drawPattern() {
     label.textContent = p.name;
     g.appendChild(label);
     svg.appendChild(g);
+  }
+  if (pieces.some((p) => (p.edges ?? []).length > 0)) {
+    document.getElementById('pattern-hint').textContent +=
+      ' Coloured edges are seams (both sides of a seam in one colour, with its name), red edges are pinned to the body (cuffs, waistbands).';
   }
   if (pieces.some((p) => p.initial)) {
     document.getElementById('pattern-hint').textContent +=

@@ -136,6 +136,9 @@ try {
   summary.targetLines = await page.locator('#histogram line.target').count();
   summary.pressureWarnings = await page.locator('#histogram .pressure-warning').count();
   summary.initialOutlines = await page.locator('#pattern polygon.initial-outline').count();
+  summary.seamEdges = await page.locator('#pattern polyline.seam-edge').count();
+  summary.pinnedEdges = await page.locator('#pattern polyline.pinned-edge').count();
+  summary.edgeLabels = await page.locator('#pattern text.edge-label').allTextContents();
   summary.historyCurves = await page.locator('#history polyline.history-curve').evaluateAll((els) => els.map((e) => e.getAttribute('data-term')));
   summary.historyTicks = await page.locator('#history text.ytick-label').allTextContents();
   summary.summaryText = await page.locator('#summary').textContent();

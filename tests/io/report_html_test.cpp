@@ -132,6 +132,19 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
                   {"objective_initial", 2.0}, {"objective_final", 0.018}, {"seconds", 12.5},
                   {"version", "0.1.0"}};
   view.pinned_vertices = {0, 1, 2, 3};
+  // One seam (front's right column to back's left column) and a pinned edge.
+  {
+    const int cols = 32, rows = 8;
+    Seam seam{"side seam A", {0, {}}, {1, {}}};
+    for (int j = 0; j <= rows; ++j) {
+      seam.a.vertices.push_back(j * (cols + 1) + cols);
+      seam.b.vertices.push_back(j * (cols + 1));
+    }
+    PinnedBoundary waistband{"waistband", 0, {}};
+    for (int i = 0; i <= cols; ++i) waistband.vertices.push_back(rows * (cols + 1) + i);
+    view.pattern.seams = {seam};
+    view.pattern.pinned = {waistband};
+  }
   const auto summary = check_in_browser(view, "report_browser");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
   EXPECT_GT(summary.at("pixels").at("notBackground").get<double>(), 0.05);
@@ -155,6 +168,11 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   const auto ticks = summary.at("historyTicks").get<std::vector<std::string>>();
   EXPECT_NE(std::find(ticks.begin(), ticks.end(), "0.01"), ticks.end()) << summary.dump(2);
   EXPECT_NE(std::find(ticks.begin(), ticks.end(), "1"), ticks.end()) << summary.dump(2);
+  // Seam sides on both pieces, named; the pinned edge.
+  EXPECT_EQ(summary.at("seamEdges"), 2);
+  EXPECT_EQ(summary.at("pinnedEdges"), 1);
+  EXPECT_EQ(summary.at("edgeLabels"), (nlohmann::json{"side seam A", "waistband", "side seam A"}))
+      << summary.dump(2);
   // The 3D view draws seams between the pieces and the garment's free edges; a colouring
   // by piece names the pieces.
   EXPECT_GT(summary.at("edges").at("seam").get<int>(), 0) << summary.dump(2);

@@ -101,6 +101,16 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
                       {"faces", u32(faces)},
                       {"boundary", piece.boundary},
                       {"grain", {piece.grain.x(), piece.grain.y()}}});
+    // The piece's seam sides (with the seam's name) and pinned boundaries.
+    nlohmann::json edges = nlohmann::json::array();
+    for (const Seam& seam : view.pattern.seams)
+      for (const SeamSide* side : {&seam.a, &seam.b})
+        if (side->piece == static_cast<int>(k))
+          edges.push_back({{"kind", "seam"}, {"name", seam.name}, {"vertices", side->vertices}});
+    for (const PinnedBoundary& pin : view.pattern.pinned)
+      if (pin.piece == static_cast<int>(k))
+        edges.push_back({{"kind", "pinned"}, {"name", pin.name}, {"vertices", pin.vertices}});
+    pieces.back()["edges"] = edges;
     if (!view.initial_outlines.empty() && view.initial_outlines[k].rows() > 0)
       pieces.back()["initial_outline"] = f32(flat_doubles(view.initial_outlines[k]));
   }

@@ -16,7 +16,8 @@
 ///   missing_colorings[]   labels of requested colourings whose field the fit lacks
 ///   pieces[]              {name, rest: f32 n×2 (m), triangles: u32 t×3, faces: u32 t
 ///                          (garment face of each triangle), boundary: [vertex], grain: [x,y],
-///                          initial_outline: f32 n×2 (m), optional: before optimization}
+///                          initial_outline: f32 n×2 (m), optional: before optimization,
+///                          edges: [{kind: "seam" | "pinned", name, vertices: [vertex]}]}
 ///   summary               the run at a glance (FitView::summary), an object
 ///   stats                 fit_statistics_json
 ///   parameters, history   as in FitView
