@@ -2,7 +2,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
+#include "cli_checks.hpp"
 #include "command_registry.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/interrupt.hpp"
@@ -44,7 +47,12 @@ int main(int argc, char** argv) {
   try {
     root.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return root.exit(e);
+    if (e.get_exit_code() == 0) return root.exit(e);  // --help, --version
+    // Every command-line mistake is bad input: exit 2, with a suggestion for a typo.
+    std::fprintf(stderr, "error: %s\nRun 'tightfit --help' or 'tightfit COMMAND --help'.\n",
+                 app::parse_error_message(root, e, std::vector<std::string>(argv + 1, argv + argc))
+                     .c_str());
+    return 2;
   } catch (const Interrupted& e) {
     return 128 + e.signal;
   } catch (const InputError& e) {

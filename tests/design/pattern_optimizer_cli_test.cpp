@@ -129,6 +129,27 @@ TEST_F(OptimizeCli, StretchRunBringsEveryElementIntoRange) {
   EXPECT_NE(html.find("\"stop_reason\""), std::string::npos);
 }
 
+TEST_F(OptimizeCli, CommandLineMistakesExitTwoWithASuggestion) {
+  struct Case {
+    std::string args;
+    std::string says;
+  };
+  const fs::path scene = write_scene("scene.json", stretch_scene(2));
+  for (const Case& c : std::vector<Case>{
+           {"optimze " + scene.string(), "unknown command 'optimze'; did you mean 'optimize'?"},
+           {"--threads 2 simulte x", "did you mean 'simulate'?"},
+           {"optimize " + scene.string() + " --outt x", "unknown option '--outt' for 'optimize'; did you mean '--out'?"},
+           {"optimize " + scene.string() + " --out x --max-iterations -3",
+            "--max-iterations: must be a number >= 0, got -3"},
+           {"", "A subcommand is required"}}) {
+    const CliRun r = run_cli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "x"));
+  EXPECT_EQ(run_cli("optimize --help").exit_code, 0);
+}
+
 TEST_F(OptimizeCli, VersionFlagPrintsTheVersion) {
   const CliRun r = run_cli("--version");
   EXPECT_EQ(r.exit_code, 0);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "cli_checks.hpp"
 #include "command_registry.hpp"
 #include "tightfit/io/optimization_setup.hpp"
 #include "tightfit/design/adjoint_check.hpp"
@@ -91,18 +92,18 @@ const CommandRegistration kCheckGradient{
       auto args = std::make_shared<CheckArgs>();
       cmd->add_option("scene", args->scene, "Scene file with an \"optimize\" section")->required();
       cmd->add_option("--directions", args->directions, "Random directions per term (default 3)")
-          ->check(CLI::PositiveNumber);
+          ->check(positive_number());
       cmd->add_option("--step", args->step,
                       "Finite-difference step h in m (default 1e-5 x mean boundary edge)")
-          ->check(CLI::NonNegativeNumber);
+          ->check(non_negative_number());
       cmd->add_option("--seed", args->seed, "Seed of the random directions (default 1)");
       cmd->add_option("--perturb", args->perturb,
                       "Check at the pattern moved randomly by this fraction of the mean boundary "
                       "edge (regularizers vanish on the initial pattern; default 0)")
-          ->check(CLI::NonNegativeNumber);
+          ->check(non_negative_number());
       cmd->add_option("--max-error", args->max_error,
                       "Exit with status 4 when a relative error exceeds this")
-          ->check(CLI::NonNegativeNumber);
+          ->check(non_negative_number());
       cmd->callback([args] { run_check_gradient(*args); });
     }};
 

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "cli_checks.hpp"
 #include "command_registry.hpp"
 #include "tightfit/io/optimization_setup.hpp"
 #include "run_outputs.hpp"
@@ -209,7 +210,7 @@ const CommandRegistration kOptimize{
       cmd->add_option("--max-iterations", *max_iterations,
                       "Stop after this many L-BFGS iterations (overrides the scene's "
                       "optimize/max_iterations)")
-          ->check(CLI::NonNegativeNumber);
+          ->check(non_negative_number());
       cmd->callback([scene, out, resume, max_iterations, force] {
         run_optimize(*scene, *out, *resume, *max_iterations, *force);
       });
