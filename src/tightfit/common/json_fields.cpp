@@ -183,6 +183,10 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(source, std::string("invalid JSON: ") + e.what());
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number beyond the double range (1e400): found by fuzzing, it escaped as a
+    // non-input error.
+    throw InputError(source, std::string("invalid JSON (a number out of range): ") + e.what());
   }
 }
 
