@@ -29,7 +29,7 @@ runs=(
   "tightfit_physics_tests:*-$slow"
   "tightfit_solve_tests:*-$slow:RigidCylinderSleeveSliding.*:RigidCurvedBody.EllipticCylinder*"
   "tightfit_objectives_tests:*-$slow:PressureRegions.BoneRegions*"
-  "tightfit_design_tests:*-$slow:AdjointSolve.*:AdjointPipelineSoftBody.*:PatternOptimizer.RecoversTheShapeOfAnotherPattern"
+  "tightfit_design_tests:*-$slow:AdjointSolve.*:AdjointPipelineSoftBody.*:PatternOptimizer.RecoversTheShapeOfAnotherPattern:*PatternOptimizerResume*soft*"
   "tightfit_io_tests:*-$slow:SceneSpec.EveryExampleValidatesAgainstTheSchema:LayoutSceneSimulation.*:PressureRegionStatistics.*"
 )
 
