@@ -1,5 +1,7 @@
 #include "tightfit/io/simulation_outputs.hpp"
 
+#include <vector>
+
 #include <cmath>
 
 #include "tightfit/io/fit_stats.hpp"
@@ -165,10 +167,14 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, Shap
   const int ns = sim.body().num_surface_vertices();
   Points3 limit = sim.body_positions().topRows(ns);
   const Triangles& faces = sim.body().surface.faces;
+  std::vector<char> placed(static_cast<size_t>(ns), 0);  // each vertex once, from one face
   for (Eigen::Index f = 0; f < faces.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
+      const int v = faces(f, k);
+      if (placed[static_cast<size_t>(v)]) continue;
+      placed[static_cast<size_t>(v)] = 1;
       const SurfacePoint corner{static_cast<int>(f), k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
-      limit.row(faces(f, k)) = sim.surface().position(corner, sim.body_positions()).transpose();
+      limit.row(v) = sim.surface().position(corner, sim.body_positions()).transpose();
     }
   view.body = TriMesh{limit, faces};
   view.garment = TriMesh{sim.garment_positions(), sim.garment().garment_triangles};
