@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tightfit/body/bvh.hpp"
 #include "tightfit/body/skeleton.hpp"
 #include "tightfit/body/skin_weights.hpp"
 #include "tightfit/common/json_fields.hpp"
@@ -65,6 +66,7 @@ inline const std::map<std::string, Reader>& readers() {
       {"skeleton", {".json", [](const auto& f) { read_skeleton(f); }}},
       {"skin_weights", {".mhw", [](const auto& f) { read_skin_weights(small_mesh(), f); }}},
       {"layout", {".json", [](const auto& f) { read_layout_spec(f.string()); }}},
+      {"bvh", {".bvh", [](const auto& f) { read_bvh(f); }}},
   };
   return all;
 }

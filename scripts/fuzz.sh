@@ -52,6 +52,7 @@ corpus_files() {
     skeleton_fuzz) ls data/rig/mh_child.joints.json ;;
     skin_weights_fuzz) printf '%s\n' '{"name": "w", "weights": {"root": [[0, 0.5], [1, 1.0]], "spine05": [[0, 0.5], [2, 1], [3, 1]]}}' > "$seeds/weights.mhw"; ls "$seeds/weights.mhw" ;;
     layout_fuzz) ls tests/garment/data/*.json ;;
+    bvh_fuzz) ls data/rig/*.bvh ;;
   esac
 }
 

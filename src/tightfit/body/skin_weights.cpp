@@ -22,7 +22,9 @@ VecX SkinWeights::summed(const std::vector<std::string>& names, const std::strin
 SkinWeights read_skin_weights(const std::filesystem::path& mesh,
                               const std::filesystem::path& weights) {
   SkinWeights rig;
-  rig.vertices = read_tri_mesh(mesh).vertices;
+  TriMesh rig_mesh = read_tri_mesh(mesh);
+  rig.vertices = std::move(rig_mesh.vertices);
+  rig.faces = std::move(rig_mesh.faces);
   rig.source = weights.string();
   const nlohmann::json root = read_json_file(weights.string());
   if (!root.is_object() || !root.contains("weights") || !root["weights"].is_object())

@@ -17,6 +17,7 @@ namespace tightfit {
 
 struct SkinWeights {
   Points3 vertices;  ///< rig mesh vertex positions (m), in the body's frame
+  Triangles faces;   ///< rig mesh triangles (for transferring weights by closest point)
   /// Per bone: (vertex, weight) pairs with 0 < weight <= 1, vertex < vertices.rows();
   /// each vertex's weights sum to 1.
   std::map<std::string, std::vector<std::pair<int, double>>> bones;

@@ -54,6 +54,12 @@ Vec3 SurfaceDistance::closest_point(const Vec3& p) const {
   return {q.x(), q.y(), q.z()};
 }
 
+int SurfaceDistance::closest_face(const Vec3& p, Vec3* point) const {
+  const auto [q, id] = impl_->tree.closest_point_and_primitive(Point(p.x(), p.y(), p.z()));
+  if (point) *point = {q.x(), q.y(), q.z()};
+  return static_cast<int>(id - impl_->triangles.cbegin());
+}
+
 double SurfaceDistance::winding_number(const Vec3& p) const {
   // Solid angle of each triangle seen from p (Van Oosterom & Strackee 1983).
   const TriMesh& m = impl_->mesh;

@@ -22,6 +22,9 @@ class SurfaceDistance {
   double distance(const Vec3& p) const;
   /// The nearest point of the surface to `p` (m).
   Vec3 closest_point(const Vec3& p) const;
+  /// The face (row of the surface's faces) holding the nearest point to `p`; that point
+  /// is stored in `*point` when `point` is not null.
+  int closest_face(const Vec3& p, Vec3* point = nullptr) const;
   /// Generalized winding number of the surface around `p` (sum of signed solid angles
   /// over 4π): ≈ 1 inside an outward-oriented closed surface, ≈ 0 outside. O(faces).
   double winding_number(const Vec3& p) const;

@@ -119,6 +119,9 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   if (auto f = root.object("body_material"))
     parse_body_material(*f, s.materials.body, s.materials.rigid_body);
   if (auto f = root.object("solver")) parse_solver(*f, s.newton, s.limit);
+  if (auto f = root.object("rig")) s.rig = parse_scene_rig(*f, base_dir);
+  if (root.has("poses")) s.poses = parse_scene_poses(root.raw("poses"), file, "/poses", s.rig.get(), base_dir);
+  if (s.rig) s.pressure_rig = std::shared_ptr<const SkinWeights>(s.rig, &s.rig->weights);
   if (auto f = root.object("pressure")) {
     s.pressure_operator = f->choice("shape_operator", {"mid_edge", "limit_surface"}, "mid_edge") ==
                                   "mid_edge"
@@ -140,7 +143,7 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
     }
     for (std::size_t k = 0; k < s.pressure_regions.size(); ++k)
       if (!s.pressure_regions[k].bones.empty() && !s.pressure_rig)
-        f->fail("names bones but the scene has no /pressure/rig",
+        f->fail("names bones but the scene has no /rig or /pressure/rig",
                 "regions/" + std::to_string(k) + "/bones");
     f->finish();
   }

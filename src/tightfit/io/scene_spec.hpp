@@ -22,7 +22,8 @@
 ///     "pressure": {"shape_operator": "mid_edge" | "limit_surface",
 ///                  "regions": [...design/pressure_region.hpp...],
 ///                  "rig": {"mesh": "body.obj", "weights": "default_weights.mhw",
-///                          "radius": 0.03}}
+///                          "radius": 0.03}},
+///     "rig": {...}, "poses": [...]     // io/scene_poses.hpp
 ///   }
 #include <filesystem>
 #include <memory>
@@ -36,6 +37,7 @@
 #include "tightfit/garment/layout_spec.hpp"
 #include "tightfit/garment/pattern_options.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
+#include "tightfit/io/scene_poses.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit {
@@ -69,6 +71,11 @@ struct SceneSpec {
   /// loaded; null when the scene gives none.
   std::shared_ptr<const SkinWeights> pressure_rig;
   double pressure_rig_radius = 0.03;  ///< m
+  /// The rig ("rig", io/scene_poses.hpp), loaded; null when the scene gives none. Bone
+  /// pressure regions use it when "pressure" has no rig of its own.
+  std::shared_ptr<const SceneRig> rig;
+  /// The poses ("poses"), resolved to bone rotations of the rig's skeleton.
+  std::vector<ScenePose> poses;
   /// The "optimize" section (objectives, regularizers, optimizer settings), validated by
   /// the design layer's parser when a command optimizes; null when absent.
   nlohmann::json optimize;
