@@ -157,11 +157,6 @@ TEST(Skinning, LinearBlendCollapsesAHalfTurnTwistAndThePoseCheckSaysSo) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
-
-namespace tightfit {
-namespace {
 
 TEST(BvhPose, TheTPoseFileLiftsTheArmsOfTheBodysSkeletonToTheHorizontal) {
   const auto& skeleton = skinning_skeleton();

@@ -8,6 +8,8 @@
 
 #include "support/cli_run.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/io/optimization_setup.hpp"
 #include "tightfit/io/scene_spec.hpp"
 
 namespace tightfit {
@@ -103,6 +105,74 @@ TEST(PoseCli, WritesEveryPosedBodyOrNothing) {
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("pose \"folded\" inverts"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(dir / "out2"));
+  fs::remove_all(dir);
+}
+
+
+TEST(ScenePoses, TheSlidingObjectiveNeedsPosesTheSceneHas) {
+  const fs::path dir = fs::temp_directory_path() / ("tightfit_sliding_spec_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  auto error = [&](const nlohmann::json& sliding, bool with_poses) {
+    nlohmann::json j = posed_scene(nlohmann::json::parse(R"([{"name": "knee", "rotations": {"lowerleg01.L": [30, 0, 0]}}])"));
+    if (!with_poses) j.erase("poses");
+    j["body"]["mesh"] = std::string(TIGHTFIT_SOURCE_DIR) + "/data/bodies/mh_legs_male.obj";
+    for (const char* key : {"mesh", "weights", "joints"})
+      j["rig"][key] = std::string(TIGHTFIT_SOURCE_DIR) + "/" + j["rig"][key].get<std::string>();
+    j["optimize"] = {{"objectives", {{"sliding", sliding}}}};
+    std::ofstream(dir / "scene.json") << j.dump();
+    try {
+      const OptimizationScene s = read_optimization_scene((dir / "scene.json").string());
+      return std::string("no error, ") + std::to_string(s.optimization.sliding->bone_motions.size()) + " poses";
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+  };
+  EXPECT_EQ(error({{"weight", 1}}, true), "no error, 1 poses");
+  EXPECT_NE(error({{"weight", 1}, {"poses", {"knee", "hop"}}}, true).find("/optimize/objectives/sliding/poses: the scene has no pose \"hop\""),
+            std::string::npos);
+  EXPECT_NE(error({{"weight", 1}}, false).find("no poses to slide in"), std::string::npos);
+  EXPECT_NE(error({{"weight", 1}, {"friction", -0.3}}, true).find("/optimize/objectives/sliding/friction"), std::string::npos);
+  EXPECT_NE(error({{"weight", 1}, {"poses", nlohmann::json::array()}}, true).find("non-empty array"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+
+TEST(PoseCli, SimulateWritesTheGarmentInEveryPoseAndItsSlidingStatisticsSlow) {
+  const fs::path dir = fs::temp_directory_path() / ("tightfit_pose_simulate_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string data = std::string(TIGHTFIT_SOURCE_DIR) + "/data/";
+  nlohmann::json scene = {
+      {"body", {{"mesh", data + "bodies/mh_legs_male.obj"}, {"edge_length", 0.03},
+                {"crop", nlohmann::json::parse(R"([{"point": [0, 0.33, 0], "normal": [0, 1, 0]},
+                    {"point": [0, 0.68, 0], "normal": [0, -1, 0]}, {"point": [0.02, 0, 0], "normal": [1, 0, 0]}])")}}},
+      {"garment", {{"cover", {{"scale", 0.95}}}}},
+      {"rig", {{"mesh", data + "bodies/mh_male_regular.obj"}, {"weights", data + "rig/default_weights.mhw"},
+               {"joints", data + "rig/mh_male_regular.joints.json"}}},
+      {"poses", nlohmann::json::parse(R"([{"name": "knee_45", "rotations": {"lowerleg01.L": [45, 0, 0]}}])")}};
+  std::ofstream(dir / "knee.json") << scene.dump(2);
+  const auto run = test::run_cli("simulate knee.json --out out", dir.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_TRUE(fs::exists(dir / "out/garment_pose_knee_45.ply"));
+  const auto result = nlohmann::json::parse(test::read_text(dir / "out/result.json"));
+  ASSERT_EQ(result["poses"].size(), 1u);
+  const auto& pose = result["poses"][0];
+  EXPECT_EQ(pose["name"], "knee_45");
+  EXPECT_EQ(pose["friction"], 0.3);
+  EXPECT_GT(pose["free_vertices"].get<int>(), 100);
+  // Bending the knee under a cover that was in equilibrium standing: part of it slides.
+  EXPECT_GT(pose["sliding_share"].get<double>(), 0.0);
+  EXPECT_LT(pose["sliding_share"].get<double>(), 1.0);
+  EXPECT_GT(pose["sliding_objective_n2"].get<double>(), 0.0);
+  EXPECT_GT(pose["pressing_n_median"].get<double>(), 0.0);
+  EXPECT_EQ(pose["body"]["inverted_tets"], 0);
+  // The posed garment has the garment's vertices and the per-vertex forces.
+  const PlyData ply = read_ply(dir / "out/garment_pose_knee_45.ply");
+  const PlyData neutral = read_ply(dir / "out/garment.ply");
+  EXPECT_EQ(ply.mesh.num_vertices(), neutral.mesh.num_vertices());
+  ASSERT_EQ(ply.attributes.vertex_fields.size(), 3u);
+  EXPECT_EQ(ply.attributes.vertex_fields[0].name, "sliding_excess_n");
+  EXPECT_GT((ply.mesh.vertices - neutral.mesh.vertices).rowwise().norm().maxCoeff(), 0.05);
   fs::remove_all(dir);
 }
 

@@ -5,6 +5,7 @@
 #include "tightfit/common/version.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/pattern_outputs.hpp"
+#include "tightfit/io/pose_outputs.hpp"
 #include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/io/run_state.hpp"
 #include "tightfit/io/scene_spec.hpp"
@@ -36,6 +37,11 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
       sim, {scene.pressure_regions, scene.pressure_rig.get(), scene.pressure_rig_radius},
       state.scene_file);
   state.result["fit"] = fit_statistics(sim, fit, pressure_operator, regions);
+  PoseOutputs poses = write_pose_outputs(folder, sim, scene);
+  if (!poses.files.empty()) {
+    state.result["poses"] = std::move(poses.statistics);
+    files.insert(files.end(), poses.files.begin(), poses.files.end());
+  }
   write_text_atomically(folder / "result.json", state.result.dump(2) + "\n");
   write_text_atomically(folder / "scene.json", state.scene.dump(2) + "\n");
   files.insert(files.end(), {"result.json", "scene.json"});

@@ -21,7 +21,9 @@ constexpr size_t kMaxPatternPieces = 64;
 /// Writes the outputs of a run that ended at an equilibrium into `folder`, in this
 /// order (each file atomically; the report comes last because it needs the viewer's
 /// npm packages and its failure must not cost the rest): garment.ply, body.ply, the
-/// pattern files, result.json (`state.result` with "fit" set to the fit statistics),
+/// pattern files, garment_pose_NAME.ply per pose of the scene (io/pose_outputs.hpp),
+/// result.json (`state.result` with "fit" set to the fit statistics and "poses" to the
+/// per-pose statistics when the scene has poses),
 /// scene.json, history.json (optimize runs), state.json, report.html (with the
 /// objective history of optimize runs), fit.glb. `state` is the run's state with the
 /// simulation's pattern and equilibrium; its result gets the "fit" member.

@@ -38,7 +38,10 @@ SparseMatrix projection_difference(const GarmentSimulation& sim) {
 }  // namespace
 
 SimulationDesignState::SimulationDesignState(const GarmentSimulation& sim)
-    : x(flat_positions(sim)), rest(sim.garment().rest_positions()) {}
+    : x(flat_positions(sim)),
+      rest(sim.garment().rest_positions()),
+      garment(sim.problem().state().garment),
+      body(sim.problem().state().body) {}
 
 const char* adjoint_method_name(AdjointMethod method) {
   switch (method) {
@@ -75,11 +78,23 @@ AdjointResult AdjointSolver::rest_gradient(GarmentSimulation& sim, const DesignT
   term.add_gradient(state, r.explicit_x, r.rest_gradient);
   if (!r.explicit_x.allFinite() || !r.rest_gradient.allFinite())
     throw SolverError("adjoint: the gradient of '" + term.name() + "' is not finite");
-  if (!term.depends_on_positions() || r.explicit_x.squaredNorm() == 0.0) return r;
+  if (!term.depends_on_positions()) return r;
 
   EmbeddedEquilibrium& problem = sim.problem();
   const SparseMatrix J = problem.position_jacobian();
-  const VecX rhs = J.transpose() * r.explicit_x;  // ∂T/∂q
+  VecX rhs = J.transpose() * r.explicit_x;  // ∂T/∂q
+  if (term.depends_on_embedding()) {
+    VecX d_s = VecX::Zero(2 * static_cast<Eigen::Index>(ds.garment.size()));
+    VecX d_y = VecX::Zero(ds.body.size());
+    term.add_embedding_gradient(state, d_s, d_y);
+    if (!d_s.allFinite() || !d_y.allFinite())
+      throw SolverError("adjoint: the gradient of '" + term.name() + "' is not finite");
+    for (int i = 0; i < problem.num_garment_vertices(); ++i)
+      if (const int dof = problem.garment_dof(i); dof >= 0) rhs.segment<2>(dof) += d_s.segment<2>(2 * i);
+    for (Eigen::Index k = 0; k < ds.body.rows(); ++k)
+      if (const int dof = problem.body_dof(static_cast<int>(k)); dof >= 0)
+        rhs.segment<3>(dof) += d_y.segment<3>(3 * k);
+  }
   if (rhs.squaredNorm() == 0.0) return r;         // x depends on no free DOF
   const AdjointSolve a = solve(sim, rhs);
   r.hessian_shift = a.hessian_shift;

@@ -165,8 +165,13 @@ class AdjointSolver {
 struct SimulationDesignState {
   VecX x;
   Points2 rest;
+  std::vector<SurfacePoint> garment;  ///< the embedding (surface points)
+  Points3 body;                       ///< body positions (n_b×3, m)
+  DesignEmbedding embedding{garment, body};
   explicit SimulationDesignState(const GarmentSimulation& sim);
-  DesignState view() const { return {x, rest}; }
+  SimulationDesignState(const SimulationDesignState&) = delete;
+  SimulationDesignState& operator=(const SimulationDesignState&) = delete;
+  DesignState view() const { return {x, rest, &embedding}; }
 };
 
 }  // namespace tightfit

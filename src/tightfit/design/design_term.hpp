@@ -25,13 +25,26 @@
 #include <vector>
 
 #include "tightfit/common/types.hpp"
+#include "tightfit/subdiv/surface_point.hpp"
 
 namespace tightfit {
+
+/// The embedded state the garment positions come from (solve/embedded_equilibrium.hpp):
+/// garment vertex i at surface point garment[i] of the body's limit surface, the body at
+/// `body` (n_b×3, m). Terms that look at the garment in other body poses (the sliding
+/// objective) need it; x alone does not determine them.
+struct DesignEmbedding {
+  const std::vector<SurfacePoint>& garment;
+  const Points3& body;
+};
 
 /// The state a design term is evaluated at. Holds references: keep x and rest alive.
 struct DesignState {
   const VecX& x;        ///< garment positions, 3·n_g (m)
   const Points2& rest;  ///< pattern rest positions Xbar, n_p×2 (m)
+  /// The embedded state behind x; null where the caller has none (terms that need it
+  /// throw std::logic_error then).
+  const DesignEmbedding* embedding = nullptr;
 };
 
 class DesignTerm {
@@ -48,9 +61,16 @@ class DesignTerm {
   /// must already have these sizes; terms add only what they depend on.
   virtual void add_gradient(const DesignState& state, VecX& d_x, VecX& d_rest) const = 0;
 
-  /// False when T does not depend on x at all (the regularizers): its ∂T/∂x is zero and
-  /// it needs no adjoint solve.
+  /// False when T depends neither on x nor on the embedded state (the regularizers): it
+  /// needs no adjoint solve.
   virtual bool depends_on_positions() const = 0;
+
+  /// True when T depends on the embedded state itself, not only through x.
+  virtual bool depends_on_embedding() const { return false; }
+  /// d_s += ∂T/∂s (2·n_g: per garment vertex, its (u, v) in its current face) and
+  /// d_y += ∂T/∂y (3·n_b) at fixed x and Xbar; sizes as given. Only for terms that
+  /// depend_on_embedding(); the state must carry the embedding.
+  virtual void add_embedding_gradient(const DesignState& state, VecX& d_s, VecX& d_y) const {}
 };
 
 /// A weighted sum T = Σ_j w_j T_j of design terms (the scene's objective). Weights are
@@ -100,6 +120,25 @@ class DesignTermSum : public DesignTerm {
     for (const Entry& e : entries_)
       if (e.weight > 0.0 && e.term->depends_on_positions()) return true;
     return false;
+  }
+
+  bool depends_on_embedding() const override {
+    for (const Entry& e : entries_)
+      if (e.weight > 0.0 && e.term->depends_on_embedding()) return true;
+    return false;
+  }
+
+  void add_embedding_gradient(const DesignState& state, VecX& d_s, VecX& d_y) const override {
+    VecX gs(d_s.size());
+    VecX gy(d_y.size());
+    for (const Entry& e : entries_) {
+      if (e.weight == 0.0 || !e.term->depends_on_embedding()) continue;
+      gs.setZero();
+      gy.setZero();
+      e.term->add_embedding_gradient(state, gs, gy);
+      d_s += e.weight * gs;
+      d_y += e.weight * gy;
+    }
   }
 
   /// Weighted value w_j T_j of every entry, in entry order (0 for weight 0), for logs.

@@ -12,7 +12,9 @@
 ///                    "vertices": "all"},    // or "unpinned": skip pinned boundary vertices
 ///       "pressure": {"weight": 1, "min_mmhg": 15, "max_mmhg": 25},  // or min_pa/max_pa;
 ///                                           // without a range: the scene's pressure regions
-///       "seam_traction": {"weight": 1}
+///       "seam_traction": {"weight": 1},
+///       "sliding":  {"weight": 1, "friction": 0.3,   // Eq. 37 over the scene's poses
+///                    "poses": ["contact", "flight"]} // default: all of them
 ///     },
 ///     "regularizers": {                     // weights, all optional (default 0 = off)
 ///       "seam_length": 1, "boundary_spacing": 0.1, "boundary_smoothness": 1e-4,
@@ -36,7 +38,7 @@
 ///   }
 ///
 /// Units of the terms (see each term's header): stretch and directional stretch m², shape m², pressure Pa²·m²,
-/// seam traction N, seam length and boundary spacing m², boundary smoothness 1/m,
+/// seam traction N, sliding N², seam length and boundary spacing m², boundary smoothness 1/m,
 /// compactness dimensionless. Weights are >= 0; weight 0 switches a term off.
 #include <filesystem>
 #include <memory>
@@ -46,7 +48,9 @@
 #include <vector>
 
 #include "tightfit/design/optimization_problem.hpp"
+#include "tightfit/body/skeleton_pose.hpp"
 #include "tightfit/body/skin_weights.hpp"
+#include "tightfit/body/skinning.hpp"
 #include "tightfit/design/pressure_region.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
 #include "tightfit/design/regularizer_compactness.hpp"
@@ -93,6 +97,19 @@ struct SeamTractionObjectiveSpec {
   double weight = 1.0;
 };
 
+/// The sliding objective over the scene's poses (objectives/sliding_objective.hpp).
+struct SlidingObjectiveSpec {
+  double weight = 1.0;
+  double friction = 0.3;           ///< Coulomb coefficient μ >= 0
+  std::vector<std::string> poses;  ///< pose names; empty: every pose of the scene
+  /// Filled by read_optimization_scene from the scene's rig and poses: the skin weights,
+  /// how they blend, and the bone motions of every selected pose (by name).
+  std::shared_ptr<const SkinWeights> rig;
+  SkinningMethod skinning = SkinningMethod::kDualQuaternion;
+  std::vector<std::pair<std::string, std::map<std::string, RigidMotion>>> bone_motions;
+  std::string source;  ///< the scene file, for errors about the poses
+};
+
 struct RegularizerWeights {
   double seam_length = 0.0;
   double boundary_spacing = 0.0;
@@ -107,6 +124,7 @@ struct OptimizationSpec {
   std::optional<ShapeObjectiveSpec> shape;
   std::optional<PressureObjectiveSpec> pressure;
   std::optional<SeamTractionObjectiveSpec> seam_traction;
+  std::optional<SlidingObjectiveSpec> sliding;
   RegularizerWeights regularizers;
   int checkpoint_every = 5;
   PatternOptimizerOptions optimizer;  ///< max_iterations default 50 here

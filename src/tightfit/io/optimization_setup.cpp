@@ -1,5 +1,6 @@
 #include "tightfit/io/optimization_setup.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "tightfit/common/error.hpp"
@@ -12,6 +13,9 @@
 #include "tightfit/objectives/pressure_objective.hpp"
 #include "tightfit/objectives/seam_traction_objective.hpp"
 #include "tightfit/objectives/shape_objective.hpp"
+#include "tightfit/objectives/sliding_objective.hpp"
+#include "tightfit/body/posed_body.hpp"
+#include "tightfit/body/skin_transfer.hpp"
 #include "tightfit/objectives/stretch_objective.hpp"
 
 namespace tightfit {
@@ -34,6 +38,19 @@ ImlsSurface shape_target(const ShapeObjectiveSpec& spec) {
   return ImlsSurface(points, n, spec.radius);
 }
 
+/// The skinning motion of every body vertex in every pose of the sliding objective;
+/// a pose that inverts a tet of the body is an InputError naming it.
+std::vector<PoseMotions> sliding_poses(const SlidingObjectiveSpec& spec, const Body& body) {
+  const PointWeights weights = body_skin_weights(body, *spec.rig);
+  std::vector<PoseMotions> out;
+  for (const auto& [name, bones] : spec.bone_motions) {
+    const PosedBody posed = pose_body(body, body.volume.vertices, weights, bones, spec.skinning);
+    check_posed_body(posed, body, name, spec.source);
+    out.push_back({name, posed.motions});
+  }
+  return out;
+}
+
 }  // namespace
 
 OptimizationScene read_optimization_scene(const std::string& file) {
@@ -53,6 +70,24 @@ OptimizationScene read_optimization_scene(const std::string& file) {
     pressure->regions_source = file;
     pressure->rig = s.scene.pressure_rig;
     pressure->rig_radius = s.scene.pressure_rig_radius;
+  }
+  if (auto& sliding = s.optimization.sliding) {
+    const std::string where = "/optimize/objectives/sliding";
+    if (!s.scene.rig || s.scene.poses.empty())
+      throw InputError(file, where + ": the scene has no poses to slide in (give \"rig\" and \"poses\")");
+    sliding->rig = std::shared_ptr<const SkinWeights>(s.scene.rig, &s.scene.rig->weights);
+    sliding->skinning = s.scene.rig->skinning;
+    sliding->source = file;
+    std::vector<std::string> names = sliding->poses;
+    if (names.empty())
+      for (const ScenePose& p : s.scene.poses) names.push_back(p.name);
+    for (const std::string& name : names) {
+      const auto pose = std::find_if(s.scene.poses.begin(), s.scene.poses.end(),
+                                     [&](const ScenePose& p) { return p.name == name; });
+      if (pose == s.scene.poses.end())
+        throw InputError(file, where + "/poses: the scene has no pose \"" + name + "\"");
+      sliding->bone_motions.emplace_back(name, pose_skeleton(s.scene.rig->skeleton, pose->rotations, pose->origin));
+    }
   }
   return s;
 }
@@ -109,6 +144,11 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
   if (spec.seam_traction)
     add(spec.seam_traction->weight,
         [&] { return std::make_shared<SeamTractionObjective>(g, sim.materials().fabric); });
+  if (spec.sliding)
+    add(spec.sliding->weight, [&] {
+      return std::make_shared<SlidingObjective>(g, sim.materials(), sim.surface(), sim.body().num_vertices(),
+                                                sliding_poses(*spec.sliding, sim.body()), spec.sliding->friction);
+    });
   const RegularizerWeights& w = spec.regularizers;
   add(w.seam_length,
       [&] { return std::make_shared<EdgeLengthDifferenceTerm>(seam_length_regularizer(g)); });

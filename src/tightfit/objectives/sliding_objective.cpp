@@ -1,0 +1,183 @@
+#include "tightfit/objectives/sliding_objective.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "tightfit/common/error.hpp"
+#include "tightfit/physics/cloth_energy.hpp"
+#include "tightfit/physics/seam_spring_energy.hpp"
+
+namespace tightfit {
+
+/// One pose evaluated at a state: posed positions and frames, forces, and (with the
+/// gradient) a = ∂T/∂f (3·n_g) and ∂T/∂n per vertex.
+struct SlidingObjective::PoseEvaluation {
+  double value = 0.0;
+  SlidingForces forces;
+  VecX x;  // 3·n_g
+  std::vector<LimitWeights> stencils;
+  Points3 xu, xv, xuu, xuv, xvv;
+  VecX a;
+  Points3 gn;
+};
+
+SlidingObjective::SlidingObjective(const Garment& garment, const SimulationMaterials& materials,
+                                   const LimitSurface& surface, int num_body_vertices,
+                                   std::vector<PoseMotions> poses, double friction)
+    : surface_(surface),
+      num_garment_(garment.num_garment_vertices),
+      num_body_(num_body_vertices),
+      pinned_(static_cast<std::size_t>(garment.num_garment_vertices), 0),
+      poses_(std::move(poses)),
+      friction_(friction) {
+  const std::string source = "sliding objective";
+  if (!std::isfinite(friction) || friction < 0.0)
+    throw InputError(source, "the friction coefficient must be finite and >= 0");
+  if (poses_.empty()) throw InputError(source, "no poses to evaluate");
+  for (const PoseMotions& p : poses_)
+    if (static_cast<int>(p.motions.size()) != num_body_vertices)
+      throw InputError(source, "pose \"" + p.name + "\" has motions for " + std::to_string(p.motions.size()) +
+                                   " body vertices, the body has " + std::to_string(num_body_vertices));
+  if (num_body_vertices < surface.num_control_vertices())
+    throw InputError(source, "the body has fewer vertices than its surface");
+  for (int v : garment.pinned) pinned_[static_cast<std::size_t>(v)] = 1;
+  const Points2 rest = garment.rest_positions();
+  energies_.push_back(std::make_unique<ClothEnergy>(garment.pattern_triangles, rest, garment.pattern_to_garment,
+                                                    garment.num_garment_vertices, materials.fabric));
+  const auto seam_edges = garment.seam_edges();
+  if (materials.seam.youngs_modulus > 0.0 && !seam_edges.empty())
+    energies_.push_back(std::make_unique<SeamSpringEnergy>(seam_edges, rest, garment.pattern_to_garment,
+                                                           garment.num_garment_vertices, materials.seam));
+}
+
+SlidingObjective::~SlidingObjective() = default;
+
+void SlidingObjective::sync_rest(const Points2& rest) const {
+  for (const auto& e : energies_)
+    if (e->rest().rows() != rest.rows() || e->rest() != rest) e->set_rest(rest);
+}
+
+SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& state, int pose,
+                                                            bool with_gradient) const {
+  if (state.embedding == nullptr)
+    throw std::logic_error("SlidingObjective: the design state carries no embedding");
+  const DesignEmbedding& emb = *state.embedding;
+  if (static_cast<int>(emb.garment.size()) != num_garment_ || emb.body.rows() != num_body_)
+    throw std::invalid_argument("SlidingObjective: the embedding does not match the garment and body");
+  sync_rest(state.rest);
+  const std::vector<PointMotion>& motion = poses_[static_cast<std::size_t>(pose)].motions;
+  const int nc = surface_.num_control_vertices();
+  Points3 control(nc, 3);
+  for (int k = 0; k < nc; ++k) control.row(k) = motion[k].apply(emb.body.row(k).transpose()).transpose();
+
+  PoseEvaluation ev;
+  const int n = num_garment_;
+  ev.x = VecX::Zero(3 * n);
+  ev.stencils.resize(static_cast<std::size_t>(n));
+  for (Points3* m : {&ev.xu, &ev.xv, &ev.xuu, &ev.xuv, &ev.xvv}) m->setZero(n, 3);
+  for (int j = 0; j < n; ++j) {
+    LimitWeights& w = ev.stencils[static_cast<std::size_t>(j)];
+    surface_.weights(emb.garment[static_cast<std::size_t>(j)], w);
+    for (int k = 0; k < w.size(); ++k) {
+      const auto y = control.row(w.index[k]);
+      ev.x.segment<3>(3 * j) += w.p[k] * y.transpose();
+      ev.xu.row(j) += w.du[k] * y;
+      ev.xv.row(j) += w.dv[k] * y;
+      ev.xuu.row(j) += w.duu[k] * y;
+      ev.xuv.row(j) += w.duv[k] * y;
+      ev.xvv.row(j) += w.dvv[k] * y;
+    }
+  }
+  VecX g = VecX::Zero(3 * n);
+  for (const auto& e : energies_) e->add_gradient(ev.x, g);
+  ev.forces.normal = VecX::Zero(n);
+  ev.forces.tangential = VecX::Zero(n);
+  ev.forces.excess = VecX::Zero(n);
+  if (with_gradient) {
+    ev.a = VecX::Zero(3 * n);
+    ev.gn = Points3::Zero(n, 3);
+  }
+  for (int j = 0; j < n; ++j) {
+    const Vec3 f = -g.segment<3>(3 * j);
+    const Vec3 normal = Vec3(ev.xu.row(j)).cross(Vec3(ev.xv.row(j))).normalized();
+    const double fr = f.dot(normal);  // the pressing force is −fr (n points outward)
+    const Vec3 ft_vec = f - fr * normal;
+    const double ft = ft_vec.norm();
+    ev.forces.normal[j] = -fr;
+    ev.forces.tangential[j] = ft;
+    if (pinned_[static_cast<std::size_t>(j)]) continue;
+    const bool pressing = fr < 0.0;
+    const double excess = ft - friction_ * (pressing ? -fr : 0.0);
+    if (!(excess > 0.0)) continue;
+    ev.forces.excess[j] = excess;
+    ev.value += excess * excess;
+    if (!with_gradient) continue;
+    const Vec3 u = ft_vec / ft;  // ft > 0 since excess > 0
+    const double mu = pressing ? friction_ : 0.0;
+    // T = f_t − μ max(−f·n, 0): ∂f_t/∂f = u, ∂f_t/∂n = −(f·n) u.
+    ev.a.segment<3>(3 * j) = 2.0 * excess * (u + mu * normal);
+    ev.gn.row(j) = (2.0 * excess * (-fr * u + mu * f)).transpose();
+  }
+  return ev;
+}
+
+double SlidingObjective::value(const DesignState& state) const {
+  double total = 0.0;
+  for (int i = 0; i < static_cast<int>(poses_.size()); ++i) total += evaluate(state, i, false).value;
+  return total;
+}
+
+void SlidingObjective::add_gradient(const DesignState& state, VecX& /*d_x*/, VecX& d_rest) const {
+  std::vector<Triplet> mixed;
+  for (int i = 0; i < static_cast<int>(poses_.size()); ++i) {
+    const PoseEvaluation ev = evaluate(state, i, true);
+    if (ev.value == 0.0) continue;
+    mixed.clear();
+    for (const auto& e : energies_) e->add_mixed_rest(ev.x, mixed);
+    // f = −∂U/∂x, so ∂T/∂Xbar = −(∂²U/∂x∂Xbar)ᵀ a.
+    for (const Triplet& t : mixed) d_rest[t.col()] -= t.value() * ev.a[t.row()];
+  }
+}
+
+void SlidingObjective::add_embedding_gradient(const DesignState& state, VecX& d_s, VecX& d_y) const {
+  std::vector<Triplet> hessian;
+  for (int i = 0; i < static_cast<int>(poses_.size()); ++i) {
+    const PoseEvaluation ev = evaluate(state, i, true);
+    if (ev.value == 0.0) continue;
+    hessian.clear();
+    for (const auto& e : energies_) e->add_hessian(ev.x, hessian, false);
+    VecX gx = VecX::Zero(ev.x.size());  // ∂T/∂x_i = −H a
+    for (const Triplet& t : hessian) gx[t.row()] -= t.value() * ev.a[t.col()];
+    const std::vector<PointMotion>& motion = poses_[static_cast<std::size_t>(i)].motions;
+    for (int j = 0; j < num_garment_; ++j) {
+      const Vec3 xu = ev.xu.row(j), xv = ev.xv.row(j);
+      const Vec3 xuu = ev.xuu.row(j), xuv = ev.xuv.row(j), xvv = ev.xvv.row(j);
+      const Vec3 c = xu.cross(xv);
+      const double len = c.norm();
+      const Vec3 normal = c / len;
+      const Vec3 gn = ev.gn.row(j);
+      const Vec3 w = (gn - normal * normal.dot(gn)) / len;  // ∂T/∂c
+      const Vec3 g = gx.segment<3>(3 * j);
+      d_s[2 * j] += g.dot(xu) + w.dot(xuu.cross(xv) + xu.cross(xuv));
+      d_s[2 * j + 1] += g.dot(xv) + w.dot(xuv.cross(xv) + xu.cross(xvv));
+      const Vec3 t_u = xv.cross(w), t_v = w.cross(xu);  // ∂T/∂x_u, ∂T/∂x_v
+      const LimitWeights& st = ev.stencils[static_cast<std::size_t>(j)];
+      for (int k = 0; k < st.size(); ++k) {
+        const int b = st.index[k];
+        const Vec3 d_control = st.p[k] * g + st.du[k] * t_u + st.dv[k] * t_v;
+        d_y.segment<3>(3 * b) += motion[b].linear.transpose() * d_control;
+      }
+    }
+  }
+}
+
+SlidingForces SlidingObjective::forces(const DesignState& state, int pose) const {
+  return evaluate(state, pose, false).forces;
+}
+
+Points3 SlidingObjective::posed_positions(const DesignState& state, int pose) const {
+  const VecX x = evaluate(state, pose, false).x;
+  return Eigen::Map<const Points3>(x.data(), num_garment_, 3);
+}
+
+}  // namespace tightfit

@@ -1,0 +1,92 @@
+#pragma once
+/// Sliding objective over a range of motion (paper Sec. 5.5, Eq. 37-38).
+///
+/// The garment keeps its neutral embedding s0 (garment vertex j at surface point s_j) and
+/// is carried into pose i by the posed body Y_i (body/posed_body.hpp: body vertex k at
+/// M_ik y_k, M_ik its skinning motion): x_ij = x(s_j; Y_i) on the posed limit surface.
+/// There the cloth is generally not in equilibrium; the elastic force on vertex j,
+///   f_ij = −∂U_g/∂x_j (x_i, Xbar)     (U_g: cloth + seam springs; N),
+/// splits into the force pressing on the body f_n = −f·n_ij (n_ij the outward normal of
+/// the posed limit surface: a taut garment pulls its vertices inwards, and the body holds
+/// them) and a tangential magnitude f_t = ‖f − (f·n) n‖. Coulomb friction with
+/// coefficient μ holds up to f_c = μ max(f_n, 0) (only fabric pressing on the body gives
+/// friction; the paper's f_c = μ f·n with f the force on the body); what exceeds it would
+/// slide:
+///   T_slide = Σ_i Σ_j T_ij²,   T_ij = max(f_t − f_c, 0)      (N²),
+/// over the free (unpinned) garment vertices (the pinned ones are held by their pins).
+///
+/// Gradient (Eq. 38): T depends on the design through Xbar (the forces' rest shape:
+/// ∂T/∂Xbar = −Σ_i (∂²U/∂x∂Xbar)ᵀ a_i with a_i = ∂T/∂f_i) and on the neutral equilibrium
+/// (s0, y) through x_i and n_i; add_embedding_gradient gives ∂T/∂s and ∂T/∂y, which the
+/// adjoint solve turns into the sensitivity through s0 and y (Eq. 38's
+/// (∂x_i/∂s0 ∂s0/∂p)ᵀ ∂T/∂x_i, plus the body's own sensitivity, which the paper's
+/// formula leaves out). Second derivatives of the limit surface give ∂n/∂s, the exact
+/// cloth Hessian gives ∂f/∂x. T is C¹ away from f_n = 0 (where the friction limit has a
+/// kink); the squared hinge is C¹ at f_t = f_c.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tightfit/body/skinning.hpp"
+#include "tightfit/design/design_term.hpp"
+#include "tightfit/garment/garment.hpp"
+#include "tightfit/physics/rest_dependent_energy.hpp"
+#include "tightfit/solve/garment_simulation.hpp"
+#include "tightfit/subdiv/limit_surface.hpp"
+
+namespace tightfit {
+
+/// One target pose: the skinning motion of every body vertex (n_b, blend_motions).
+struct PoseMotions {
+  std::string name;
+  std::vector<PointMotion> motions;
+};
+
+/// Per garment vertex in one pose: the forces of the sliding objective.
+struct SlidingForces {
+  VecX normal;      ///< f_n (N), positive pressing on the body
+  VecX tangential;  ///< f_t (N)
+  VecX excess;      ///< T_ij = max(f_t − f_c, 0) (N); 0 for pinned vertices
+};
+
+class SlidingObjective : public DesignTerm {
+ public:
+  /// `surface` is the body's limit surface (must outlive the term), `num_body_vertices`
+  /// n_b, `poses` at least one, each with n_b motions; `friction` μ ≥ 0. The garment's
+  /// energies are rebuilt here from `materials` exactly as the simulation builds them.
+  /// Throws InputError (source "sliding objective") for a negative or non-finite μ, no
+  /// poses, or motions of the wrong count.
+  SlidingObjective(const Garment& garment, const SimulationMaterials& materials,
+                   const LimitSurface& surface, int num_body_vertices, std::vector<PoseMotions> poses,
+                   double friction);
+  ~SlidingObjective() override;
+
+  std::string name() const override { return "sliding"; }
+  double value(const DesignState& state) const override;
+  void add_gradient(const DesignState& state, VecX& d_x, VecX& d_rest) const override;
+  bool depends_on_positions() const override { return true; }
+  bool depends_on_embedding() const override { return true; }
+  void add_embedding_gradient(const DesignState& state, VecX& d_s, VecX& d_y) const override;
+
+  const std::vector<PoseMotions>& poses() const { return poses_; }
+  double friction() const { return friction_; }
+  /// The forces of pose `pose` at the state (for reports).
+  SlidingForces forces(const DesignState& state, int pose) const;
+  /// Garment positions in pose `pose` (n_g×3, m) at the state.
+  Points3 posed_positions(const DesignState& state, int pose) const;
+
+ private:
+  struct PoseEvaluation;
+  PoseEvaluation evaluate(const DesignState& state, int pose, bool with_gradient) const;
+  void sync_rest(const Points2& rest) const;
+
+  const LimitSurface& surface_;
+  int num_garment_ = 0;
+  int num_body_ = 0;
+  std::vector<char> pinned_;
+  std::vector<PoseMotions> poses_;
+  double friction_ = 0.3;
+  std::vector<std::unique_ptr<RestDependentEnergy>> energies_;  // rest synced lazily
+};
+
+}  // namespace tightfit
