@@ -122,7 +122,7 @@ TEST(ScenePoses, TheSlidingObjectiveNeedsPosesTheSceneHas) {
     std::ofstream(dir / "scene.json") << j.dump();
     try {
       const OptimizationScene s = read_optimization_scene((dir / "scene.json").string());
-      return std::string("no error, ") + std::to_string(s.optimization.sliding->bone_motions.size()) + " poses";
+      return std::string("no error, ") + std::to_string(s.optimization.poses.bone_motions.size()) + " poses";
     } catch (const InputError& e) {
       return std::string(e.what());
     }
@@ -130,9 +130,29 @@ TEST(ScenePoses, TheSlidingObjectiveNeedsPosesTheSceneHas) {
   EXPECT_EQ(error({{"weight", 1}}, true), "no error, 1 poses");
   EXPECT_NE(error({{"weight", 1}, {"poses", {"knee", "hop"}}}, true).find("/optimize/objectives/sliding/poses: the scene has no pose \"hop\""),
             std::string::npos);
-  EXPECT_NE(error({{"weight", 1}}, false).find("no poses to slide in"), std::string::npos);
+  EXPECT_NE(error({{"weight", 1}}, false).find("asks for poses"), std::string::npos);
   EXPECT_NE(error({{"weight", 1}, {"friction", -0.3}}, true).find("/optimize/objectives/sliding/friction"), std::string::npos);
   EXPECT_NE(error({{"weight", 1}, {"poses", nlohmann::json::array()}}, true).find("non-empty array"), std::string::npos);
+  // Stretch in every pose: the scene's poses are resolved for it too.
+  auto stretch = [&](const nlohmann::json& poses, bool with_poses) {
+    nlohmann::json j = posed_scene(nlohmann::json::parse(R"([{"name": "knee", "rotations": {"lowerleg01.L": [30, 0, 0]}}])"));
+    if (!with_poses) j.erase("poses");
+    j["body"]["mesh"] = std::string(TIGHTFIT_SOURCE_DIR) + "/data/bodies/mh_legs_male.obj";
+    for (const char* key : {"mesh", "weights", "joints"})
+      j["rig"][key] = std::string(TIGHTFIT_SOURCE_DIR) + "/" + j["rig"][key].get<std::string>();
+    j["optimize"] = {{"objectives", {{"stretch", {{"weight", 1}, {"min", 1.0}, {"poses", poses}}}}}};
+    std::ofstream(dir / "scene.json") << j.dump();
+    try {
+      const OptimizationScene s = read_optimization_scene((dir / "scene.json").string());
+      return std::to_string(s.optimization.stretch->all_poses) + " " + std::to_string(s.optimization.poses.bone_motions.size());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+  };
+  EXPECT_EQ(stretch("all", true), "1 1");
+  EXPECT_EQ(stretch("neutral", true), "0 0");
+  EXPECT_NE(stretch("some", true).find("/optimize/objectives/stretch/poses"), std::string::npos);
+  EXPECT_NE(stretch("all", false).find("asks for poses"), std::string::npos);
   fs::remove_all(dir);
 }
 

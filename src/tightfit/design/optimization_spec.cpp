@@ -8,8 +8,12 @@ namespace {
 
 double weight(JsonFields& f) { return f.positive("weight", 1.0, true); }
 
+/// "poses": "neutral" (default) or "all" (the neutral pose and every scene pose).
+bool all_poses(JsonFields& f) { return f.choice("poses", {"neutral", "all"}, "neutral") == "all"; }
+
 StretchObjectiveSpec parse_stretch_bounds(JsonFields& f) {
   StretchObjectiveSpec s;
+  s.all_poses = all_poses(f);
   s.weight = weight(f);
   s.min_stretch = f.positive("min", 1.0);
   if (f.has("max")) {
@@ -51,6 +55,7 @@ PressureObjectiveSpec parse_pressure(JsonFields f) {
   s.weight = weight(f);
   s.scene_regions = !(f.has("min_pa") || f.has("max_pa") || f.has("min_mmhg") || f.has("max_mmhg"));
   if (!s.scene_regions) parse_pressure_range(f, s.min_pa, s.max_pa);
+  s.all_poses = all_poses(f);
   f.finish();
   return s;
 }

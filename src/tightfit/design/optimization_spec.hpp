@@ -6,6 +6,8 @@
 ///   "optimize": {
 ///     "objectives": {                       // at least one objective or regularizer
 ///       "stretch":  {"weight": 1, "min": 1.05, "max": 1.3},   // "max" optional (none)
+///                                           // stretch, directional_stretch, pressure:
+///                                           // "poses": "all" also in every scene pose
 ///       "directional_stretch": {"weight": 1, "direction": "across_grain",  // or along_grain
 ///                               "min": 1.3, "max": 1.3},                // "max" optional
 ///       "shape":    {"weight": 1, "target": "target.obj", "radius": 0.01,
@@ -59,6 +61,7 @@ namespace tightfit {
 
 struct StretchObjectiveSpec {
   double weight = 1.0;
+  bool all_poses = false;  ///< "poses": "all": also in every scene pose (objectives/all_poses_term.hpp)
   double min_stretch = 1.0;
   std::optional<double> max_stretch;  ///< none: no upper bound
 };
@@ -81,6 +84,7 @@ struct ShapeObjectiveSpec {
 
 struct PressureObjectiveSpec {
   double weight = 1.0;
+  bool all_poses = false;  ///< "poses": "all": also in every scene pose
   /// No range given: the targets are the scene's `"pressure": {"regions": [...]}`
   /// (copied into `regions` by read_optimization_scene). Else [min_pa, max_pa] on the
   /// whole garment.
@@ -97,17 +101,21 @@ struct SeamTractionObjectiveSpec {
   double weight = 1.0;
 };
 
+/// The scene's poses as the design terms need them (filled by read_optimization_scene
+/// when a term asks for poses): the rig's skin weights, how they blend, and the bone
+/// motions of every pose of the scene, by name, in scene order.
+struct DesignPoses {
+  std::shared_ptr<const SkinWeights> rig;
+  SkinningMethod skinning = SkinningMethod::kDualQuaternion;
+  std::vector<std::pair<std::string, std::map<std::string, RigidMotion>>> bone_motions;
+  std::string source;  ///< the scene file, for errors about the poses
+};
+
 /// The sliding objective over the scene's poses (objectives/sliding_objective.hpp).
 struct SlidingObjectiveSpec {
   double weight = 1.0;
   double friction = 0.3;           ///< Coulomb coefficient μ >= 0
   std::vector<std::string> poses;  ///< pose names; empty: every pose of the scene
-  /// Filled by read_optimization_scene from the scene's rig and poses: the skin weights,
-  /// how they blend, and the bone motions of every selected pose (by name).
-  std::shared_ptr<const SkinWeights> rig;
-  SkinningMethod skinning = SkinningMethod::kDualQuaternion;
-  std::vector<std::pair<std::string, std::map<std::string, RigidMotion>>> bone_motions;
-  std::string source;  ///< the scene file, for errors about the poses
 };
 
 struct RegularizerWeights {
@@ -125,6 +133,7 @@ struct OptimizationSpec {
   std::optional<PressureObjectiveSpec> pressure;
   std::optional<SeamTractionObjectiveSpec> seam_traction;
   std::optional<SlidingObjectiveSpec> sliding;
+  DesignPoses poses;  ///< the scene's poses (empty unless a term uses them)
   RegularizerWeights regularizers;
   int checkpoint_every = 5;
   PatternOptimizerOptions optimizer;  ///< max_iterations default 50 here

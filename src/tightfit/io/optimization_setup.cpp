@@ -9,6 +9,7 @@
 #include "tightfit/design/regularizer_smoothness.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
+#include "tightfit/objectives/all_poses_term.hpp"
 #include "tightfit/objectives/directional_stretch_objective.hpp"
 #include "tightfit/objectives/pressure_objective.hpp"
 #include "tightfit/objectives/seam_traction_objective.hpp"
@@ -38,14 +39,17 @@ ImlsSurface shape_target(const ShapeObjectiveSpec& spec) {
   return ImlsSurface(points, n, spec.radius);
 }
 
-/// The skinning motion of every body vertex in every pose of the sliding objective;
-/// a pose that inverts a tet of the body is an InputError naming it.
-std::vector<PoseMotions> sliding_poses(const SlidingObjectiveSpec& spec, const Body& body) {
-  const PointWeights weights = body_skin_weights(body, *spec.rig);
+/// The skinning motion of every body vertex in every pose of the scene (those named
+/// in `names`, or all when it is empty); a pose that inverts a tet of the body is an
+/// InputError naming it.
+std::vector<PoseMotions> pose_motions(const DesignPoses& poses, const Body& body,
+                                      const std::vector<std::string>& names = {}) {
+  const PointWeights weights = body_skin_weights(body, *poses.rig);
   std::vector<PoseMotions> out;
-  for (const auto& [name, bones] : spec.bone_motions) {
-    const PosedBody posed = pose_body(body, body.volume.vertices, weights, bones, spec.skinning);
-    check_posed_body(posed, body, name, spec.source);
+  for (const auto& [name, bones] : poses.bone_motions) {
+    if (!names.empty() && std::find(names.begin(), names.end(), name) == names.end()) continue;
+    const PosedBody posed = pose_body(body, body.volume.vertices, weights, bones, poses.skinning);
+    check_posed_body(posed, body, name, poses.source);
     out.push_back({name, posed.motions});
   }
   return out;
@@ -71,24 +75,24 @@ OptimizationScene read_optimization_scene(const std::string& file) {
     pressure->rig = s.scene.pressure_rig;
     pressure->rig_radius = s.scene.pressure_rig_radius;
   }
-  if (auto& sliding = s.optimization.sliding) {
-    const std::string where = "/optimize/objectives/sliding";
+  OptimizationSpec& o = s.optimization;
+  const bool posed_terms = o.sliding || (o.stretch && o.stretch->all_poses) ||
+                           (o.directional_stretch && o.directional_stretch->bounds.all_poses) ||
+                           (o.pressure && o.pressure->all_poses);
+  if (posed_terms) {
     if (!s.scene.rig || s.scene.poses.empty())
-      throw InputError(file, where + ": the scene has no poses to slide in (give \"rig\" and \"poses\")");
-    sliding->rig = std::shared_ptr<const SkinWeights>(s.scene.rig, &s.scene.rig->weights);
-    sliding->skinning = s.scene.rig->skinning;
-    sliding->source = file;
-    std::vector<std::string> names = sliding->poses;
-    if (names.empty())
-      for (const ScenePose& p : s.scene.poses) names.push_back(p.name);
-    for (const std::string& name : names) {
-      const auto pose = std::find_if(s.scene.poses.begin(), s.scene.poses.end(),
-                                     [&](const ScenePose& p) { return p.name == name; });
-      if (pose == s.scene.poses.end())
-        throw InputError(file, where + "/poses: the scene has no pose \"" + name + "\"");
-      sliding->bone_motions.emplace_back(name, pose_skeleton(s.scene.rig->skeleton, pose->rotations, pose->origin));
-    }
+      throw InputError(file, "/optimize/objectives: a term asks for poses (sliding, or \"poses\": \"all\") "
+                             "but the scene has none (give \"rig\" and \"poses\")");
+    o.poses.rig = std::shared_ptr<const SkinWeights>(s.scene.rig, &s.scene.rig->weights);
+    o.poses.skinning = s.scene.rig->skinning;
+    o.poses.source = file;
+    for (const ScenePose& p : s.scene.poses)
+      o.poses.bone_motions.emplace_back(p.name, pose_skeleton(s.scene.rig->skeleton, p.rotations, p.origin));
   }
+  if (o.sliding)
+    for (const std::string& name : o.sliding->poses)
+      if (std::none_of(s.scene.poses.begin(), s.scene.poses.end(), [&](const ScenePose& p) { return p.name == name; }))
+        throw InputError(file, "/optimize/objectives/sliding/poses: the scene has no pose \"" + name + "\"");
   return s;
 }
 
@@ -99,12 +103,18 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
   auto add = [&](double weight, auto make) {
     if (weight > 0.0) sum->add(make(), weight);
   };
+  std::vector<PoseMotions> all_poses;  // computed once, when a term needs them
+  auto in_poses = [&](bool all, std::shared_ptr<const DesignTerm> term) -> std::shared_ptr<const DesignTerm> {
+    if (!all) return term;
+    if (all_poses.empty()) all_poses = pose_motions(spec.poses, sim.body());
+    return std::make_shared<AllPosesTerm>(std::move(term), sim.surface(), all_poses);
+  };
   if (spec.stretch)
     add(spec.stretch->weight, [&] {
       StretchBounds b;
       b.min_stretch = spec.stretch->min_stretch;
       b.max_stretch = spec.stretch->max_stretch.value_or(std::numeric_limits<double>::infinity());
-      return std::make_shared<StretchObjective>(g, b);
+      return in_poses(spec.stretch->all_poses, std::make_shared<StretchObjective>(g, b));
     });
   if (spec.directional_stretch)
     add(spec.directional_stretch->bounds.weight, [&] {
@@ -112,10 +122,11 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
       StretchBounds b;
       b.min_stretch = s.min_stretch;
       b.max_stretch = s.max_stretch.value_or(std::numeric_limits<double>::infinity());
-      return std::make_shared<DirectionalStretchObjective>(
-          g, spec.directional_stretch->across_grain ? FabricDirection::across_grain
-                                                    : FabricDirection::along_grain,
-          b);
+      return in_poses(s.all_poses,
+                      std::make_shared<DirectionalStretchObjective>(
+                          g, spec.directional_stretch->across_grain ? FabricDirection::across_grain
+                                                                    : FabricDirection::along_grain,
+                          b));
     });
   if (spec.shape)
     add(spec.shape->weight, [&] {
@@ -130,16 +141,18 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
                                               vertices);
     });
   if (spec.pressure)
-    add(spec.pressure->weight, [&]() -> std::shared_ptr<PressureObjective> {
+    add(spec.pressure->weight, [&]() -> std::shared_ptr<const DesignTerm> {
       if (!spec.pressure->scene_regions)
-        return std::make_shared<PressureObjective>(g, sim.materials().fabric,
-                                                   spec.pressure->min_pa, spec.pressure->max_pa);
+        return in_poses(spec.pressure->all_poses,
+                        std::make_shared<PressureObjective>(g, sim.materials().fabric, spec.pressure->min_pa,
+                                                            spec.pressure->max_pa));
       const std::string& source = spec.pressure->regions_source;
       PressureRegions regions(g, spec.pressure->regions, source, spec.pressure->rig.get(),
                               spec.pressure->rig_radius);
       const Points3& x = sim.garment_positions();
       regions.check_covered(Eigen::Map<const VecX>(x.data(), x.size()), source);
-      return std::make_shared<PressureObjective>(g, sim.materials().fabric, std::move(regions));
+      return in_poses(spec.pressure->all_poses,
+                      std::make_shared<PressureObjective>(g, sim.materials().fabric, std::move(regions)));
     });
   if (spec.seam_traction)
     add(spec.seam_traction->weight,
@@ -147,7 +160,8 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
   if (spec.sliding)
     add(spec.sliding->weight, [&] {
       return std::make_shared<SlidingObjective>(g, sim.materials(), sim.surface(), sim.body().num_vertices(),
-                                                sliding_poses(*spec.sliding, sim.body()), spec.sliding->friction);
+                                                pose_motions(spec.poses, sim.body(), spec.sliding->poses),
+                                                spec.sliding->friction);
     });
   const RegularizerWeights& w = spec.regularizers;
   add(w.seam_length,

@@ -14,9 +14,7 @@ namespace tightfit {
 struct SlidingObjective::PoseEvaluation {
   double value = 0.0;
   SlidingForces forces;
-  VecX x;  // 3·n_g
-  std::vector<LimitWeights> stencils;
-  Points3 xu, xv, xuu, xuv, xvv;
+  PosedGarment posed;
   VecX a;
   Points3 gn;
 };
@@ -65,31 +63,12 @@ SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& s
   if (static_cast<int>(emb.garment.size()) != num_garment_ || emb.body.rows() != num_body_)
     throw std::invalid_argument("SlidingObjective: the embedding does not match the garment and body");
   sync_rest(state.rest);
-  const std::vector<PointMotion>& motion = poses_[static_cast<std::size_t>(pose)].motions;
-  const int nc = surface_.num_control_vertices();
-  Points3 control(nc, 3);
-  for (int k = 0; k < nc; ++k) control.row(k) = motion[k].apply(emb.body.row(k).transpose()).transpose();
-
   PoseEvaluation ev;
+  ev.posed = pose_garment(surface_, emb, poses_[static_cast<std::size_t>(pose)].motions);
+  const PosedGarment& pg = ev.posed;
   const int n = num_garment_;
-  ev.x = VecX::Zero(3 * n);
-  ev.stencils.resize(static_cast<std::size_t>(n));
-  for (Points3* m : {&ev.xu, &ev.xv, &ev.xuu, &ev.xuv, &ev.xvv}) m->setZero(n, 3);
-  for (int j = 0; j < n; ++j) {
-    LimitWeights& w = ev.stencils[static_cast<std::size_t>(j)];
-    surface_.weights(emb.garment[static_cast<std::size_t>(j)], w);
-    for (int k = 0; k < w.size(); ++k) {
-      const auto y = control.row(w.index[k]);
-      ev.x.segment<3>(3 * j) += w.p[k] * y.transpose();
-      ev.xu.row(j) += w.du[k] * y;
-      ev.xv.row(j) += w.dv[k] * y;
-      ev.xuu.row(j) += w.duu[k] * y;
-      ev.xuv.row(j) += w.duv[k] * y;
-      ev.xvv.row(j) += w.dvv[k] * y;
-    }
-  }
   VecX g = VecX::Zero(3 * n);
-  for (const auto& e : energies_) e->add_gradient(ev.x, g);
+  for (const auto& e : energies_) e->add_gradient(pg.x, g);
   ev.forces.normal = VecX::Zero(n);
   ev.forces.tangential = VecX::Zero(n);
   ev.forces.excess = VecX::Zero(n);
@@ -99,7 +78,7 @@ SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& s
   }
   for (int j = 0; j < n; ++j) {
     const Vec3 f = -g.segment<3>(3 * j);
-    const Vec3 normal = Vec3(ev.xu.row(j)).cross(Vec3(ev.xv.row(j))).normalized();
+    const Vec3 normal = Vec3(pg.xu.row(j)).cross(Vec3(pg.xv.row(j))).normalized();
     const double fr = f.dot(normal);  // the pressing force is −fr (n points outward)
     const Vec3 ft_vec = f - fr * normal;
     const double ft = ft_vec.norm();
@@ -133,7 +112,7 @@ void SlidingObjective::add_gradient(const DesignState& state, VecX& /*d_x*/, Vec
     const PoseEvaluation ev = evaluate(state, i, true);
     if (ev.value == 0.0) continue;
     mixed.clear();
-    for (const auto& e : energies_) e->add_mixed_rest(ev.x, mixed);
+    for (const auto& e : energies_) e->add_mixed_rest(ev.posed.x, mixed);
     // f = −∂U/∂x, so ∂T/∂Xbar = −(∂²U/∂x∂Xbar)ᵀ a.
     for (const Triplet& t : mixed) d_rest[t.col()] -= t.value() * ev.a[t.row()];
   }
@@ -145,27 +124,29 @@ void SlidingObjective::add_embedding_gradient(const DesignState& state, VecX& d_
     const PoseEvaluation ev = evaluate(state, i, true);
     if (ev.value == 0.0) continue;
     hessian.clear();
-    for (const auto& e : energies_) e->add_hessian(ev.x, hessian, false);
-    VecX gx = VecX::Zero(ev.x.size());  // ∂T/∂x_i = −H a
+    const PosedGarment& pg = ev.posed;
+    for (const auto& e : energies_) e->add_hessian(pg.x, hessian, false);
+    VecX gx = VecX::Zero(pg.x.size());  // ∂T/∂x_i = −H a
     for (const Triplet& t : hessian) gx[t.row()] -= t.value() * ev.a[t.col()];
     const std::vector<PointMotion>& motion = poses_[static_cast<std::size_t>(i)].motions;
+    add_posed_position_gradient(pg, motion, gx, d_s, d_y);
+    // Through the normals: n = c/|c|, c = x_u × x_v.
     for (int j = 0; j < num_garment_; ++j) {
-      const Vec3 xu = ev.xu.row(j), xv = ev.xv.row(j);
-      const Vec3 xuu = ev.xuu.row(j), xuv = ev.xuv.row(j), xvv = ev.xvv.row(j);
+      const Vec3 gn = ev.gn.row(j);
+      if (gn.squaredNorm() == 0.0) continue;
+      const Vec3 xu = pg.xu.row(j), xv = pg.xv.row(j);
+      const Vec3 xuu = pg.xuu.row(j), xuv = pg.xuv.row(j), xvv = pg.xvv.row(j);
       const Vec3 c = xu.cross(xv);
       const double len = c.norm();
       const Vec3 normal = c / len;
-      const Vec3 gn = ev.gn.row(j);
       const Vec3 w = (gn - normal * normal.dot(gn)) / len;  // ∂T/∂c
-      const Vec3 g = gx.segment<3>(3 * j);
-      d_s[2 * j] += g.dot(xu) + w.dot(xuu.cross(xv) + xu.cross(xuv));
-      d_s[2 * j + 1] += g.dot(xv) + w.dot(xuv.cross(xv) + xu.cross(xvv));
+      d_s[2 * j] += w.dot(xuu.cross(xv) + xu.cross(xuv));
+      d_s[2 * j + 1] += w.dot(xuv.cross(xv) + xu.cross(xvv));
       const Vec3 t_u = xv.cross(w), t_v = w.cross(xu);  // ∂T/∂x_u, ∂T/∂x_v
-      const LimitWeights& st = ev.stencils[static_cast<std::size_t>(j)];
+      const LimitWeights& st = pg.stencils[static_cast<std::size_t>(j)];
       for (int k = 0; k < st.size(); ++k) {
         const int b = st.index[k];
-        const Vec3 d_control = st.p[k] * g + st.du[k] * t_u + st.dv[k] * t_v;
-        d_y.segment<3>(3 * b) += motion[b].linear.transpose() * d_control;
+        d_y.segment<3>(3 * b) += motion[b].linear.transpose() * (st.du[k] * t_u + st.dv[k] * t_v);
       }
     }
   }
@@ -176,7 +157,7 @@ SlidingForces SlidingObjective::forces(const DesignState& state, int pose) const
 }
 
 Points3 SlidingObjective::posed_positions(const DesignState& state, int pose) const {
-  const VecX x = evaluate(state, pose, false).x;
+  const VecX x = evaluate(state, pose, false).posed.x;
   return Eigen::Map<const Points3>(x.data(), num_garment_, 3);
 }
 

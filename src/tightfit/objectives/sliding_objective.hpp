@@ -30,17 +30,12 @@
 #include "tightfit/body/skinning.hpp"
 #include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/posed_garment.hpp"
 #include "tightfit/physics/rest_dependent_energy.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
 namespace tightfit {
-
-/// One target pose: the skinning motion of every body vertex (n_b, blend_motions).
-struct PoseMotions {
-  std::string name;
-  std::vector<PointMotion> motions;
-};
 
 /// Per garment vertex in one pose: the forces of the sliding objective.
 struct SlidingForces {
