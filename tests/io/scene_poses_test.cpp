@@ -109,17 +109,23 @@ TEST(PoseCli, WritesEveryPosedBodyOrNothing) {
 }
 
 
+/// Writes DIR/scene.json: the posed legs scene with one pose (or none) and the given
+/// "optimize" objectives, every path absolute.
+void write_optimize_scene(const fs::path& dir, const nlohmann::json& objectives, bool with_poses) {
+  nlohmann::json j = posed_scene(nlohmann::json::parse(R"([{"name": "knee", "rotations": {"lowerleg01.L": [30, 0, 0]}}])"));
+  if (!with_poses) j.erase("poses");
+  j["body"]["mesh"] = std::string(TIGHTFIT_SOURCE_DIR) + "/data/bodies/mh_legs_male.obj";
+  for (const char* key : {"mesh", "weights", "joints"})
+    j["rig"][key] = std::string(TIGHTFIT_SOURCE_DIR) + "/" + j["rig"][key].get<std::string>();
+  j["optimize"] = {{"objectives", objectives}};
+  std::ofstream(dir / "scene.json") << j.dump();
+}
+
 TEST(ScenePoses, TheSlidingObjectiveNeedsPosesTheSceneHas) {
   const fs::path dir = fs::temp_directory_path() / ("tightfit_sliding_spec_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   auto error = [&](const nlohmann::json& sliding, bool with_poses) {
-    nlohmann::json j = posed_scene(nlohmann::json::parse(R"([{"name": "knee", "rotations": {"lowerleg01.L": [30, 0, 0]}}])"));
-    if (!with_poses) j.erase("poses");
-    j["body"]["mesh"] = std::string(TIGHTFIT_SOURCE_DIR) + "/data/bodies/mh_legs_male.obj";
-    for (const char* key : {"mesh", "weights", "joints"})
-      j["rig"][key] = std::string(TIGHTFIT_SOURCE_DIR) + "/" + j["rig"][key].get<std::string>();
-    j["optimize"] = {{"objectives", {{"sliding", sliding}}}};
-    std::ofstream(dir / "scene.json") << j.dump();
+    write_optimize_scene(dir, {{"sliding", sliding}}, with_poses);
     try {
       const OptimizationScene s = read_optimization_scene((dir / "scene.json").string());
       return std::string("no error, ") + std::to_string(s.optimization.poses.bone_motions.size()) + " poses";
@@ -135,13 +141,7 @@ TEST(ScenePoses, TheSlidingObjectiveNeedsPosesTheSceneHas) {
   EXPECT_NE(error({{"weight", 1}, {"poses", nlohmann::json::array()}}, true).find("non-empty array"), std::string::npos);
   // Stretch in every pose: the scene's poses are resolved for it too.
   auto stretch = [&](const nlohmann::json& poses, bool with_poses) {
-    nlohmann::json j = posed_scene(nlohmann::json::parse(R"([{"name": "knee", "rotations": {"lowerleg01.L": [30, 0, 0]}}])"));
-    if (!with_poses) j.erase("poses");
-    j["body"]["mesh"] = std::string(TIGHTFIT_SOURCE_DIR) + "/data/bodies/mh_legs_male.obj";
-    for (const char* key : {"mesh", "weights", "joints"})
-      j["rig"][key] = std::string(TIGHTFIT_SOURCE_DIR) + "/" + j["rig"][key].get<std::string>();
-    j["optimize"] = {{"objectives", {{"stretch", {{"weight", 1}, {"min", 1.0}, {"poses", poses}}}}}};
-    std::ofstream(dir / "scene.json") << j.dump();
+    write_optimize_scene(dir, {{"stretch", {{"weight", 1}, {"min", 1.0}, {"poses", poses}}}}, with_poses);
     try {
       const OptimizationScene s = read_optimization_scene((dir / "scene.json").string());
       return std::to_string(s.optimization.stretch->all_poses) + " " + std::to_string(s.optimization.poses.bone_motions.size());
