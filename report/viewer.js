@@ -1,7 +1,8 @@
 // tightfit report viewer: reads the fit data embedded in report.html (see
 // src/tightfit/io/report_data.hpp for its layout) and draws the 3D view (three.js),
 // the legend, the pattern pieces, the statistics, the history and the parameters.
-// Exposes window.tightfitReport = {ready, renderCount, background, coloring, setColoring}
+// Exposes window.tightfitReport = {ready, renderCount, background, coloring, setColoring,
+// pose, setPose}
 // for the browser test (tests/io/report_browser_check.mjs).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -10,7 +11,8 @@ const data = JSON.parse(document.getElementById('tightfit-data').textContent);
 const BACKGROUND = [238, 240, 243];
 const NO_VALUE = [153, 153, 153];
 const SVG_NS = 'http://www.w3.org/2000/svg';
-const report = { ready: false, renderCount: 0, background: BACKGROUND, coloring: -1, setColoring: null };
+const report = { ready: false, renderCount: 0, background: BACKGROUND, coloring: -1, setColoring: null,
+  pose: -1, setPose: null };
 window.tightfitReport = report;
 
 // ---- decoding --------------------------------------------------------------------
@@ -42,6 +44,15 @@ if (data.pieces.length > 0 && data.pieces.length <= 64) {
   colorings.push({ field: 'piece', label: 'Piece', unit: '', values, fixed: true,
     categories: data.pieces.map((p, k) => ({ value: k, label: p.name, color: PIECE_COLORS[k % PIECE_COLORS.length] })) });
 }
+// Poses: the garment carried into each pose of the scene, the posed body, and per face
+// the tangential force above the friction limit there (the "sliding" colouring shows
+// the worst pose in the neutral view).
+const poses = (data.poses || []).map((p) => ({
+  ...p, garment: typedArray(p.garment), normals: typedArray(p.normals), body: typedArray(p.body),
+  sliding_excess: typedArray(p.sliding_excess),
+}));
+const slidingColoring = colorings.find((c) => c.field === 'sliding_excess_n') || null;
+const neutralSliding = slidingColoring ? slidingColoring.values : null;
 const pieces = data.pieces.map((p) => ({
   ...p, rest: typedArray(p.rest), triangles: typedArray(p.triangles), faces: typedArray(p.faces),
   initial: p.initial_outline ? typedArray(p.initial_outline) : null,
@@ -107,22 +118,28 @@ const garmentEdge = (() => {
   return t.length > 0 ? sum / t.length : 0;
 })();
 const displayLift = garment.normals ? 0.1 * garmentEdge : 0;
-const lifted = new Float32Array(garment.positions.length);
-for (let i = 0; i < lifted.length; ++i) lifted[i] = garment.positions[i] + (garment.normals ? displayLift * garment.normals[i] : 0);
+// Garment vertex positions lifted by `factor` display lifts along `normals`.
+function liftedPositions(positions, normals, factor) {
+  const out = new Float32Array(positions.length);
+  for (let i = 0; i < out.length; ++i) out[i] = positions[i] + (normals ? factor * displayLift * normals[i] : 0);
+  return out;
+}
 
 // Garment: one vertex per face corner so that every face shows its own colour.
 const garmentGeometry = new THREE.BufferGeometry();
-{
+function setGarmentPositions(positions, normals) {
+  const lifted = liftedPositions(positions, normals, 1);
   const n = garment.indices.length;
-  const positions = new Float32Array(3 * n);
+  const corners = new Float32Array(3 * n);
   for (let i = 0; i < n; ++i) {
     const v = garment.indices[i];
-    positions.set(lifted.subarray(3 * v, 3 * v + 3), 3 * i);
+    corners.set(lifted.subarray(3 * v, 3 * v + 3), 3 * i);
   }
-  garmentGeometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-  garmentGeometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
+  garmentGeometry.setAttribute('position', new THREE.BufferAttribute(corners, 3));
   garmentGeometry.computeVertexNormals();
 }
+setGarmentPositions(garment.positions, garment.normals);
+garmentGeometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(3 * garment.indices.length), 3));
 const garmentMesh = new THREE.Mesh(garmentGeometry,
   new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide }));
 scene.add(garmentMesh);
@@ -167,20 +184,23 @@ const edgeLines = { seam: [], pinned: [], free: [] };
   }
 }
 const edgeGroup = new THREE.Group();
+// The edge lines of every kind at garment positions `positions` (lifted 1.5 display lifts).
+function setEdgePositions(positions, normals) {
+  const lifted = liftedPositions(positions, normals, 1.5);
+  for (const lines of edgeGroup.children) {
+    const ends = edgeLines[lines.name];
+    const out = new Float32Array(3 * ends.length);
+    ends.forEach((v, i) => out.set(lifted.subarray(3 * v, 3 * v + 3), 3 * i));
+    lines.geometry.setAttribute('position', new THREE.BufferAttribute(out, 3));
+  }
+}
 for (const [kind, color] of [['seam', 0x111111], ['pinned', 0xd42a2a], ['free', 0x5b6570]]) {
-  const ends = edgeLines[kind];
-  if (ends.length === 0) continue;
-  const positions = new Float32Array(3 * ends.length);
-  ends.forEach((v, i) => {
-    for (let c = 0; c < 3; ++c)
-      positions[3 * i + c] = garment.positions[3 * v + c] + (garment.normals ? 1.5 * displayLift * garment.normals[3 * v + c] : 0);
-  });
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-  const lines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color }));
+  if (edgeLines[kind].length === 0) continue;
+  const lines = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color }));
   lines.name = kind;
   edgeGroup.add(lines);
 }
+setEdgePositions(garment.positions, garment.normals);
 scene.add(edgeGroup);
 report.edges = { seam: edgeLines.seam.length / 2, pinned: edgeLines.pinned.length / 2, free: edgeLines.free.length / 2 };
 document.getElementById('view-hint').textContent +=
@@ -789,6 +809,38 @@ if (data.missing_colorings.length > 0) {
   missing.textContent = 'Not available in this fit: ' + data.missing_colorings.join(', ');
 }
 
+// ---- poses -----------------------------------------------------------------------
+
+function setPose(index) {
+  const pose = index >= 0 ? poses[index] : null;
+  setGarmentPositions(pose ? pose.garment : garment.positions, pose ? pose.normals : garment.normals);
+  setEdgePositions(pose ? pose.garment : garment.positions, pose ? pose.normals : garment.normals);
+  if (bodyMesh) {
+    bodyMesh.geometry.setAttribute('position', new THREE.BufferAttribute(pose ? pose.body : body.positions, 3));
+    bodyMesh.geometry.computeVertexNormals();
+  }
+  if (slidingColoring) slidingColoring.values = pose ? pose.sliding_excess : neutralSliding;
+  const hint = document.getElementById('pose-hint');
+  hint.hidden = false;
+  hint.textContent = pose
+    ? `Pose "${pose.name}": ${percent(pose.sliding_share)} of the free garment vertices would slide (their tangential force exceeds the friction limit, μ × the force pressing on the body); colour by "Sliding" to see where and by how much.`
+    : `Neutral pose. The scene has ${poses.length} more; the "Sliding" colouring shows here the worst pose of each face.`;
+  report.pose = index;
+  applyColoring(report.coloring);
+}
+report.setPose = setPose;
+if (poses.length > 0) {
+  const poseSelect = document.getElementById('pose');
+  document.getElementById('pose-label').hidden = false;
+  ['neutral', ...poses.map((p) => p.name)].forEach((name, i) => {
+    const option = document.createElement('option');
+    option.value = String(i - 1);
+    option.textContent = name;
+    poseSelect.appendChild(option);
+  });
+  poseSelect.addEventListener('change', () => setPose(Number(poseSelect.value)));
+}
+
 drawSummary();
 drawPattern();
 drawStats();
@@ -798,4 +850,5 @@ drawHistory();
 drawParameters();
 resize();
 applyColoring(colorings.length > 0 ? 0 : -1);
+if (poses.length > 0) setPose(-1);
 report.ready = true;

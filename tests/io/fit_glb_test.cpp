@@ -65,6 +65,36 @@ TEST(FitGlb, PassesTheKhronosValidator) {
   EXPECT_EQ(report["info"]["drawCallCount"], 2) << result.output;
 }
 
+TEST(FitGlb, APoseIsANodeWithItsPosedBodyAndGarmentInASceneOfItsOwn) {
+  test::TempDir dir("glb_pose");
+  FitView view = test::band_on_sphere(16, 4);
+  FitPose pose;
+  pose.name = "raised";
+  pose.garment = view.garment.vertices;
+  pose.garment.col(1).array() += 0.05;
+  pose.garment_normals = Points3::Zero(view.garment.vertices.rows(), 3);
+  pose.body = view.body.vertices;
+  pose.body.col(1).array() += 0.05;
+  pose.sliding_excess = VecX::LinSpaced(view.garment.num_faces(), 0.0, 1.5);
+  view.poses = {pose};
+  write_fit_glb(dir / "fit.glb", view);
+  const auto result =
+      test::run_command("node " + test::shell_quote(test::source_path("tests/io/fit_glb_validate.mjs")) +
+                            " " + test::shell_quote(dir / "fit.glb"),
+                        dir / "validator.log");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const auto report = nlohmann::json::parse(result.output);
+  EXPECT_EQ(report["numErrors"], 0) << result.output;
+  EXPECT_EQ(report["numWarnings"], 0) << result.output;
+  const nlohmann::json gltf = glb_json(read_bytes(dir / "fit.glb"));
+  ASSERT_EQ(gltf["scenes"].size(), 2u);
+  EXPECT_EQ(gltf["scenes"][1]["name"], "pose raised");
+  const int node = gltf["scenes"][1]["nodes"][0].get<int>();
+  EXPECT_EQ(gltf["nodes"][node]["name"], "pose raised");
+  EXPECT_EQ(gltf["nodes"][node]["children"].size(), 2u);  // body and garment
+  EXPECT_EQ(gltf["scene"], 0);                            // the neutral fit shows first
+}
+
 TEST(FitGlb, StoresColoursRangeAndGeometry) {
   test::TempDir dir("glb_layout");
   const FitView view = test::band_on_sphere(8, 2);

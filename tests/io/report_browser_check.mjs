@@ -1,7 +1,8 @@
 // Opens report.html in headless Chromium (Debian's /usr/bin/chromium, driven by npm
 // playwright-core from report/node_modules; no browser download) and checks that it
 // works offline: no console errors, no network requests, a WebGL canvas that is not
-// blank, and that switching the colour map changes the 3D picture and the pattern.
+// blank, that switching the colour map changes the 3D picture and the pattern, and
+// (fits with poses) that switching the pose moves the 3D picture.
 // Usage: node report_browser_check.mjs REPORT.html OUT_DIR
 // Writes OUT_DIR/{view_initial,view_switched,page}.png and prints a JSON summary;
 // exits 0 when every check passes, 1 otherwise, 2 when the browser cannot run.
@@ -155,6 +156,39 @@ try {
     await page.waitForFunction((i) => window.tightfitReport.coloring === i, pieceOption);
     await settle();
     summary.legendPiece = await page.locator('#legend').textContent();
+  }
+
+  // The pose switch (fits with poses): the garment and body move into the pose.
+  summary.poses = await page.locator('#pose option').allTextContents();
+  summary.poseSwitchVisible = await page.locator('#pose-label').isVisible();
+  if (summary.poses.length > 1) {
+    await settle();
+    const neutral = await canvas.screenshot({ path: path.join(outDir, 'view_neutral_pose.png') });
+    await page.selectOption('#pose', '0');
+    await page.waitForFunction(() => window.tightfitReport.pose === 0);
+    await settle();
+    const posed = await canvas.screenshot({ path: path.join(outDir, 'view_pose.png') });
+    summary.poseHint = await page.locator('#pose-hint').textContent();
+    summary.posePixelsChanged = await page.evaluate(async ({ a, b }) => {
+      const decode = async (b64) => {
+        const img = new Image();
+        img.src = 'data:image/png;base64,' + b64;
+        await img.decode();
+        const c = document.createElement('canvas');
+        c.width = img.width;
+        c.height = img.height;
+        const ctx = c.getContext('2d');
+        ctx.drawImage(img, 0, 0);
+        return ctx.getImageData(0, 0, c.width, c.height);
+      };
+      const A = await decode(a);
+      const B = await decode(b);
+      let changed = 0;
+      for (let o = 0; o < A.data.length; o += 4)
+        if (Math.abs(A.data[o] - B.data[o]) + Math.abs(A.data[o + 1] - B.data[o + 1]) + Math.abs(A.data[o + 2] - B.data[o + 2]) > 24) changed++;
+      return changed / (A.width * A.height);
+    }, { a: neutral.toString('base64'), b: posed.toString('base64') });
+    if (summary.posePixelsChanged < 0.01) failures.push(`switching the pose changed only ${(100 * summary.posePixelsChanged).toFixed(2)} % of the 3D view`);
   }
 
   if (consoleErrors.length > 0) failures.push(`console errors: ${consoleErrors.join(' | ')}`);

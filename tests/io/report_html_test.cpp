@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <fstream>
 
@@ -145,8 +146,26 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
     view.pattern.seams = {seam};
     view.pattern.pinned = {waistband};
   }
+  // A pose: the garment and the body turned by 40° about the x axis, some of it sliding.
+  {
+    const Mat3 R = Eigen::AngleAxisd(40.0 * EIGEN_PI / 180.0, Vec3::UnitX()).toRotationMatrix();
+    FitPose pose;
+    pose.name = "turned";
+    pose.garment = view.garment.vertices * R.transpose();
+    pose.garment_normals = view.garment_normals.rows() > 0 ? Points3(view.garment_normals * R.transpose())
+                                                          : Points3(Points3::Zero(view.garment.vertices.rows(), 3));
+    pose.body = view.body.vertices * R.transpose();
+    pose.sliding_excess = VecX::LinSpaced(view.garment.num_faces(), 0.0, 2.0);
+    pose.sliding_share = 0.25;
+    view.poses = {pose};
+  }
   const auto summary = check_in_browser(view, "report_browser");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
+  EXPECT_EQ(summary.at("poses"), (nlohmann::json{"neutral", "turned"}));
+  EXPECT_TRUE(summary.at("poseSwitchVisible").get<bool>());
+  EXPECT_NE(summary.at("poseHint").get<std::string>().find("25.0 % of the free garment vertices would slide"),
+            std::string::npos)
+      << summary.dump(2);
   EXPECT_GT(summary.at("pixels").at("notBackground").get<double>(), 0.05);
   EXPECT_GT(summary.at("pixels").at("changed").get<double>(), 0.02);
   EXPECT_EQ(summary.at("statsRows"), 3);  // two pieces and the whole garment
@@ -196,6 +215,7 @@ TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
     if (f.name == "pressure_pa" || f.name == "pressure_mmhg") f.values *= 5.0;
   const auto summary = check_in_browser(view, "report_browser_sparse");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
+  EXPECT_FALSE(summary.at("poseSwitchVisible").get<bool>());  // a fit without poses
   EXPECT_EQ(summary.at("colorings").size(), 4u);  // stretch max/min, pressure, piece
   EXPECT_EQ(summary.at("pressureWarnings"), 1);
   EXPECT_EQ(summary.at("regionRows"), 0);

@@ -39,7 +39,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   state.result["fit"] = fit_statistics(sim, fit, pressure_operator, regions);
   PoseOutputs poses = write_pose_outputs(folder, sim, scene);
   if (!poses.files.empty()) {
-    state.result["poses"] = std::move(poses.statistics);
+    state.result["poses"] = poses.statistics;
     files.insert(files.end(), poses.files.begin(), poses.files.end());
   }
   write_text_atomically(folder / "result.json", state.result.dump(2) + "\n");
@@ -56,6 +56,10 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   files.push_back("state.json");
   FitView view = make_fit_view(sim, fit, pressure_operator, state.scene, records);
   view.pressure_regions = regions;
+  if (!poses.views.empty()) {
+    view.poses = std::move(poses.views);
+    view.garment_fields.push_back({std::string(fit_fields::kSlidingExcess), "N", poses.worst_excess});
+  }
   view.summary = report_summary(state);
   if (initial_pattern && state.command == "optimize") {
     for (const PatternPiece& piece : view.pattern.pieces) {

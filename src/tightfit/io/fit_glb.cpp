@@ -179,6 +179,34 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
   nodes.push_back({{"name", "garment"}, {"mesh", meshes.size() - 1}});
   nlohmann::json scene_nodes = nlohmann::json::array();
   for (std::size_t i = 0; i < nodes.size(); ++i) scene_nodes.push_back(i);
+  nlohmann::json scenes = nlohmann::json::array({{{"name", "fit"}, {"nodes", scene_nodes}}});
+  // One node per pose (its posed body and garment as children, the garment coloured by
+  // the tangential force above the friction limit on one range for every pose), each in
+  // a scene of its own so that viewers show one pose at a time.
+  if (!view.poses.empty()) {
+    VecX worst = VecX::Zero(view.garment.num_faces());
+    for (const FitPose& pose : view.poses) worst = worst.cwiseMax(pose.sliding_excess);
+    const FieldColoring sliding{std::string(fit_fields::kSlidingExcess), "Sliding", "N", 1.0,
+                                ColorMap::kViridis, 0.0, std::nullopt, true, std::nullopt};
+    const ResolvedColoring range = resolve_coloring(sliding, FaceField{sliding.field, "N", worst}, source);
+    for (const FitPose& pose : view.poses) {
+      nlohmann::json children = nlohmann::json::array();
+      if (options.include_body && view.body.num_faces() > 0) {
+        meshes.push_back(body_mesh(TriMesh{pose.body, view.body.faces}, buffers));
+        meshes.back()["name"] = "body (" + pose.name + ")";
+        nodes.push_back({{"name", "body (" + pose.name + ")"}, {"mesh", meshes.size() - 1}});
+        children.push_back(nodes.size() - 1);
+      }
+      ResolvedColoring posed = range;
+      posed.values.assign(pose.sliding_excess.begin(), pose.sliding_excess.end());
+      meshes.push_back(garment_mesh(TriMesh{pose.garment, view.garment.faces}, posed, buffers));
+      meshes.back()["name"] = "garment (" + pose.name + ")";
+      nodes.push_back({{"name", "garment (" + pose.name + ")"}, {"mesh", meshes.size() - 1}});
+      children.push_back(nodes.size() - 1);
+      nodes.push_back({{"name", "pose " + pose.name}, {"children", children}});
+      scenes.push_back({{"name", "pose " + pose.name}, {"nodes", {nodes.size() - 1}}});
+    }
+  }
 
   const nlohmann::json materials =
       nlohmann::json::array({{{"name", "body"},
@@ -199,7 +227,7 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
         {"generator", "tightfit"},
         {"extras", {{"units", "metres, y up"}, {"coloring", coloring_json(coloring)}}}}},
       {"scene", 0},
-      {"scenes", {{{"name", "fit"}, {"nodes", scene_nodes}}}},
+      {"scenes", scenes},
       {"nodes", nodes},
       {"meshes", meshes},
       {"materials", materials},

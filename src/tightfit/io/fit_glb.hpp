@@ -7,7 +7,10 @@
 /// its own colour; COLOR_0 holds colormap(t) converted from sRGB to linear light as
 /// glTF requires, with t = (value - lo) / (hi - lo) clamped to [0, 1] (range rule in
 /// fit_colormap.hpp). The field, unit, colour map and range are stored in the
-/// garment mesh's `extras` and in `asset.extras.coloring`.
+/// garment mesh's `extras` and in `asset.extras.coloring`. A fit with poses gets one
+/// node per pose ("pose NAME": the posed body and garment, the garment coloured by the
+/// tangential force above the friction limit in N, one range for all poses), each in a
+/// glTF scene of its own after the default scene "fit".
 #include <filesystem>
 
 #include "tightfit/io/fit_colormap.hpp"

@@ -33,7 +33,21 @@ inline constexpr std::string_view kPressurePa = "pressure_pa";
 inline constexpr std::string_view kPressureMmHg = "pressure_mmhg";
 /// Normal force of the face on the body (N): pressure times deformed face area.
 inline constexpr std::string_view kNormalForce = "normal_force_n";
+/// Tangential force above the friction limit (N), per face the mean of its vertices',
+/// in the worst pose of the scene (io/pose_outputs.hpp); only in fits with poses.
+inline constexpr std::string_view kSlidingExcess = "sliding_excess_n";
 }  // namespace fit_fields
+
+/// The fit in one pose of the body (io/pose_outputs.hpp): the garment carried there with
+/// its neutral embedding, and the posed body, for the report's pose switch.
+struct FitPose {
+  std::string name;
+  Points3 garment;          ///< garment vertices in the pose (n_g×3, m)
+  Points3 garment_normals;  ///< outward unit normals of the posed body there (n_g×3)
+  Points3 body;             ///< the body surface's vertices in the pose (FitView::body rows)
+  VecX sliding_excess;      ///< per garment face: mean tangential force above the limit (N)
+  double sliding_share = 0.0;  ///< share of the free garment vertices that would slide
+};
 
 /// A quantity per face of a mesh.
 struct FaceField {
@@ -87,6 +101,8 @@ struct FitView {
   /// "iterations", "seconds", "force_residual_n", "objective_initial",
   /// "objective_final"}.
   nlohmann::json summary = nlohmann::json::object();
+  /// The scene's poses (empty without poses).
+  std::vector<FitPose> poses;
 };
 
 /// Checks shapes and indices: faces index existing vertices, every field has one row

@@ -6,6 +6,7 @@
 #include "tightfit/body/skin_transfer.hpp"
 #include "tightfit/design/adjoint_gradient.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/io/simulation_outputs.hpp"
 #include "tightfit/objectives/sliding_objective.hpp"
 
 namespace tightfit {
@@ -46,6 +47,8 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
   const SlidingObjective sliding(sim.garment(), sim.materials(), sim.surface(), body.num_vertices(), motions,
                                  friction);
   const SimulationDesignState ds(sim);
+  const Triangles& faces = sim.garment().garment_triangles;
+  out.worst_excess = VecX::Zero(faces.rows());
   std::vector<char> pinned(static_cast<std::size_t>(sim.garment().num_garment_vertices), 0);
   for (int v : sim.garment().pinned) pinned[static_cast<std::size_t>(v)] = 1;
   for (std::size_t i = 0; i < scene.poses.size(); ++i) {
@@ -68,6 +71,21 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
       value += f.excess[j] * f.excess[j];
       if (f.excess[j] > 0.0) ++sliding_vertices;
     }
+    FitPose view;
+    view.name = scene.poses[i].name;
+    view.garment = mesh.vertices;
+    view.garment_normals.resize(mesh.vertices.rows(), 3);
+    const PosedGarment pg = pose_garment(sim.surface(), ds.embedding, motions[i].motions);
+    for (Eigen::Index j = 0; j < mesh.vertices.rows(); ++j)
+      view.garment_normals.row(j) = Vec3(pg.xu.row(j)).cross(Vec3(pg.xv.row(j))).normalized().transpose();
+    view.body = body_limit_positions(body, sim.surface(), posed[i].positions);
+    view.sliding_excess = VecX::Zero(faces.rows());
+    for (Eigen::Index t = 0; t < faces.rows(); ++t)
+      view.sliding_excess[t] = (f.excess[faces(t, 0)] + f.excess[faces(t, 1)] + f.excess[faces(t, 2)]) / 3.0;
+    out.worst_excess = out.worst_excess.cwiseMax(view.sliding_excess);
+    view.sliding_share =
+        excess.empty() ? 0.0 : static_cast<double>(sliding_vertices) / static_cast<double>(excess.size());
+    out.views.push_back(std::move(view));
     out.statistics.push_back(
         {{"name", scene.poses[i].name},
          {"from", scene.poses[i].origin},

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "tightfit/io/fit_view.hpp"
 #include "tightfit/io/scene_spec.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
@@ -24,6 +25,10 @@ namespace tightfit {
 struct PoseOutputs {
   nlohmann::json statistics = nlohmann::json::array();  ///< result.json's "poses"
   std::vector<std::string> files;                        ///< file names written
+  std::vector<FitPose> views;                            ///< for the report's pose switch
+  /// Per garment face, the largest sliding excess over the poses (N): the report's
+  /// fit_fields::kSlidingExcess.
+  VecX worst_excess;
 };
 
 /// The friction coefficient of the scene's sliding objective

@@ -142,6 +142,14 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
 
   nlohmann::json garment_json = mesh_json(view.garment);
   if (view.garment_normals.rows() > 0) garment_json["normals"] = f32(flat_doubles(view.garment_normals));
+  nlohmann::json poses = nlohmann::json::array();
+  for (const FitPose& pose : view.poses)
+    poses.push_back({{"name", pose.name},
+                     {"garment", f32(flat_doubles(pose.garment))},
+                     {"normals", f32(flat_doubles(pose.garment_normals))},
+                     {"body", f32(flat_doubles(pose.body))},
+                     {"sliding_excess", f32(std::vector<double>(pose.sliding_excess.begin(), pose.sliding_excess.end()))},
+                     {"sliding_share", pose.sliding_share}});
   return {{"title", title},
           {"body", view.body.num_faces() > 0 ? mesh_json(view.body) : nlohmann::json()},
           {"garment", garment_json},
@@ -154,7 +162,8 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
           {"history", view.history},
           {"summary", view.summary},
           {"pressure_regions", regions},
-          {"pressure_histogram", histogram}};
+          {"pressure_histogram", histogram},
+          {"poses", poses}};
 }
 
 }  // namespace tightfit

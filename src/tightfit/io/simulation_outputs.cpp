@@ -159,14 +159,10 @@ nlohmann::json newton_report_json(const NewtonReport& r) {
   return j;
 }
 
-FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, ShapeOperatorKind op,
-                      const nlohmann::json& parameters, const nlohmann::json& history) {
-  FitView view;
-  // The body as its limit surface (the control mesh pokes out of it, through the
-  // garment that lies on it).
-  const int ns = sim.body().num_surface_vertices();
-  Points3 limit = sim.body_positions().topRows(ns);
-  const Triangles& faces = sim.body().surface.faces;
+Points3 body_limit_positions(const Body& body, const LimitSurface& surface, const Points3& y) {
+  const int ns = body.num_surface_vertices();
+  Points3 limit = y.topRows(ns);
+  const Triangles& faces = body.surface.faces;
   std::vector<char> placed(static_cast<size_t>(ns), 0);  // each vertex once, from one face
   for (Eigen::Index f = 0; f < faces.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
@@ -174,9 +170,18 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, Shap
       if (placed[static_cast<size_t>(v)]) continue;
       placed[static_cast<size_t>(v)] = 1;
       const SurfacePoint corner{static_cast<int>(f), k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
-      limit.row(v) = sim.surface().position(corner, sim.body_positions()).transpose();
+      limit.row(v) = surface.position(corner, y).transpose();
     }
-  view.body = TriMesh{limit, faces};
+  return limit;
+}
+
+FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, ShapeOperatorKind op,
+                      const nlohmann::json& parameters, const nlohmann::json& history) {
+  FitView view;
+  // The body as its limit surface (the control mesh pokes out of it, through the
+  // garment that lies on it).
+  view.body = TriMesh{body_limit_positions(sim.body(), sim.surface(), sim.body_positions()),
+                      sim.body().surface.faces};
   view.garment = TriMesh{sim.garment_positions(), sim.garment().garment_triangles};
   view.garment_normals.resize(sim.garment_positions().rows(), 3);
   for (Eigen::Index i = 0; i < view.garment_normals.rows(); ++i)
@@ -211,6 +216,10 @@ void write_fit_report(const std::filesystem::path& folder, const FitView& view,
   write_fit_glb(folder / "fit.glb", view);
   ReportOptions options;
   options.title = title;
+  if (find_field(view.garment_fields, fit_fields::kSlidingExcess))
+    options.colorings.push_back({std::string(fit_fields::kSlidingExcess),
+                                 "Sliding: tangential force above the friction limit", "N", 1.0,
+                                 ColorMap::kViridis, 0.0, std::nullopt, true, std::nullopt});
   write_report_html(folder / "report.html", view, options);
 }
 
