@@ -29,7 +29,7 @@ runs=(
   "tightfit_garment_tests:*-$slow:Pants.*"
   "tightfit_physics_tests:*-$slow"
   "tightfit_solve_tests:*-$slow:RigidCylinderSleeveSliding.*:RigidCurvedBody.EllipticCylinder*"
-  "tightfit_objectives_tests:*-$slow:PressureRegions.BoneRegions*:SlidingObjective.PosesPull*:SlidingObjective.AdjointGradient*:AllPosesTerm.*"
+  "tightfit_objectives_tests:*-$slow:PressureRegions.BoneRegions*:SlidingObjective.PosesPull*:SlidingObjective.AdjointGradient*:AllPosesTerm.*:PinnedTractionRegularizer.*"
   "tightfit_design_tests:*-$slow:AdjointSolve.*:AdjointPipelineSoftBody.*:PatternOptimizer.RecoversTheShapeOfAnotherPattern:*PatternOptimizerResume*soft*"
   "tightfit_io_tests:*-$slow:SceneSpec.EveryExampleValidatesAgainstTheSchema:LayoutSceneSimulation.*:PressureRegionStatistics.*:ScenePoses.*"
 )

@@ -26,7 +26,7 @@ TEST(OptimizationSpec, ReadsObjectivesRegularizersAndSettings) {
                    "shape": {"target": "t.obj", "radius": 0.02},
                    "pressure": {"min_mmhg": 15, "max_mmhg": 25},
                    "seam_traction": {"weight": 0.5}},
-    "regularizers": {"seam_length": 1, "boundary_smoothness": 1e-4,
+    "regularizers": {"seam_length": 1, "boundary_smoothness": 1e-4, "pinned_traction": 0.01,
                      "compactness": {"weight": 3, "min_ratio": 0.2, "pair_stride": 2}},
     "max_iterations": 7, "checkpoint_every": 2, "min_area_ratio": 0.1,
     "lbfgs": {"memory": 5, "max_step": 0.002}})");
@@ -46,6 +46,7 @@ TEST(OptimizationSpec, ReadsObjectivesRegularizersAndSettings) {
   EXPECT_EQ(s.regularizers.seam_length, 1.0);
   EXPECT_EQ(s.regularizers.boundary_spacing, 0.0);
   EXPECT_EQ(s.regularizers.boundary_smoothness, 1e-4);
+  EXPECT_EQ(s.regularizers.pinned_traction, 0.01);
   EXPECT_EQ(s.regularizers.compactness, 3.0);
   EXPECT_EQ(s.regularizers.compactness_options.min_ratio, 0.2);
   EXPECT_EQ(s.regularizers.compactness_options.pair_stride, 2);

@@ -2,6 +2,7 @@
 // and the whole simulate-then-evaluate pipeline's adjoint gradient.
 #include "tightfit/objectives/sliding_objective.hpp"
 #include "tightfit/objectives/all_poses_term.hpp"
+#include "tightfit/objectives/pinned_traction_regularizer.hpp"
 #include "tightfit/objectives/stretch_objective.hpp"
 
 #include <gtest/gtest.h>
@@ -183,6 +184,54 @@ TEST(AllPosesTerm, StretchInEveryPoseHasTheAdjointGradientOfTheWholePipeline) {
     EXPECT_LT(c.relative_error, 1e-6) << "adjoint " << c.adjoint << " FD " << c.finite_difference;
     EXPECT_NE(c.adjoint, 0.0);
     std::printf("stretch in all poses: adjoint %.9e, FD %.9e, relative error %.2e\n", c.adjoint,
+                c.finite_difference, c.relative_error);
+  }
+}
+
+TEST(PinnedTractionRegularizer, PartialsAndThePipelineMatchFiniteDifferences) {
+  SlidingScene s = sliding_scene(0.3);
+  GarmentSimulation& sim = *s.scene->sim;
+  const auto term = std::make_shared<PinnedTractionRegularizer>(sim.garment(), sim.materials(), *s.scene->surface);
+  const SimulationDesignState ds(sim);
+  ASSERT_GT(term->value(ds.view()), 0.0);  // the axially short sleeve pulls on its cuffs
+  VecX d_x = VecX::Zero(ds.x.size()), d_rest = VecX::Zero(2 * ds.rest.rows());
+  VecX d_s = VecX::Zero(2 * static_cast<Eigen::Index>(ds.garment.size())), d_y = VecX::Zero(ds.body.size());
+  term->add_gradient(ds.view(), d_x, d_rest);
+  term->add_embedding_gradient(ds.view(), d_s, d_y);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  auto direction = [&](Eigen::Index n) {
+    VecX d(n);
+    for (Eigen::Index i = 0; i < n; ++i) d[i] = normal(rng);
+    return d;
+  };
+  const VecX dx = direction(d_x.size()), dr = direction(d_rest.size()), dy = direction(d_y.size());
+  const double fd_x = central([&](double t) {
+    const VecX x = ds.x + t * dx;
+    return term->value(DesignState{x, ds.rest, &ds.embedding});
+  }, 1e-7);
+  const double fd_rest = central([&](double t) {
+    const Points2 rest = ds.rest + t * Eigen::Map<const Points2>(dr.data(), ds.rest.rows(), 2);
+    return term->value(DesignState{ds.x, rest, &ds.embedding});
+  }, 1e-7);
+  const double fd_body = central([&](double t) {
+    const Points3 body = ds.body + t * Eigen::Map<const Points3>(dy.data(), ds.body.rows(), 3);
+    const DesignEmbedding e{ds.garment, body};
+    return term->value(DesignState{ds.x, ds.rest, &e});
+  }, 1e-7);
+  EXPECT_NEAR(d_x.dot(dx), fd_x, 1e-6 * std::abs(fd_x));
+  EXPECT_NEAR(d_rest.dot(dr), fd_rest, 1e-6 * std::abs(fd_rest));
+  EXPECT_NEAR(d_y.dot(dy), fd_body, 1e-6 * std::abs(fd_body) + 1e-12);
+  auto objective = std::make_shared<DesignTermSum>();
+  objective->add(term, 1.0);
+  DesignProblem problem(sim, objective);
+  GradientCheckOptions options;
+  options.directions = 2;
+  const VecX p = problem.initial_parameters() +
+                 0.1 * problem.mean_boundary_edge() * random_design_direction(problem.num_parameters(), 7);
+  for (const DirectionalCheck& c : check_design_gradient(problem, p, options)) {
+    EXPECT_LT(c.relative_error, 1e-6) << "adjoint " << c.adjoint << " FD " << c.finite_difference;
+    std::printf("pinned traction pipeline: adjoint %.9e, FD %.9e, relative error %.2e\n", c.adjoint,
                 c.finite_difference, c.relative_error);
   }
 }

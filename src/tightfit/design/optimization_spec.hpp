@@ -20,6 +20,7 @@
 ///     },
 ///     "regularizers": {                     // weights, all optional (default 0 = off)
 ///       "seam_length": 1, "boundary_spacing": 0.1, "boundary_smoothness": 1e-4,
+///       "pinned_traction": 0.01,           // Eq. 27, N² (needs pinned boundaries)
 ///       "compactness": {"weight": 1, "min_ratio": 0.1, "pair_stride": 1}
 ///     },
 ///     "max_iterations": 50,                 // L-BFGS iterations (default 50)
@@ -40,7 +41,7 @@
 ///   }
 ///
 /// Units of the terms (see each term's header): stretch and directional stretch m², shape m², pressure Pa²·m²,
-/// seam traction N, sliding N², seam length and boundary spacing m², boundary smoothness 1/m,
+/// seam traction N, sliding N², pinned traction N², seam length and boundary spacing m², boundary smoothness 1/m,
 /// compactness dimensionless. Weights are >= 0; weight 0 switches a term off.
 #include <filesystem>
 #include <memory>
@@ -124,6 +125,8 @@ struct RegularizerWeights {
   double boundary_smoothness = 0.0;
   double compactness = 0.0;
   CompactnessOptions compactness_options;
+  /// Eq. 27: the tangential force the pins hold (objectives/pinned_traction_regularizer.hpp).
+  double pinned_traction = 0.0;
 };
 
 struct OptimizationSpec {

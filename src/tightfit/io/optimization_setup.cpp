@@ -10,6 +10,7 @@
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/objectives/all_poses_term.hpp"
+#include "tightfit/objectives/pinned_traction_regularizer.hpp"
 #include "tightfit/objectives/directional_stretch_objective.hpp"
 #include "tightfit/objectives/pressure_objective.hpp"
 #include "tightfit/objectives/seam_traction_objective.hpp"
@@ -171,6 +172,8 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
   add(w.boundary_smoothness, [&] { return std::make_shared<BoundarySmoothnessRegularizer>(g); });
   add(w.compactness,
       [&] { return std::make_shared<CompactnessRegularizer>(g, w.compactness_options); });
+  add(w.pinned_traction,
+      [&] { return std::make_shared<PinnedTractionRegularizer>(g, sim.materials(), sim.surface()); });
   return sum;
 }
 

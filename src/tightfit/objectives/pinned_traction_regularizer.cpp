@@ -1,0 +1,98 @@
+#include "tightfit/objectives/pinned_traction_regularizer.hpp"
+
+#include <stdexcept>
+
+#include "tightfit/common/error.hpp"
+#include "tightfit/physics/cloth_energy.hpp"
+#include "tightfit/physics/seam_spring_energy.hpp"
+
+namespace tightfit {
+
+/// At one state: per pinned vertex its normal frame, a = ∂T/∂g and ∂T/∂n.
+struct PinnedTractionRegularizer::Evaluation {
+  double value = 0.0;
+  VecX a;                            // 3·n_g, nonzero at pinned vertices
+  std::vector<LimitWeights> stencils;  // per pinned vertex
+  std::vector<Vec3> xu, xv, gn;      // per pinned vertex
+};
+
+PinnedTractionRegularizer::PinnedTractionRegularizer(const Garment& garment,
+                                                     const SimulationMaterials& materials,
+                                                     const LimitSurface& surface)
+    : surface_(surface), pinned_(garment.pinned) {
+  if (pinned_.empty()) throw InputError("pinned traction", "the garment has no pinned vertices");
+  const Points2 rest = garment.rest_positions();
+  energies_.push_back(std::make_unique<ClothEnergy>(garment.pattern_triangles, rest, garment.pattern_to_garment,
+                                                    garment.num_garment_vertices, materials.fabric));
+  const auto seam_edges = garment.seam_edges();
+  if (materials.seam.youngs_modulus > 0.0 && !seam_edges.empty())
+    energies_.push_back(std::make_unique<SeamSpringEnergy>(seam_edges, rest, garment.pattern_to_garment,
+                                                           garment.num_garment_vertices, materials.seam));
+}
+
+PinnedTractionRegularizer::~PinnedTractionRegularizer() = default;
+
+PinnedTractionRegularizer::Evaluation PinnedTractionRegularizer::evaluate(const DesignState& state) const {
+  if (state.embedding == nullptr)
+    throw std::logic_error("PinnedTractionRegularizer: the design state carries no embedding");
+  for (const auto& e : energies_)
+    if (e->rest().rows() != state.rest.rows() || e->rest() != state.rest) e->set_rest(state.rest);
+  VecX g = VecX::Zero(state.x.size());
+  for (const auto& e : energies_) e->add_gradient(state.x, g);
+  Evaluation ev;
+  ev.a = VecX::Zero(state.x.size());
+  const std::size_t n = pinned_.size();
+  ev.stencils.resize(n);
+  ev.xu.resize(n);
+  ev.xv.resize(n);
+  ev.gn.resize(n);
+  const Points3& y = state.embedding->body;
+  for (std::size_t k = 0; k < n; ++k) {
+    const int i = pinned_[k];
+    LimitWeights& w = ev.stencils[k];
+    surface_.weights(state.embedding->garment[static_cast<std::size_t>(i)], w);
+    Vec3 xu = Vec3::Zero(), xv = Vec3::Zero();
+    for (int j = 0; j < w.size(); ++j) {
+      xu += w.du[j] * y.row(w.index[j]).transpose();
+      xv += w.dv[j] * y.row(w.index[j]).transpose();
+    }
+    const Vec3 normal = xu.cross(xv).normalized();
+    const Vec3 gi = g.segment<3>(3 * i);
+    const Vec3 tangential = gi - normal * normal.dot(gi);
+    ev.value += tangential.squaredNorm();
+    ev.a.segment<3>(3 * i) = 2.0 * tangential;
+    ev.xu[k] = xu;
+    ev.xv[k] = xv;
+    ev.gn[k] = -2.0 * normal.dot(gi) * gi;
+  }
+  return ev;
+}
+
+double PinnedTractionRegularizer::value(const DesignState& state) const { return evaluate(state).value; }
+
+void PinnedTractionRegularizer::add_gradient(const DesignState& state, VecX& d_x, VecX& d_rest) const {
+  const Evaluation ev = evaluate(state);
+  std::vector<Triplet> t;
+  for (const auto& e : energies_) e->add_hessian(state.x, t, false);
+  for (const Triplet& h : t) d_x[h.row()] += h.value() * ev.a[h.col()];
+  t.clear();
+  for (const auto& e : energies_) e->add_mixed_rest(state.x, t);
+  for (const Triplet& m : t) d_rest[m.col()] += m.value() * ev.a[m.row()];
+}
+
+// Pinned vertices do not move on the surface (no DOF), so only the body's part is given.
+void PinnedTractionRegularizer::add_embedding_gradient(const DesignState& state, VecX& /*d_s*/,
+                                                       VecX& d_y) const {
+  const Evaluation ev = evaluate(state);
+  for (std::size_t k = 0; k < pinned_.size(); ++k) {
+    const Vec3 c = ev.xu[k].cross(ev.xv[k]);
+    const double len = c.norm();
+    const Vec3 normal = c / len;
+    const Vec3 w = (ev.gn[k] - normal * normal.dot(ev.gn[k])) / len;  // ∂T/∂c
+    const Vec3 t_u = ev.xv[k].cross(w), t_v = w.cross(ev.xu[k]);      // ∂T/∂x_u, ∂T/∂x_v
+    const LimitWeights& st = ev.stencils[k];
+    for (int j = 0; j < st.size(); ++j) d_y.segment<3>(3 * st.index[j]) += st.du[j] * t_u + st.dv[j] * t_v;
+  }
+}
+
+}  // namespace tightfit
