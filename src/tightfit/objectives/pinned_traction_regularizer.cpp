@@ -3,8 +3,6 @@
 #include <stdexcept>
 
 #include "tightfit/common/error.hpp"
-#include "tightfit/physics/cloth_energy.hpp"
-#include "tightfit/physics/seam_spring_energy.hpp"
 
 namespace tightfit {
 
@@ -21,13 +19,8 @@ PinnedTractionRegularizer::PinnedTractionRegularizer(const Garment& garment,
                                                      const LimitSurface& surface)
     : surface_(surface), pinned_(garment.pinned) {
   if (pinned_.empty()) throw InputError("pinned traction", "the garment has no pinned vertices");
-  const Points2 rest = garment.rest_positions();
-  energies_.push_back(std::make_unique<ClothEnergy>(garment.pattern_triangles, rest, garment.pattern_to_garment,
-                                                    garment.num_garment_vertices, materials.fabric));
-  const auto seam_edges = garment.seam_edges();
-  if (materials.seam.youngs_modulus > 0.0 && !seam_edges.empty())
-    energies_.push_back(std::make_unique<SeamSpringEnergy>(seam_edges, rest, garment.pattern_to_garment,
-                                                           garment.num_garment_vertices, materials.seam));
+  energies_.push_back(make_cloth_energy(garment, materials.fabric));
+  if (auto seams = make_seam_energy(garment, materials.seam)) energies_.push_back(std::move(seams));
 }
 
 PinnedTractionRegularizer::~PinnedTractionRegularizer() = default;

@@ -4,8 +4,6 @@
 #include <stdexcept>
 
 #include "tightfit/common/error.hpp"
-#include "tightfit/physics/cloth_energy.hpp"
-#include "tightfit/physics/seam_spring_energy.hpp"
 
 namespace tightfit {
 
@@ -39,13 +37,8 @@ SlidingObjective::SlidingObjective(const Garment& garment, const SimulationMater
   if (num_body_vertices < surface.num_control_vertices())
     throw InputError(source, "the body has fewer vertices than its surface");
   for (int v : garment.pinned) pinned_[static_cast<std::size_t>(v)] = 1;
-  const Points2 rest = garment.rest_positions();
-  energies_.push_back(std::make_unique<ClothEnergy>(garment.pattern_triangles, rest, garment.pattern_to_garment,
-                                                    garment.num_garment_vertices, materials.fabric));
-  const auto seam_edges = garment.seam_edges();
-  if (materials.seam.youngs_modulus > 0.0 && !seam_edges.empty())
-    energies_.push_back(std::make_unique<SeamSpringEnergy>(seam_edges, rest, garment.pattern_to_garment,
-                                                           garment.num_garment_vertices, materials.seam));
+  energies_.push_back(make_cloth_energy(garment, materials.fabric));
+  if (auto seams = make_seam_energy(garment, materials.seam)) energies_.push_back(std::move(seams));
 }
 
 SlidingObjective::~SlidingObjective() = default;

@@ -42,16 +42,22 @@ GarmentSimulation::GarmentSimulation(const Body& body, const LimitSurface& surfa
 
 GarmentSimulation::~GarmentSimulation() = default;
 
+std::unique_ptr<ClothEnergy> make_cloth_energy(const Garment& garment, const ClothMaterial& fabric) {
+  return std::make_unique<ClothEnergy>(garment.pattern_triangles, garment.rest_positions(),
+                                       garment.pattern_to_garment, garment.num_garment_vertices, fabric);
+}
+
+std::unique_ptr<SeamSpringEnergy> make_seam_energy(const Garment& garment, const SeamMaterial& seam) {
+  const auto seam_edges = garment.seam_edges();
+  if (!(seam.youngs_modulus > 0.0) || seam_edges.empty()) return nullptr;
+  return std::make_unique<SeamSpringEnergy>(seam_edges, garment.rest_positions(), garment.pattern_to_garment,
+                                            garment.num_garment_vertices, seam);
+}
+
 void GarmentSimulation::build_garment_energies() {
   const Points2 rest = garment_.rest_positions();
-  cloth_ = std::make_unique<ClothEnergy>(garment_.pattern_triangles, rest,
-                                         garment_.pattern_to_garment,
-                                         garment_.num_garment_vertices, materials_.fabric);
-  seams_.reset();
-  const auto seam_edges = garment_.seam_edges();
-  if (materials_.seam.youngs_modulus > 0.0 && !seam_edges.empty())
-    seams_ = std::make_unique<SeamSpringEnergy>(seam_edges, rest, garment_.pattern_to_garment,
-                                                garment_.num_garment_vertices, materials_.seam);
+  cloth_ = make_cloth_energy(garment_, materials_.fabric);
+  seams_ = make_seam_energy(garment_, materials_.seam);
   force_scale_ = materials_.fabric.youngs_modulus * materials_.fabric.thickness *
                  mean_rest_edge_length(garment_.pattern_triangles, rest);
 }

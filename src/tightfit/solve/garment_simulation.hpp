@@ -40,6 +40,13 @@ struct FitAnalysis {
   Points3 vertex_normal;    ///< unit outward limit-surface normal per garment vertex
 };
 
+/// The garment's cloth energy over its pattern triangles at the pattern's rest positions,
+/// as every simulation builds it (design terms that evaluate the garment's forces build
+/// theirs with it too).
+std::unique_ptr<ClothEnergy> make_cloth_energy(const Garment& garment, const ClothMaterial& fabric);
+/// The garment's seam springs; null when it has no seams or the seam modulus is 0.
+std::unique_ptr<SeamSpringEnergy> make_seam_energy(const Garment& garment, const SeamMaterial& seam);
+
 class GarmentSimulation {
  public:
   /// `surface` must be the limit surface of `body.surface` and outlive this object.
