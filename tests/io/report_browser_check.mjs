@@ -32,6 +32,38 @@ try {
   process.exit(2);
 }
 
+// Decodes two PNG screenshots in the page and compares them: the share of pixels of A
+// away from the background, and of pixels that differ between A and B.
+async function comparePixels(page, a, b, bg) {
+  return page.evaluate(async ({ a, b, bg }) => {
+    const decode = async (b64) => {
+      const img = new Image();
+      img.src = 'data:image/png;base64,' + b64;
+      await img.decode();
+      const c = document.createElement('canvas');
+      c.width = img.width;
+      c.height = img.height;
+      const ctx = c.getContext('2d');
+      ctx.drawImage(img, 0, 0);
+      return ctx.getImageData(0, 0, c.width, c.height);
+    };
+    const A = await decode(a);
+    const B = await decode(b);
+    let notBackground = 0;
+    let changed = 0;
+    const n = A.width * A.height;
+    for (let i = 0; i < n; ++i) {
+      const o = 4 * i;
+      const dBg = Math.abs(A.data[o] - bg[0]) + Math.abs(A.data[o + 1] - bg[1]) + Math.abs(A.data[o + 2] - bg[2]);
+      if (dBg > 24) notBackground++;
+      const dAB = Math.abs(A.data[o] - B.data[o]) + Math.abs(A.data[o + 1] - B.data[o + 1]) + Math.abs(A.data[o + 2] - B.data[o + 2]);
+      if (dAB > 24) changed++;
+    }
+    return { width: A.width, height: A.height, notBackground: notBackground / n, changed: changed / n,
+      sameSize: A.width === B.width && A.height === B.height };
+  }, { a: a.toString('base64'), b: b.toString('base64'), bg });
+}
+
 fs.mkdirSync(outDir, { recursive: true });
 const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'tightfit-chromium-'));
 const failures = [];
@@ -96,34 +128,7 @@ try {
   const legendB = await page.locator('#legend').textContent();
   await page.screenshot({ path: path.join(outDir, 'page.png'), fullPage: true });
 
-  // Decode both PNGs in the page and compare pixels.
-  const pixels = await page.evaluate(async ({ a, b, bg }) => {
-    const decode = async (b64) => {
-      const img = new Image();
-      img.src = 'data:image/png;base64,' + b64;
-      await img.decode();
-      const c = document.createElement('canvas');
-      c.width = img.width;
-      c.height = img.height;
-      const ctx = c.getContext('2d');
-      ctx.drawImage(img, 0, 0);
-      return ctx.getImageData(0, 0, c.width, c.height);
-    };
-    const A = await decode(a);
-    const B = await decode(b);
-    let notBackground = 0;
-    let changed = 0;
-    const n = A.width * A.height;
-    for (let i = 0; i < n; ++i) {
-      const o = 4 * i;
-      const dBg = Math.abs(A.data[o] - bg[0]) + Math.abs(A.data[o + 1] - bg[1]) + Math.abs(A.data[o + 2] - bg[2]);
-      if (dBg > 24) notBackground++;
-      const dAB = Math.abs(A.data[o] - B.data[o]) + Math.abs(A.data[o + 1] - B.data[o + 1]) + Math.abs(A.data[o + 2] - B.data[o + 2]);
-      if (dAB > 24) changed++;
-    }
-    return { width: A.width, height: A.height, notBackground: notBackground / n, changed: changed / n,
-      sameSize: A.width === B.width && A.height === B.height };
-  }, { a: shotA.toString('base64'), b: shotB.toString('base64'), bg: background });
+  const pixels = await comparePixels(page, shotA, shotB, background);
   summary.pixels = pixels;
   summary.patternTriangles = fillsA.length;
   summary.patternFillsChanged = fillsA.filter((f, i) => f !== fillsB[i]).length;
@@ -169,25 +174,7 @@ try {
     await settle();
     const posed = await canvas.screenshot({ path: path.join(outDir, 'view_pose.png') });
     summary.poseHint = await page.locator('#pose-hint').textContent();
-    summary.posePixelsChanged = await page.evaluate(async ({ a, b }) => {
-      const decode = async (b64) => {
-        const img = new Image();
-        img.src = 'data:image/png;base64,' + b64;
-        await img.decode();
-        const c = document.createElement('canvas');
-        c.width = img.width;
-        c.height = img.height;
-        const ctx = c.getContext('2d');
-        ctx.drawImage(img, 0, 0);
-        return ctx.getImageData(0, 0, c.width, c.height);
-      };
-      const A = await decode(a);
-      const B = await decode(b);
-      let changed = 0;
-      for (let o = 0; o < A.data.length; o += 4)
-        if (Math.abs(A.data[o] - B.data[o]) + Math.abs(A.data[o + 1] - B.data[o + 1]) + Math.abs(A.data[o + 2] - B.data[o + 2]) > 24) changed++;
-      return changed / (A.width * A.height);
-    }, { a: neutral.toString('base64'), b: posed.toString('base64') });
+    summary.posePixelsChanged = (await comparePixels(page, neutral, posed, background)).changed;
     if (summary.posePixelsChanged < 0.01) failures.push(`switching the pose changed only ${(100 * summary.posePixelsChanged).toFixed(2)} % of the 3D view`);
   }
 

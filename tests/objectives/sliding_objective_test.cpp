@@ -60,12 +60,33 @@ double central(const std::function<double(double)>& f, double h) {
   return (8.0 * (f(h) - f(-h)) - (f(2 * h) - f(-2 * h))) / (12.0 * h);
 }
 
+/// The adjoint design gradient of `term` alone against finite differences of the whole
+/// pipeline along two random directions from a perturbed start (seed `seed`); each
+/// check's relative error must be below 1e-6. Returns the checks.
+std::vector<DirectionalCheck> pipeline_checks(GarmentSimulation& sim, std::shared_ptr<const DesignTerm> term,
+                                              unsigned seed, const char* label) {
+  auto objective = std::make_shared<DesignTermSum>();
+  objective->add(std::move(term), 1.0);
+  DesignProblem problem(sim, objective);
+  GradientCheckOptions options;
+  options.directions = 2;
+  const VecX p = problem.initial_parameters() +
+                 0.1 * problem.mean_boundary_edge() * random_design_direction(problem.num_parameters(), seed);
+  const std::vector<DirectionalCheck> checks = check_design_gradient(problem, p, options);
+  for (const DirectionalCheck& c : checks) {
+    EXPECT_LT(c.relative_error, 1e-6) << label << ": adjoint " << c.adjoint << " FD " << c.finite_difference;
+    std::printf("%s: adjoint %.9e, FD %.9e, relative error %.2e\n", label, c.adjoint, c.finite_difference,
+                c.relative_error);
+  }
+  return checks;
+}
+
 TEST(SlidingObjective, PosesPullTheClothAcrossTheBodyAndFrictionHoldsPartOfIt) {
   SlidingScene s = sliding_scene(0.3);
   const SimulationDesignState ds(*s.scene->sim);
   const double with_friction = s.term->value(ds.view());
   EXPECT_GT(with_friction, 0.0);
-  const SlidingForces f = s.term->forces(ds.view(), 0);
+  const SlidingForces f = s.term->pose_view(ds.view(), 0).forces;
   EXPECT_GT(f.normal.maxCoeff(), 0.0);  // the sleeve presses on the body
   for (int v : s.scene->sim->garment().pinned) EXPECT_EQ(f.excess[v], 0.0);
   // More friction holds more; none at all lets every tangential force slide.
@@ -143,19 +164,9 @@ TEST(SlidingObjective, PartialDerivativesMatchFiniteDifferences) {
 
 TEST(SlidingObjective, AdjointGradientOfTheWholePipelineMatchesFiniteDifferences) {
   SlidingScene s = sliding_scene(0.3);
-  auto objective = std::make_shared<DesignTermSum>();
-  objective->add(s.term, 1.0);
-  DesignProblem problem(*s.scene->sim, objective);
-  GradientCheckOptions options;
-  options.directions = 2;
-  const VecX p = problem.initial_parameters() +
-                 0.1 * problem.mean_boundary_edge() * random_design_direction(problem.num_parameters(), 3);
-  for (const DirectionalCheck& c : check_design_gradient(problem, p, options)) {
-    EXPECT_LT(c.relative_error, 1e-6) << "adjoint " << c.adjoint << " FD " << c.finite_difference;
+  for (const DirectionalCheck& c : pipeline_checks(*s.scene->sim, s.term, 3, "sliding pipeline")) {
     EXPECT_NE(c.adjoint, 0.0);
     EXPECT_EQ(c.hessian_shift, 0.0);
-    std::printf("sliding pipeline: adjoint %.9e, FD %.9e, relative error %.2e\n", c.adjoint, c.finite_difference,
-                c.relative_error);
   }
 }
 
@@ -173,19 +184,7 @@ TEST(AllPosesTerm, StretchInEveryPoseHasTheAdjointGradientOfTheWholePipeline) {
   EXPECT_NEAR(all->value(ds.view()), neutral + all->pose_value(ds.view(), 0) + all->pose_value(ds.view(), 1), 1e-15);
   EXPECT_GT(all->pose_value(ds.view(), 0), neutral);
   EXPECT_EQ(all->name(), "stretch (all poses)");
-  auto objective = std::make_shared<DesignTermSum>();
-  objective->add(all, 1.0);
-  DesignProblem problem(sim, objective);
-  GradientCheckOptions options;
-  options.directions = 2;
-  const VecX p = problem.initial_parameters() +
-                 0.1 * problem.mean_boundary_edge() * random_design_direction(problem.num_parameters(), 5);
-  for (const DirectionalCheck& c : check_design_gradient(problem, p, options)) {
-    EXPECT_LT(c.relative_error, 1e-6) << "adjoint " << c.adjoint << " FD " << c.finite_difference;
-    EXPECT_NE(c.adjoint, 0.0);
-    std::printf("stretch in all poses: adjoint %.9e, FD %.9e, relative error %.2e\n", c.adjoint,
-                c.finite_difference, c.relative_error);
-  }
+  for (const DirectionalCheck& c : pipeline_checks(sim, all, 5, "stretch in all poses")) EXPECT_NE(c.adjoint, 0.0);
 }
 
 TEST(PinnedTractionRegularizer, PartialsAndThePipelineMatchFiniteDifferences) {
@@ -222,18 +221,7 @@ TEST(PinnedTractionRegularizer, PartialsAndThePipelineMatchFiniteDifferences) {
   EXPECT_NEAR(d_x.dot(dx), fd_x, 1e-6 * std::abs(fd_x));
   EXPECT_NEAR(d_rest.dot(dr), fd_rest, 1e-6 * std::abs(fd_rest));
   EXPECT_NEAR(d_y.dot(dy), fd_body, 1e-6 * std::abs(fd_body) + 1e-12);
-  auto objective = std::make_shared<DesignTermSum>();
-  objective->add(term, 1.0);
-  DesignProblem problem(sim, objective);
-  GradientCheckOptions options;
-  options.directions = 2;
-  const VecX p = problem.initial_parameters() +
-                 0.1 * problem.mean_boundary_edge() * random_design_direction(problem.num_parameters(), 7);
-  for (const DirectionalCheck& c : check_design_gradient(problem, p, options)) {
-    EXPECT_LT(c.relative_error, 1e-6) << "adjoint " << c.adjoint << " FD " << c.finite_difference;
-    std::printf("pinned traction pipeline: adjoint %.9e, FD %.9e, relative error %.2e\n", c.adjoint,
-                c.finite_difference, c.relative_error);
-  }
+  pipeline_checks(sim, term, 7, "pinned traction pipeline");
 }
 
 }  // namespace

@@ -53,8 +53,10 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
   for (int v : sim.garment().pinned) pinned[static_cast<std::size_t>(v)] = 1;
   for (std::size_t i = 0; i < scene.poses.size(); ++i) {
     const int pose = static_cast<int>(i);
-    const SlidingForces f = sliding.forces(ds.view(), pose);
-    const TriMesh mesh{sliding.posed_positions(ds.view(), pose), sim.garment().garment_triangles};
+    const SlidingObjective::PoseView pv = sliding.pose_view(ds.view(), pose);
+    const SlidingForces& f = pv.forces;
+    const PosedGarment& pg = pv.garment;
+    const TriMesh mesh{Eigen::Map<const Points3>(pg.x.data(), pg.x.size() / 3, 3), sim.garment().garment_triangles};
     PlyAttributes attributes;
     attributes.vertex_fields = {{"sliding_excess_n", f.excess}, {"tangential_n", f.tangential},
                                 {"pressing_n", f.normal}};
@@ -75,7 +77,6 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
     view.name = scene.poses[i].name;
     view.garment = mesh.vertices;
     view.garment_normals.resize(mesh.vertices.rows(), 3);
-    const PosedGarment pg = pose_garment(sim.surface(), ds.embedding, motions[i].motions);
     for (Eigen::Index j = 0; j < mesh.vertices.rows(); ++j)
       view.garment_normals.row(j) = Vec3(pg.xu.row(j)).cross(Vec3(pg.xv.row(j))).normalized().transpose();
     view.body = body_limit_positions(body, sim.surface(), posed[i].positions);

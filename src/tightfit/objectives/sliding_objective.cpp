@@ -145,13 +145,9 @@ void SlidingObjective::add_embedding_gradient(const DesignState& state, VecX& d_
   }
 }
 
-SlidingForces SlidingObjective::forces(const DesignState& state, int pose) const {
-  return evaluate(state, pose, false).forces;
-}
-
-Points3 SlidingObjective::posed_positions(const DesignState& state, int pose) const {
-  const VecX x = evaluate(state, pose, false).posed.x;
-  return Eigen::Map<const Points3>(x.data(), num_garment_, 3);
+SlidingObjective::PoseView SlidingObjective::pose_view(const DesignState& state, int pose) const {
+  PoseEvaluation ev = evaluate(state, pose, false);
+  return {std::move(ev.forces), std::move(ev.posed)};
 }
 
 }  // namespace tightfit

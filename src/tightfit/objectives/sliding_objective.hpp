@@ -65,10 +65,12 @@ class SlidingObjective : public DesignTerm {
 
   const std::vector<PoseMotions>& poses() const { return poses_; }
   double friction() const { return friction_; }
-  /// The forces of pose `pose` at the state (for reports).
-  SlidingForces forces(const DesignState& state, int pose) const;
-  /// Garment positions in pose `pose` (n_g×3, m) at the state.
-  Points3 posed_positions(const DesignState& state, int pose) const;
+  /// Pose `pose` at the state, for reports: its forces and the garment carried there.
+  struct PoseView {
+    SlidingForces forces;
+    PosedGarment garment;
+  };
+  PoseView pose_view(const DesignState& state, int pose) const;
 
  private:
   struct PoseEvaluation;
