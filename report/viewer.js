@@ -582,6 +582,38 @@ function drawRegions() {
   host.appendChild(table);
 }
 
+function drawSeams() {
+  const host = document.getElementById('seams');
+  const seams = Array.isArray(data.seams) ? data.seams : [];
+  if (seams.length === 0) {
+    host.textContent = 'No seams in this garment.';
+    return;
+  }
+  const table = document.createElement('table');
+  table.className = 'seam-table';
+  table.innerHTML = '<thead><tr><th class="name" rowspan="2">seam</th><th rowspan="2">pieces</th>' +
+    '<th colspan="3">pattern length (mm)</th><th rowspan="2">on the body (mm)</th><th colspan="2">sewing stretch</th>' +
+    '<th colspan="2">traction (N/m)</th></tr>' +
+    '<tr><th>side a</th><th>side b</th><th>mismatch</th><th>side a</th><th>side b</th><th>mean</th><th>max</th></tr></thead>';
+  const tbody = document.createElement('tbody');
+  for (const s of seams) {
+    const tr = document.createElement('tr');
+    cell(tr, s.name, 'name');
+    cell(tr, `${s.piece_a} – ${s.piece_b}`);
+    cell(tr, fmt(s.length_a_mm));
+    cell(tr, fmt(s.length_b_mm));
+    cell(tr, fmt(s.mismatch_mm), s.mismatch_mm > 1 ? 'liftoff' : '');
+    cell(tr, s.sewn_length_mm === undefined ? '–' : fmt(s.sewn_length_mm));
+    cell(tr, s.stretch_a === undefined ? '–' : fmt(s.stretch_a));
+    cell(tr, s.stretch_b === undefined ? '–' : fmt(s.stretch_b));
+    cell(tr, s.traction_mean_n_per_m === undefined ? '–' : fmt(s.traction_mean_n_per_m));
+    cell(tr, s.traction_max_n_per_m === undefined ? '–' : fmt(s.traction_max_n_per_m));
+    tbody.appendChild(tr);
+  }
+  table.appendChild(tbody);
+  host.appendChild(table);
+}
+
 function drawHistogram() {
   const host = document.getElementById('histogram');
   const h = data.pressure_histogram;
@@ -844,6 +876,7 @@ if (poses.length > 0) {
 drawSummary();
 drawPattern();
 drawStats();
+drawSeams();
 drawRegions();
 drawHistogram();
 drawHistory();

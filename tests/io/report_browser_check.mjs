@@ -137,6 +137,8 @@ try {
   summary.statsText = await page.locator('#stats').textContent();
   summary.regionRows = await page.locator('#regions tbody tr').count();
   summary.regionsText = await page.locator('#regions').textContent();
+  summary.seamRows = await page.locator('#seams tbody tr').count();
+  summary.seamsText = await page.locator('#seams').textContent();
   summary.histogramBars = await page.locator('#histogram rect.bar').count();
   summary.liftoffBars = await page.locator('#histogram rect.bar.liftoff').count();
   summary.targetLines = await page.locator('#histogram line.target').count();

@@ -145,6 +145,11 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
     for (int i = 0; i <= cols; ++i) waistband.vertices.push_back(rows * (cols + 1) + i);
     view.pattern.seams = {seam};
     view.pattern.pinned = {waistband};
+    view.seams = pattern_seam_statistics(view.pattern);
+    view.seams[0].has_fit = true;
+    view.seams[0].sewn_length = 1.25 * view.seams[0].length_a;
+    view.seams[0].traction_mean = 31.5;
+    view.seams[0].traction_max = 47.2;
   }
   // A pose: the garment and the body turned by 40° about the x axis, some of it sliding.
   {
@@ -187,6 +192,11 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   const auto ticks = summary.at("historyTicks").get<std::vector<std::string>>();
   EXPECT_NE(std::find(ticks.begin(), ticks.end(), "0.01"), ticks.end()) << summary.dump(2);
   EXPECT_NE(std::find(ticks.begin(), ticks.end(), "1"), ticks.end()) << summary.dump(2);
+  // The seam table: one row, its pieces, the sewing stretch and the traction.
+  EXPECT_EQ(summary.at("seamRows"), 1);
+  const std::string seams = summary.at("seamsText").get<std::string>();
+  for (const char* word : {"side seam A", "1.25", "31.5", "47.2", "mismatch"})
+    EXPECT_NE(seams.find(word), std::string::npos) << word << " missing in: " << seams;
   // Seam sides on both pieces, named; the pinned edge.
   EXPECT_EQ(summary.at("seamEdges"), 2);
   EXPECT_EQ(summary.at("pinnedEdges"), 1);
@@ -219,6 +229,7 @@ TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
   EXPECT_EQ(summary.at("colorings").size(), 4u);  // stretch max/min, pressure, piece
   EXPECT_EQ(summary.at("pressureWarnings"), 1);
   EXPECT_EQ(summary.at("regionRows"), 0);
+  EXPECT_EQ(summary.at("seamRows"), 0);
   EXPECT_EQ(summary.at("initialOutlines"), 0);
   EXPECT_EQ(summary.at("historyCurves").size(), 0u);
 }

@@ -21,8 +21,12 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
                                                const Pattern* initial_pattern) {
   std::vector<std::string> files = {"garment.ply", "body.ply"};
   write_fit_meshes(folder, sim, fit, pressure_operator);
-  if (sim.garment().pattern.pieces.size() <= kMaxPatternPieces)
-    for (const auto& f : write_pattern_files(folder, sim.garment().pattern)) files.push_back(f);
+  if (sim.garment().pattern.pieces.size() <= kMaxPatternPieces) {
+    const std::vector<SeamStatistics> seams =
+        fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
+    for (const auto& f : write_pattern_files(folder, sim.garment().pattern, {}, &seams))
+      files.push_back(f);
+  }
   {
     double relaxation = 0.0;
     if (state.scene.contains("fabric") && state.scene["fabric"].contains("relaxation"))

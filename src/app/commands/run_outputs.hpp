@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tightfit/io/run_state.hpp"
+#include "tightfit/io/simulation_outputs.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
@@ -16,7 +17,7 @@ namespace tightfit::app {
 
 /// Garments with more pieces than this (covers: one piece per triangle) get no pattern
 /// files: there is nothing to cut.
-constexpr size_t kMaxPatternPieces = 64;
+constexpr size_t kMaxPatternPieces = kMaxReportedPieces;
 
 /// Writes the outputs of a run that ended at an equilibrium into `folder`, in this
 /// order (each file atomically; the report comes last because it needs the viewer's

@@ -12,6 +12,7 @@
 #include "tightfit/common/types.hpp"
 #include "tightfit/garment/pattern.hpp"
 #include "tightfit/geometry/mesh.hpp"
+#include "tightfit/io/seam_statistics.hpp"
 
 namespace tightfit {
 
@@ -103,6 +104,9 @@ struct FitView {
   nlohmann::json summary = nlohmann::json::object();
   /// The scene's poses (empty without poses).
   std::vector<FitPose> poses;
+  /// Per seam of the pattern (or empty): side lengths, mismatch, sewn length, sewing
+  /// stretch and traction (io/seam_statistics.hpp), the report's seam table.
+  std::vector<SeamStatistics> seams;
 };
 
 /// Checks shapes and indices: faces index existing vertices, every field has one row

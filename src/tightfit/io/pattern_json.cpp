@@ -6,6 +6,9 @@
 #include "tightfit/common/json_fields.hpp"
 #include "tightfit/io/pattern_drawing.hpp"
 #include "tightfit/io/pattern_validate.hpp"
+#include "tightfit/io/seam_statistics.hpp"
+
+#include <stdexcept>
 
 namespace tightfit {
 namespace {
@@ -134,7 +137,8 @@ void read_side(JsonFields& f, int& piece, std::vector<int>& vertices) {
 }  // namespace
 
 void write_pieces_json(const Pattern& pattern, const PatternExportOptions& options,
-                       const std::filesystem::path& path) {
+                       const std::filesystem::path& path,
+                       const std::vector<SeamStatistics>* fit_seams) {
   const std::vector<PieceDrawing> drawings = draw_pattern_pieces(pattern, options, path.string());
   json root = {{"format", "tightfit-pieces"},
                {"version", 1},
@@ -145,11 +149,25 @@ void write_pieces_json(const Pattern& pattern, const PatternExportOptions& optio
     pieces.push_back(piece_json(pattern.pieces[p], drawings[p]));
   }
   root["pieces"] = pieces;
+  if (fit_seams && fit_seams->size() != pattern.seams.size())
+    throw std::invalid_argument("write_pieces_json: one fit statistic per seam expected");
+  const std::vector<SeamStatistics> lengths = pattern_seam_statistics(pattern);
   json seams = json::array();
-  for (const Seam& seam : pattern.seams) {
-    seams.push_back({{"name", seam.name},
-                     {"a", side_json(pattern, seam.a.piece, seam.a.vertices)},
-                     {"b", side_json(pattern, seam.b.piece, seam.b.vertices)}});
+  for (size_t k = 0; k < pattern.seams.size(); ++k) {
+    const Seam& seam = pattern.seams[k];
+    json entry = {{"name", seam.name},
+                  {"a", side_json(pattern, seam.a.piece, seam.a.vertices)},
+                  {"b", side_json(pattern, seam.b.piece, seam.b.vertices)},
+                  {"length_a_mm", 1000.0 * lengths[k].length_a},
+                  {"length_b_mm", 1000.0 * lengths[k].length_b},
+                  {"mismatch_mm", 1000.0 * lengths[k].mismatch()}};
+    if (fit_seams) {
+      json fit = seam_statistics_json((*fit_seams)[k]);
+      for (const char* key : {"name", "piece_a", "piece_b", "length_a_mm", "length_b_mm", "mismatch_mm"})
+        fit.erase(key);
+      entry["fit"] = fit;
+    }
+    seams.push_back(entry);
   }
   root["seams"] = seams;
   json pinned = json::array();
@@ -179,6 +197,7 @@ Pattern read_pieces_json(const std::filesystem::path& path) {
     read_side(*a, seam.a.piece, seam.a.vertices);
     auto b = s.object("b", true);
     read_side(*b, seam.b.piece, seam.b.vertices);
+    for (const char* derived : {"length_a_mm", "length_b_mm", "mismatch_mm", "fit"}) s.raw(derived);
     s.finish();
     pattern.seams.push_back(std::move(seam));
   }

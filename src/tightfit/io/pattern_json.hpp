@@ -5,6 +5,7 @@
 
 #include "tightfit/garment/pattern.hpp"
 #include "tightfit/io/pattern_export_options.hpp"
+#include "tightfit/io/seam_statistics.hpp"
 
 namespace tightfit {
 
@@ -23,17 +24,23 @@ namespace tightfit {
 ///       "allowance_mm": [...]          (per sew-line edge boundary[k] → boundary[k+1]),
 ///       "grain_line_mm": [[x, y], [x, y]] (tail, head),
 ///       "notches_mm": [{"seam", "side": "a"|"b", "index", "sew": [x, y], "cut": [x, y]}] }],
-///   "seams": [{"name", "a": {"piece", "piece_name", "vertices"}, "b": {...}}],
+///   "seams": [{"name", "a": {"piece", "piece_name", "vertices"}, "b": {...},
+///              "length_a_mm", "length_b_mm", "mismatch_mm",   (sewing lengths of the sides)
+///              "fit": {"sewn_length_mm", "stretch_a", "stretch_b", "traction_mean_n_per_m",
+///                      "traction_max_n_per_m", "traction_total_n"} (only with `fit_seams`)}],
 ///   "pinned": [{"name", "piece", "piece_name", "vertices"}]
 /// }
 /// Seam side vertex i of "a" meets vertex i of "b". Piece references are indices into
-/// "pieces" ("piece_name" is informative). InputError for an invalid pattern/options.
+/// "pieces" ("piece_name" is informative). `fit_seams` (one per seam of the pattern, in
+/// its order; io/seam_statistics.hpp) adds each seam's state on the simulated fit.
+/// InputError for an invalid pattern/options.
 void write_pieces_json(const Pattern& pattern, const PatternExportOptions& options,
-                       const std::filesystem::path& path);
+                       const std::filesystem::path& path,
+                       const std::vector<SeamStatistics>* fit_seams = nullptr);
 
 /// Reads the pattern (pieces' name, rest, triangles, boundary, corners, grain; seams;
 /// pinned boundaries) back from pieces.json. The derived fields (outlines, notches,
-/// allowances, quantity) are accepted and ignored. InputError naming the file and JSON
+/// allowances, quantity, seam lengths and fit) are accepted and ignored. InputError naming the file and JSON
 /// path for a malformed file, and validate_pattern's errors for an invalid pattern.
 Pattern read_pieces_json(const std::filesystem::path& path);
 

@@ -7,13 +7,16 @@
 
 #include "tightfit/garment/garment_builder.hpp"
 #include "tightfit/io/pattern_export_options.hpp"
+#include "tightfit/io/seam_statistics.hpp"
 
 namespace tightfit {
 
-/// Writes the six pattern files into `folder` (each atomically). Returns their names.
+/// Writes the six pattern files into `folder` (each atomically). `fit_seams` (one per
+/// seam) adds the seams' state on the fit to pieces.json. Returns their names.
 std::vector<std::string> write_pattern_files(const std::filesystem::path& folder,
                                              const Pattern& pattern,
-                                             PatternExportOptions options = {});
+                                             PatternExportOptions options = {},
+                                             const std::vector<SeamStatistics>* fit_seams = nullptr);
 
 /// Flattening and seam reports of a built garment as JSON: per piece area and angle
 /// distortion, scale-down, mesh size and smallest angle; per seam the 3D and 2D side

@@ -7,6 +7,7 @@
 #include "tightfit/io/fit_stats.hpp"
 #include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/io/report_encoding.hpp"
+#include "tightfit/io/seam_statistics.hpp"
 
 namespace tightfit {
 
@@ -163,6 +164,7 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
           {"summary", view.summary},
           {"pressure_regions", regions},
           {"pressure_histogram", histogram},
+          {"seams", seam_statistics_json(view.seams)},
           {"poses", poses}};
 }
 

@@ -6,6 +6,7 @@
 
 #include "tightfit/io/fit_stats.hpp"
 #include "tightfit/io/pressure_statistics.hpp"
+#include "tightfit/io/seam_statistics.hpp"
 
 #include <algorithm>
 
@@ -110,13 +111,15 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
   j["lift_off_area_m2"] = lift_off;
   j["lift_off_share"] = total > 0 ? lift_off / total : 0.0;
   // Per piece only for garments with real pieces (the cover has one piece per triangle).
-  if (pieces <= 64) {
+  if (pieces <= static_cast<int>(kMaxReportedPieces)) {
     auto& jp = j["pieces"];
     jp = nlohmann::json::array();
     for (int k = 0; k < pieces; ++k)
       jp.push_back({{"name", sim.garment().pattern.pieces[k].name},
                     {"pressure_pa", range_json(per_piece[k])},
                     {"pressure_mmhg", range_json(per_piece[k], kPascalPerMmHg)}});
+    j["seams"] = seam_statistics_json(
+        fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric));
   }
   if (!regions.empty()) {
     std::vector<double> areas(n);
@@ -206,6 +209,8 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, Shap
                          {std::string(fit_fields::kPressureMmHg), "mmHg", p / kPascalPerMmHg},
                          {std::string(fit_fields::kNormalForce), "N", force}};
   view.pattern = sim.garment().pattern;
+  if (view.pattern.pieces.size() <= kMaxReportedPieces)
+    view.seams = fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
   view.parameters = parameters;
   view.history = history;
   return view;

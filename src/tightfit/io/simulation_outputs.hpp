@@ -13,6 +13,10 @@
 
 namespace tightfit {
 
+/// Garments with more pieces than this (covers: one piece per triangle) get no per-piece
+/// and per-seam statistics: there is nothing to cut or sew.
+constexpr size_t kMaxReportedPieces = 64;
+
 /// Per-face fields of the garment (one row per garment triangle):
 /// stretch_max, stretch_min (principal stretches, 1.3 = 30 %), stretch_dir (3D unit
 /// direction of the maximum stretch), regime (0 slack, 1 wrinkled, 2 taut),
@@ -33,7 +37,8 @@ const VecX& chosen_pressure(const FitAnalysis& fit, ShapeOperatorKind op);
 /// area shares of slack / wrinkled / taut elements, lift-off area (negative pressure),
 /// stretch ranges, and per pressure region (pressure_statistics.hpp) its statistics
 /// against the target and the compression class reached ("pressure_regions", only
-/// when `regions` is not empty; resolve_fit_regions gives them).
+/// when `regions` is not empty; resolve_fit_regions gives them), and with "pieces" per
+/// seam its lengths, mismatch, sewing stretch and traction ("seams", seam_statistics.hpp).
 nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
                               ShapeOperatorKind pressure_operator,
                               const std::vector<FitRegion>& regions = {});
