@@ -582,6 +582,74 @@ function drawRegions() {
   host.appendChild(table);
 }
 
+/// The silhouettes of the shape target, the initial and the optimized garment in a
+/// front and a side view: each layer's triangles filled opaque on its own canvas, then
+/// laid over the others translucent (so overlapping triangles do not darken).
+function drawSilhouettes() {
+  const s = data.silhouettes;
+  if (!s || !s.target) return;
+  document.getElementById('shape-section').hidden = false;
+  const host = document.getElementById('silhouettes');
+  const layers = [{ name: 'target', color: '#2e9e4f', mesh: s.target }];
+  if (s.initial) layers.push({ name: 'initial', color: '#e08a1e', mesh: s.initial });
+  layers.push({ name: 'optimized', color: '#2f5fd0', mesh: data.garment });
+  for (const layer of layers) {
+    layer.positions = typedArray(layer.mesh.positions);
+    layer.indices = typedArray(layer.mesh.indices);
+  }
+  const size = 360, margin = 12;
+  for (const view of [{ name: 'front', axis: 0, sign: 1 }, { name: 'side', axis: 2, sign: 1 }]) {
+    let lo = [Infinity, Infinity], hi = [-Infinity, -Infinity];
+    for (const layer of layers)
+      for (let i = 0; i < layer.positions.length; i += 3) {
+        const h = view.sign * layer.positions[i + view.axis], v = layer.positions[i + 1];
+        lo = [Math.min(lo[0], h), Math.min(lo[1], v)];
+        hi = [Math.max(hi[0], h), Math.max(hi[1], v)];
+      }
+    const scale = (size - 2 * margin) / Math.max(hi[0] - lo[0], hi[1] - lo[1], 1e-9);
+    const toPixel = (h, v) => [margin + (h - lo[0]) * scale, size - margin - (v - lo[1]) * scale];
+    const figure = document.createElement('figure');
+    figure.className = 'silhouette';
+    const canvas = document.createElement('canvas');
+    canvas.width = size;
+    canvas.height = size;
+    canvas.dataset.view = view.name;
+    const ctx = canvas.getContext('2d');
+    ctx.fillStyle = '#ffffff';
+    ctx.fillRect(0, 0, size, size);
+    for (const layer of layers) {
+      const off = document.createElement('canvas');
+      off.width = size;
+      off.height = size;
+      const o = off.getContext('2d');
+      o.fillStyle = layer.color;
+      o.strokeStyle = layer.color;
+      o.lineWidth = 0.6;  // closes the hairline gaps between neighbouring triangles
+      const p = layer.positions, t = layer.indices;
+      for (let f = 0; f < t.length; f += 3) {
+        o.beginPath();
+        for (let k = 0; k < 3; ++k) {
+          const q = 3 * t[f + k];
+          const [x, y] = toPixel(view.sign * p[q + view.axis], p[q + 1]);
+          if (k === 0) o.moveTo(x, y); else o.lineTo(x, y);
+        }
+        o.closePath();
+        o.fill();
+        o.stroke();
+      }
+      ctx.globalAlpha = 0.45;
+      ctx.drawImage(off, 0, 0);
+    }
+    ctx.globalAlpha = 1;
+    ctx.fillStyle = '#000000';
+    ctx.fillRect(margin, size - margin / 2 - 2, 0.1 * scale, 2);  // 10 cm bar
+    const caption = document.createElement('figcaption');
+    caption.textContent = `${view.name} view: ` + layers.map((l) => l.name).join(', ');
+    figure.append(canvas, caption);
+    host.appendChild(figure);
+  }
+}
+
 function drawSeams() {
   const host = document.getElementById('seams');
   const seams = Array.isArray(data.seams) ? data.seams : [];
@@ -876,6 +944,7 @@ if (poses.length > 0) {
 drawSummary();
 drawPattern();
 drawStats();
+drawSilhouettes();
 drawSeams();
 drawRegions();
 drawHistogram();

@@ -439,6 +439,52 @@ TEST_F(OptimizeCli, CheckGradientOfTheDirectionalStretch) {
   }
 }
 
+TEST_F(OptimizeCli, ShapeAndSeamOutputsOfARun) {
+  // Shape target: an open tube of radius 45 mm around the rigid 50 mm cylinder the
+  // sleeve lies on, so every garment vertex is about 5 mm outside it, before and after.
+  std::ofstream obj(dir_ / "tube.obj");
+  const int around = 48, along = 13;
+  for (int j = 0; j < along; ++j)
+    for (int i = 0; i < around; ++i) {
+      const double a = 2.0 * M_PI * i / around;
+      obj << "v " << 0.045 * std::cos(a) << " " << 0.045 * std::sin(a) << " " << -0.06 + 0.01 * j << "\n";
+    }
+  for (int j = 0; j + 1 < along; ++j)
+    for (int i = 0; i < around; ++i) {
+      const int a = j * around + i + 1, b = j * around + (i + 1) % around + 1;
+      obj << "f " << a << " " << b << " " << b + around << "\nf " << a << " " << b + around << " "
+          << a + around << "\n";
+    }
+  obj.close();
+  nlohmann::json s = stretch_scene(2);
+  s["optimize"]["objectives"]["shape"] = {{"weight", 1}, {"target", "tube.obj"}, {"radius", 0.01}};
+  const fs::path scene = write_scene("scene.json", s);
+  const fs::path out = dir_ / "out";
+  const CliRun r = run_cli("optimize " + scene.string() + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json fit = read_json(out / "result.json")["fit"];
+  const nlohmann::json& shape = fit["shape"];
+  for (const nlohmann::json* stats : {&shape, &shape["initial"]}) {
+    EXPECT_GT((*stats)["rms_mm"].get<double>(), 3.0) << shape.dump(2);
+    EXPECT_LT((*stats)["rms_mm"].get<double>(), 6.0) << shape.dump(2);
+    EXPECT_GT((*stats)["mean_signed_mm"].get<double>(), 0.0) << shape.dump(2);  // outside
+    EXPECT_GE((*stats)["max_mm"].get<double>(), (*stats)["rms_mm"].get<double>());
+  }
+  // The sleeve's one seam: equal sides, sewn around the cylinder's axis (length about
+  // the pinned sleeve's 80 mm), pulled open by the hoop stretch.
+  ASSERT_EQ(fit["seams"].size(), 1u) << fit.dump(2);
+  const nlohmann::json& seam = fit["seams"][0];
+  EXPECT_LT(seam["mismatch_mm"].get<double>(), 1.0) << seam.dump(2);
+  EXPECT_NEAR(seam["sewn_length_mm"].get<double>(), 80.0, 8.0) << seam.dump(2);
+  EXPECT_GT(seam["traction_mean_n_per_m"].get<double>(), 0.0) << seam.dump(2);
+  EXPECT_EQ(read_json(out / "pieces.json")["seams"][0]["fit"]["traction_max_n_per_m"],
+            seam["traction_max_n_per_m"]);
+  // export regenerates the same statistics from state.json (which keeps the initial fit).
+  const CliRun e = run_cli("export " + out.string() + " --out " + (dir_ / "exported").string());
+  ASSERT_EQ(e.exit_code, 0) << e.output;
+  EXPECT_EQ(read_json(dir_ / "exported" / "result.json")["fit"]["shape"], shape);
+}
+
 TEST_F(OptimizeCli, MaxIterationsOptionOverridesTheScene) {
   const fs::path scene = write_scene("scene.json", stretch_scene(40));
   const fs::path out = dir_ / "out";

@@ -137,6 +137,20 @@ try {
   summary.statsText = await page.locator('#stats').textContent();
   summary.regionRows = await page.locator('#regions tbody tr').count();
   summary.regionsText = await page.locator('#regions').textContent();
+  summary.shapeSectionVisible = await page.locator('#shape-section').isVisible();
+  // Per silhouette view: the share of non-white pixels and the number of distinct
+  // colours among them (the three translucent layers and their overlaps).
+  summary.silhouettes = await page.locator('#silhouettes canvas').evaluateAll((canvases) => canvases.map((c) => {
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let filled = 0;
+    const colours = new Set();
+    for (let i = 0; i < d.length; i += 4) {
+      if (d[i] > 250 && d[i + 1] > 250 && d[i + 2] > 250) continue;
+      ++filled;
+      colours.add((d[i] >> 4) * 256 + (d[i + 1] >> 4) * 16 + (d[i + 2] >> 4));
+    }
+    return { view: c.dataset.view, filled: filled / (c.width * c.height), colours: colours.size };
+  }));
   summary.seamRows = await page.locator('#seams tbody tr').count();
   summary.seamsText = await page.locator('#seams').textContent();
   summary.histogramBars = await page.locator('#histogram rect.bar').count();

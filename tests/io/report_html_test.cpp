@@ -1,4 +1,6 @@
 #include "tightfit/io/report_html.hpp"
+#include "tightfit/io/shape_outputs.hpp"
+#include "tightfit/io/simulation_outputs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -88,7 +90,9 @@ TEST(ReportHtml, TemplateWithoutMarkerIsAnError) {
 /// tests/io/report_browser_check.mjs; returns the checker's JSON summary.
 nlohmann::json check_in_browser(const FitView& view, const std::string& tag) {
   test::TempDir dir(tag);
-  write_report_html(dir / "report.html", view);
+  ReportOptions options;
+  options.colorings = fit_report_colorings(view);
+  write_report_html(dir / "report.html", view, options);
   // Screenshots stay in TIGHTFIT_REPORT_SHOTS when set (to look at them), else in the temp dir.
   const char* keep = std::getenv("TIGHTFIT_REPORT_SHOTS");
   const std::filesystem::path shots = keep != nullptr ? std::filesystem::path(keep) : dir / "shots";
@@ -164,6 +168,15 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
     pose.sliding_share = 0.25;
     view.poses = {pose};
   }
+  // A shape objective: the target 10 % inside the garment, the initial garment 5 %
+  // outside it, and the distance map.
+  view.shape_target = TriMesh{0.9 * view.garment.vertices, view.garment.faces};
+  view.initial_garment = TriMesh{1.05 * view.garment.vertices, view.garment.faces};
+  {
+    VecX distance(view.garment.vertices.rows());
+    for (Eigen::Index i = 0; i < distance.size(); ++i) distance[i] = 0.1 * view.garment.vertices.row(i).norm();
+    view.garment_fields.push_back(shape_distance_field(view.garment.faces, distance));
+  }
   const auto summary = check_in_browser(view, "report_browser");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
   EXPECT_EQ(summary.at("poses"), (nlohmann::json{"neutral", "turned"}));
@@ -192,6 +205,18 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   const auto ticks = summary.at("historyTicks").get<std::vector<std::string>>();
   EXPECT_NE(std::find(ticks.begin(), ticks.end(), "0.01"), ticks.end()) << summary.dump(2);
   EXPECT_NE(std::find(ticks.begin(), ticks.end(), "1"), ticks.end()) << summary.dump(2);
+  // The shape section: a front and a side view, each with some of all three layers.
+  EXPECT_TRUE(summary.at("shapeSectionVisible").get<bool>());
+  ASSERT_EQ(summary.at("silhouettes").size(), 2u) << summary.dump(2);
+  for (const auto& view_pixels : summary.at("silhouettes")) {
+    EXPECT_GT(view_pixels.at("filled").get<double>(), 0.05) << summary.dump(2);
+    EXPECT_GT(view_pixels.at("colours").get<int>(), 2) << summary.dump(2);
+  }
+  const auto colorings = summary.at("colorings").get<std::vector<std::string>>();
+  EXPECT_NE(std::find_if(colorings.begin(), colorings.end(),
+                         [](const std::string& c) { return c.find("Distance to the shape target") != std::string::npos; }),
+            colorings.end())
+      << summary.dump(2);
   // The seam table: one row, its pieces, the sewing stretch and the traction.
   EXPECT_EQ(summary.at("seamRows"), 1);
   const std::string seams = summary.at("seamsText").get<std::string>();
@@ -230,6 +255,7 @@ TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
   EXPECT_EQ(summary.at("pressureWarnings"), 1);
   EXPECT_EQ(summary.at("regionRows"), 0);
   EXPECT_EQ(summary.at("seamRows"), 0);
+  EXPECT_FALSE(summary.at("shapeSectionVisible").get<bool>());
   EXPECT_EQ(summary.at("initialOutlines"), 0);
   EXPECT_EQ(summary.at("historyCurves").size(), 0u);
 }

@@ -223,6 +223,25 @@ std::string read_error(const nlohmann::json& j) {
   return "";
 }
 
+TEST(RunState, InitialGarmentRoundTripsAndIsChecked) {
+  RunState s = sample_state("optimize");
+  TriMesh initial;
+  initial.vertices.resize(3, 3);
+  for (int i = 0; i < 9; ++i) initial.vertices(i / 3, i % 3) = kAwkward[i % 8];
+  initial.faces.resize(1, 3);
+  initial.faces << 0, 1, 2;
+  s.initial_garment = initial;
+  const nlohmann::json j = run_state_json(s);
+  const RunState r = run_state_from_json(j, "state.json");
+  ASSERT_TRUE(r.initial_garment.has_value());
+  EXPECT_EQ(r.initial_garment->vertices, initial.vertices);
+  EXPECT_EQ(r.initial_garment->faces, initial.faces);
+  EXPECT_FALSE(run_state_from_json(run_state_json(sample_state("optimize")), "s").initial_garment);
+  nlohmann::json bad = j;
+  bad["initial_garment"]["triangles"][0][2] = 3;  // only vertices 0..2 exist
+  EXPECT_NE(read_error(bad).find("/initial_garment/triangles"), std::string::npos) << read_error(bad);
+}
+
 TEST(RunState, MalformedDocumentsNameTheJsonPath) {
   const nlohmann::json good = run_state_json(sample_state("optimize"));
   EXPECT_EQ(read_error(good), "");

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "cli_checks.hpp"
 #include "command_registry.hpp"
@@ -112,8 +113,11 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
   // Ctrl-C / SIGTERM: the current iteration finishes, then the run stops and writes the
   // checkpoint and the outputs of the last accepted pattern as after a normal stop.
   const InterruptGuard interrupts;
+  std::optional<TriMesh> initial_garment;  // the initial equilibrium (unknown on resume)
   const OptimizationResult result = optimizer.run(
       [&](const OptimizationIteration& it) {
+        if (it.iteration == 0 && resume_dir.empty())
+          initial_garment = TriMesh{sim->garment_positions(), sim->garment().garment_triangles};
         print_iteration(it, names);
         write_text_atomically(out / "history.json",
                               history_json(optimizer.history(), names).dump(2) + "\n");
@@ -134,6 +138,7 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
                                   &scene->garment.pattern);
   state.term_names = names;
   state.history = history;
+  state.initial_garment = initial_garment;
   nlohmann::json initial_terms, final_terms;
   for (size_t k = 0; k < names.size(); ++k) {
     initial_terms[names[k]] = history.front().term_values[k];

@@ -9,6 +9,7 @@
 #include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/io/run_state.hpp"
 #include "tightfit/io/scene_spec.hpp"
+#include "tightfit/io/shape_outputs.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
 
 namespace tightfit::app {
@@ -41,6 +42,10 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
       sim, {scene.pressure_regions, scene.pressure_rig.get(), scene.pressure_rig_radius},
       state.scene_file);
   state.result["fit"] = fit_statistics(sim, fit, pressure_operator, regions);
+  const std::optional<ShapeComparison> shape = compare_to_shape_target(
+      scene, state.scene_file, sim.garment_positions(),
+      state.initial_garment ? &*state.initial_garment : nullptr);
+  if (shape) state.result["fit"]["shape"] = shape_statistics_json(*shape);
   PoseOutputs poses = write_pose_outputs(folder, sim, scene);
   if (!poses.files.empty()) {
     state.result["poses"] = poses.statistics;
@@ -63,6 +68,11 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   if (!poses.views.empty()) {
     view.poses = std::move(poses.views);
     view.garment_fields.push_back({std::string(fit_fields::kSlidingExcess), "N", poses.worst_excess});
+  }
+  if (shape) {
+    view.garment_fields.push_back(shape_distance_field(sim.garment().garment_triangles, shape->distance));
+    view.shape_target = shape->target;
+    if (state.initial_garment) view.initial_garment = *state.initial_garment;
   }
   view.summary = report_summary(state);
   if (initial_pattern && state.command == "optimize") {

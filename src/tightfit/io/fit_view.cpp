@@ -103,6 +103,8 @@ void validate_pattern_mapping(const FitView& view, const std::string& source) {
 void validate_fit_view(const FitView& view, const std::string& source) {
   validate_mesh(view.body, "body", source);
   validate_mesh(view.garment, "garment", source);
+  validate_mesh(view.shape_target, "shape target", source);
+  validate_mesh(view.initial_garment, "initial garment", source);
   validate_fields(view.body_fields, view.body.num_faces(), "body", source);
   validate_fields(view.garment_fields, view.garment.num_faces(), "garment", source);
   validate_pattern_mapping(view, source);

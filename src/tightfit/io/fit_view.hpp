@@ -37,6 +37,9 @@ inline constexpr std::string_view kNormalForce = "normal_force_n";
 /// Tangential force above the friction limit (N), per face the mean of its vertices',
 /// in the worst pose of the scene (io/pose_outputs.hpp); only in fits with poses.
 inline constexpr std::string_view kSlidingExcess = "sliding_excess_n";
+/// Distance to the shape objective's target (mm): per face the mean |distance| of its
+/// corners (io/shape_outputs.hpp); only in fits of scenes with a shape objective.
+inline constexpr std::string_view kShapeDistance = "shape_distance_mm";
 }  // namespace fit_fields
 
 /// The fit in one pose of the body (io/pose_outputs.hpp): the garment carried there with
@@ -107,6 +110,11 @@ struct FitView {
   /// Per seam of the pattern (or empty): side lengths, mismatch, sewn length, sewing
   /// stretch and traction (io/seam_statistics.hpp), the report's seam table.
   std::vector<SeamStatistics> seams;
+  /// The shape objective's target surface (m; empty without one) and the garment at the
+  /// optimization's initial equilibrium (empty when unknown): the report's silhouettes
+  /// (initial, optimized, target) in a front and a side view.
+  TriMesh shape_target;
+  TriMesh initial_garment;
 };
 
 /// Checks shapes and indices: faces index existing vertices, every field has one row

@@ -23,23 +23,6 @@
 namespace tightfit {
 namespace {
 
-/// The target surface's vertices with their area-weighted normals (unused vertices,
-/// which have no normal, are skipped).
-ImlsSurface shape_target(const ShapeObjectiveSpec& spec) {
-  const TriMesh mesh = read_tri_mesh(spec.target);
-  const Points3 normals = vertex_normals(mesh);
-  std::vector<Eigen::Index> used;
-  for (Eigen::Index i = 0; i < normals.rows(); ++i)
-    if (normals.row(i).squaredNorm() > 0.0) used.push_back(i);
-  if (used.empty()) throw InputError(spec.target.string(), "the shape target has no faces");
-  Points3 points(static_cast<Eigen::Index>(used.size()), 3), n(points.rows(), 3);
-  for (size_t k = 0; k < used.size(); ++k) {
-    points.row(static_cast<Eigen::Index>(k)) = mesh.vertices.row(used[k]);
-    n.row(static_cast<Eigen::Index>(k)) = normals.row(used[k]);
-  }
-  return ImlsSurface(points, n, spec.radius);
-}
-
 /// The skinning motion of every body vertex in every pose of the scene (those named
 /// in `names`, or all when it is empty); a pose that inverts a tet of the body is an
 /// InputError naming it.
@@ -57,6 +40,21 @@ std::vector<PoseMotions> pose_motions(const DesignPoses& poses, const Body& body
 }
 
 }  // namespace
+
+ImlsSurface read_shape_target(const ShapeObjectiveSpec& spec) {
+  const TriMesh mesh = read_tri_mesh(spec.target);
+  const Points3 normals = vertex_normals(mesh);
+  std::vector<Eigen::Index> used;
+  for (Eigen::Index i = 0; i < normals.rows(); ++i)
+    if (normals.row(i).squaredNorm() > 0.0) used.push_back(i);
+  if (used.empty()) throw InputError(spec.target.string(), "the shape target has no faces");
+  Points3 points(static_cast<Eigen::Index>(used.size()), 3), n(points.rows(), 3);
+  for (size_t k = 0; k < used.size(); ++k) {
+    points.row(static_cast<Eigen::Index>(k)) = mesh.vertices.row(used[k]);
+    n.row(static_cast<Eigen::Index>(k)) = normals.row(used[k]);
+  }
+  return ImlsSurface(points, n, spec.radius);
+}
 
 OptimizationScene read_optimization_scene(const std::string& file) {
   OptimizationScene s;
@@ -138,7 +136,7 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
           throw InputError(spec.shape->target.string(),
                            "the shape objective has no unpinned garment vertex to act on");
       }
-      return std::make_shared<ShapeObjective>(shape_target(*spec.shape), g.num_garment_vertices,
+      return std::make_shared<ShapeObjective>(read_shape_target(*spec.shape), g.num_garment_vertices,
                                               vertices);
     });
   if (spec.pressure)

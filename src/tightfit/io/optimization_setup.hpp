@@ -8,6 +8,7 @@
 #include "tightfit/design/design_term.hpp"
 #include "tightfit/design/optimization_spec.hpp"
 #include "tightfit/io/scene_spec.hpp"
+#include "tightfit/objectives/imls_surface.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit {
@@ -20,6 +21,12 @@ struct OptimizationScene {
 /// Reads the scene `file` (read_scene); its "optimize" section is required and parsed
 /// by parse_optimization_spec.
 OptimizationScene read_optimization_scene(const std::string& file);
+
+/// The shape objective's target surface: the vertices of the mesh `spec.target` with
+/// their area-weighted normals (unused vertices, which have no normal, are skipped),
+/// kernel radius `spec.radius`. InputError naming the file when it cannot be read or
+/// has no faces.
+ImlsSurface read_shape_target(const ShapeObjectiveSpec& spec);
 
 /// The objective Σ w_j T_j of the spec for the simulation's garment: objectives first
 /// (stretch, shape, pressure, seam traction, sliding), then the regularizers (seam length,

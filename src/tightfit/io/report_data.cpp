@@ -165,6 +165,13 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
           {"pressure_regions", regions},
           {"pressure_histogram", histogram},
           {"seams", seam_statistics_json(view.seams)},
+          {"silhouettes",
+           view.shape_target.num_faces() == 0
+               ? nlohmann::json()
+               : nlohmann::json{{"target", mesh_json(view.shape_target)},
+                                {"initial", view.initial_garment.num_faces() > 0
+                                                ? mesh_json(view.initial_garment)
+                                                : nlohmann::json()}}},
           {"poses", poses}};
 }
 

@@ -114,6 +114,9 @@ nlohmann::json run_state_json(const RunState& s) {
                       {"body", rows_json(s.state.body)},
                       {"result", s.result}};
   if (s.command == "optimize") j["history"] = history_json(s.history, s.term_names);
+  if (s.initial_garment)
+    j["initial_garment"] = {{"vertices", rows_json(s.initial_garment->vertices)},
+                            {"triangles", rows_json(s.initial_garment->faces)}};
   return j;
 }
 
@@ -184,6 +187,15 @@ RunState run_state_from_json(const nlohmann::json& j, const std::string& source)
   }
   s.result = f.raw("result");
   if (!s.result.is_object()) f.fail("expected an object (the run's summary)", "result");
+  if (auto initial = f.object("initial_garment")) {
+    TriMesh mesh;
+    mesh.vertices = read_rows(initial->raw("vertices"), 3, source, "/initial_garment/vertices");
+    mesh.faces = read_triangles(initial->raw("triangles"), source, "/initial_garment/triangles");
+    if (mesh.faces.size() > 0 && (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.vertices.rows()))
+      initial->fail("a triangle names a vertex that does not exist", "triangles");
+    initial->finish();
+    s.initial_garment = std::move(mesh);
+  }
   f.finish();
   return s;
 }

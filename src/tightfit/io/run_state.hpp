@@ -29,6 +29,7 @@
 #include <optional>
 
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/geometry/mesh.hpp"
 #include "tightfit/io/scene_spec.hpp"
 #include "tightfit/solve/embedded_equilibrium.hpp"
 
@@ -55,6 +56,9 @@ struct RunState {
   std::vector<std::string> term_names;  ///< optimize: names of the objective terms
   std::vector<OptimizationIteration> history;  ///< optimize: accepted iterations; else empty
   nlohmann::json result;                ///< the command's summary (an object)
+  /// optimize: the garment at the initial equilibrium (m), for the report's shape
+  /// silhouettes; absent when unknown (a resumed run).
+  std::optional<TriMesh> initial_garment;
 };
 
 /// The run state of `command` for the scene `spec`, with the garment's pattern (rest

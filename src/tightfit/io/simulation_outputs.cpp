@@ -216,15 +216,24 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, Shap
   return view;
 }
 
+std::vector<FieldColoring> fit_report_colorings(const FitView& view) {
+  std::vector<FieldColoring> colorings = standard_colorings();
+  if (find_field(view.garment_fields, fit_fields::kSlidingExcess))
+    colorings.push_back({std::string(fit_fields::kSlidingExcess),
+                         "Sliding: tangential force above the friction limit", "N", 1.0,
+                         ColorMap::kViridis, 0.0, std::nullopt, true, std::nullopt});
+  if (find_field(view.garment_fields, fit_fields::kShapeDistance))
+    colorings.push_back({std::string(fit_fields::kShapeDistance), "Distance to the shape target",
+                         "mm", 1.0, ColorMap::kViridis, 0.0, std::nullopt, true, std::nullopt});
+  return colorings;
+}
+
 void write_fit_report(const std::filesystem::path& folder, const FitView& view,
                       const std::string& title) {
   write_fit_glb(folder / "fit.glb", view);
   ReportOptions options;
   options.title = title;
-  if (find_field(view.garment_fields, fit_fields::kSlidingExcess))
-    options.colorings.push_back({std::string(fit_fields::kSlidingExcess),
-                                 "Sliding: tangential force above the friction limit", "N", 1.0,
-                                 ColorMap::kViridis, 0.0, std::nullopt, true, std::nullopt});
+  options.colorings = fit_report_colorings(view);
   write_report_html(folder / "report.html", view, options);
 }
 

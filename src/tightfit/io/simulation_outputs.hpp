@@ -58,6 +58,11 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit,
                       ShapeOperatorKind pressure_operator, const nlohmann::json& parameters,
                       const nlohmann::json& history = nlohmann::json::array());
 
+/// The report's colourings of a fit: the standard ones (fit_colormap.hpp), then sliding
+/// (fits with poses) and the distance to the shape target (fits with a shape objective)
+/// when the view has those fields.
+std::vector<FieldColoring> fit_report_colorings(const FitView& view);
+
 /// Writes fit.glb (garment coloured by max stretch, with the body) and report.html
 /// (three.js viewer, colour maps, pieces, statistics) into `folder`; `title` heads the
 /// report (ReportOptions::title).
