@@ -661,7 +661,7 @@ function drawSeams() {
   table.className = 'seam-table';
   table.innerHTML = '<thead><tr><th class="name" rowspan="2">seam</th><th rowspan="2">pieces</th>' +
     '<th colspan="3">pattern length (mm)</th><th rowspan="2">on the body (mm)</th><th colspan="2">sewing stretch</th>' +
-    '<th colspan="2">traction (N/m)</th></tr>' +
+    '<th colspan="2">traction (N/m)</th><th rowspan="2">angle to y (°)</th></tr>' +
     '<tr><th>side a</th><th>side b</th><th>mismatch</th><th>side a</th><th>side b</th><th>mean</th><th>max</th></tr></thead>';
   const tbody = document.createElement('tbody');
   for (const s of seams) {
@@ -676,6 +676,7 @@ function drawSeams() {
     cell(tr, s.stretch_b === undefined ? '–' : fmt(s.stretch_b));
     cell(tr, s.traction_mean_n_per_m === undefined ? '–' : fmt(s.traction_mean_n_per_m));
     cell(tr, s.traction_max_n_per_m === undefined ? '–' : fmt(s.traction_max_n_per_m));
+    cell(tr, s.angle_to_y_deg === undefined ? '–' : fmt(s.angle_to_y_deg));
     tbody.appendChild(tr);
   }
   table.appendChild(tbody);

@@ -42,6 +42,19 @@ TEST(SeamStatistics, UniformSleeveByHand) {
   EXPECT_NEAR(seam.traction_mean, traction, 1e-9 * traction);
   EXPECT_NEAR(seam.traction_max, traction, 1e-9 * traction);
   EXPECT_NEAR(seam.traction_total, 2.0 * h * traction, 1e-9 * traction);
+  EXPECT_NEAR(seam.angle_to_y_deg, 90.0, 1e-9);  // the sleeve's axis is z: the seam lies across y
+
+  // The sleeve turned so that its axis is y: the seam runs up, angle 0; sheared into a
+  // helix of pitch angle 30° from the axis: 30°.
+  Points3 x = seam_test_positions(s);
+  Points3 turned(x.rows(), 3), helix(x.rows(), 3);
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    turned.row(i) << x(i, 0), x(i, 2), x(i, 1);
+    const double a = std::atan2(x(i, 1), x(i, 0)) + x(i, 2) * std::tan(std::numbers::pi / 6) / r;
+    helix.row(i) << r * std::cos(a), x(i, 2), r * std::sin(a);
+  }
+  EXPECT_NEAR(fit_seam_statistics(s.garment, turned, m)[0].angle_to_y_deg, 0.0, 1e-9);
+  EXPECT_NEAR(fit_seam_statistics(s.garment, helix, m)[0].angle_to_y_deg, 30.0, 0.5);
 }
 
 TEST(SeamStatistics, MismatchAndSewingStretchOfUnequalSides) {

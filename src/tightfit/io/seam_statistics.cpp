@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <utility>
 
 #include "tightfit/objectives/seam_traction_objective.hpp"
@@ -56,13 +57,17 @@ std::vector<SeamStatistics> fit_seam_statistics(const Garment& garment, const Po
     }
     // Side a's edges, mapped to the welded garment vertices, are the sewn seam in 3D.
     const int offset = garment.piece_offset[static_cast<size_t>(seam.a.piece)];
-    double sewn = 0.0;
+    double sewn = 0.0, weighted_angle = 0.0;
     for (size_t i = 1; i < seam.a.vertices.size(); ++i) {
       const int p = garment.pattern_to_garment[static_cast<size_t>(offset + seam.a.vertices[i - 1])];
       const int q = garment.pattern_to_garment[static_cast<size_t>(offset + seam.a.vertices[i])];
-      sewn += (x.row(q) - x.row(p)).norm();
+      const Vec3 d = (x.row(q) - x.row(p)).transpose();
+      const double l = d.norm();
+      sewn += l;
+      if (l > 0.0) weighted_angle += l * std::acos(std::min(1.0, std::abs(d.y()) / l));
     }
     out[k].sewn_length = sewn;
+    out[k].angle_to_y_deg = sewn > 0.0 ? weighted_angle / sewn * 180.0 / std::numbers::pi : 0.0;
     out[k].has_fit = true;
   }
   if (garment.pattern.seams.empty()) return out;
@@ -103,6 +108,7 @@ nlohmann::json seam_statistics_json(const SeamStatistics& s) {
     j["traction_mean_n_per_m"] = s.traction_mean;
     j["traction_max_n_per_m"] = s.traction_max;
     j["traction_total_n"] = s.traction_total;
+    j["angle_to_y_deg"] = s.angle_to_y_deg;
   }
   return j;
 }

@@ -29,6 +29,10 @@ struct SeamStatistics {
   double traction_mean = 0.0;    ///< length-weighted mean normal traction, both sides (N/m)
   double traction_max = 0.0;     ///< largest normal traction of a seam element (N/m)
   double traction_total = 0.0;   ///< Σ l0 · traction over both sides (N): its share of T_seam
+  /// Length-weighted mean angle of the sewn seam's edges to the y axis (the body's up
+  /// axis in MakeHuman and glTF), degrees: 0 for a seam running up the body, 90 for one
+  /// around it; a seam turning helical around a leg lies in between.
+  double angle_to_y_deg = 0.0;
 
   /// |length_a − length_b| (m).
   double mismatch() const;
@@ -49,7 +53,7 @@ std::vector<SeamStatistics> fit_seam_statistics(const Garment& garment, const Po
 
 /// One seam as JSON: {"name", "piece_a", "piece_b", "length_a_mm", "length_b_mm",
 /// "mismatch_mm"} and, on a fit, {"sewn_length_mm", "stretch_a", "stretch_b",
-/// "traction_mean_n_per_m", "traction_max_n_per_m", "traction_total_n"}.
+/// "traction_mean_n_per_m", "traction_max_n_per_m", "traction_total_n", "angle_to_y_deg"}.
 nlohmann::json seam_statistics_json(const SeamStatistics& seam);
 
 /// All seams as a JSON array (seam_statistics_json each).
