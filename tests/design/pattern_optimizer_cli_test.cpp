@@ -383,6 +383,39 @@ TEST_F(OptimizeCli, CheckGradientOfShapePressureAndSeamTraction) {
     EXPECT_NE(r.output.find(std::string("  ") + term + " "), std::string::npos) << term;
 }
 
+TEST_F(OptimizeCli, CheckGradientOfSeamTractionWithStiffSeams) {
+  // The seam springs (Eq. 12) change the equilibrium the seam traction is measured at:
+  // the adjoint must see them (seams 100 times stiffer than the 5 mm strip of fabric).
+  nlohmann::json s = stretch_scene(1);
+  s["seam"] = {{"youngs_modulus", 5e8}, {"width", 0.005}, {"thickness", 2e-4}};
+  s["optimize"]["objectives"] = {{"seam_traction", {{"weight", 1}}}};
+  s["optimize"].erase("regularizers");
+  // The directional derivative along the first direction (the "total" row), with and
+  // without the seam springs: the springs must change it, and the adjoint must agree
+  // with finite differences in both.
+  auto first_derivative = [&](const nlohmann::json& scene_json, const std::string& name) {
+    const fs::path scene = write_scene(name, scene_json);
+    const CliRun r = run_cli("check-gradient " + scene.string() +
+                             " --directions 2 --perturb 0.1 --max-error 1e-5");
+    std::printf("%s", r.output.c_str());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    std::istringstream lines(r.output);
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream words(line);
+      std::string term;
+      int direction = -1;
+      double adjoint = 0.0;
+      if (words >> term >> direction >> adjoint && term == "total" && direction == 0) return adjoint;
+    }
+    ADD_FAILURE() << "no total row in: " << r.output;
+    return 0.0;
+  };
+  const double stiff = first_derivative(s, "stiff.json");
+  s.erase("seam");
+  const double plain = first_derivative(s, "plain.json");
+  EXPECT_GT(std::abs(stiff - plain), 0.01 * std::abs(plain)) << stiff << " vs " << plain;
+}
+
 TEST_F(OptimizeCli, CheckGradientOfPressureRegions) {
   // The sleeve (z in [-0.04, 0.04]) in two bands with smooth 1 cm transitions around
   // z = 0, plus a whole-piece region; the targets sit above and below the sleeve's
