@@ -550,36 +550,45 @@ const PRESSURE_CLASSES = [
   { label: 'III', lo: 34, hi: 46 }, { label: 'IV', lo: 49, hi: Infinity },
 ];
 
-function drawRegions() {
-  const host = document.getElementById('regions');
-  const regions = Array.isArray(data.pressure_regions) ? data.pressure_regions : [];
-  if (regions.length === 0) {
-    host.textContent = 'No pressure regions in this scene ("pressure": {"regions": [...]}).';
+/// A table in the element `hostId`: `headerHtml` (a <thead>), then one row per item
+/// filled by `fillRow(tr, item)`; `emptyText` instead when there are no items.
+function drawTable(hostId, items, emptyText, headerHtml, fillRow) {
+  const host = document.getElementById(hostId);
+  if (!Array.isArray(items) || items.length === 0) {
+    host.textContent = emptyText;
     return;
   }
   const table = document.createElement('table');
-  table.innerHTML = '<thead><tr><th class="name" rowspan="2">region</th><th colspan="2">target (mmHg)</th>' +
-    '<th rowspan="2">area (cm²)</th><th colspan="5">pressure (mmHg)</th><th rowspan="2">in target</th>' +
-    '<th rowspan="2">lift-off</th><th rowspan="2">RAL-GZ 387 class (median)</th><th rowspan="2">burn scar 15–25</th>' +
-    '<th rowspan="2">face mask 20–32</th></tr>' +
-    '<tr><th>min</th><th>max</th><th>min</th><th>median</th><th>mean</th><th>std</th><th>max</th></tr></thead>';
+  table.innerHTML = headerHtml;
   const tbody = document.createElement('tbody');
-  for (const r of regions) {
+  for (const item of items) {
     const tr = document.createElement('tr');
-    cell(tr, r.name, 'name');
-    cell(tr, fmt(r.target_mmhg.min));
-    cell(tr, fmt(r.target_mmhg.max));
-    cell(tr, fmt(r.area_m2 * 1e4));
-    for (const k of ['min', 'median', 'mean', 'std', 'max']) cell(tr, r.pressure_mmhg ? fmt(r.pressure_mmhg[k]) : '–');
-    cell(tr, percent(r.share_in_target));
-    cell(tr, percent(r.lift_off_share), r.lift_off_share > 0 ? 'liftoff' : '');
-    cell(tr, r.ral_gz_387_class ?? '–');
-    cell(tr, r.burn_scar_range === null ? '–' : (r.burn_scar_range ? 'yes' : 'no'));
-    cell(tr, r.face_mask_range === null ? '–' : (r.face_mask_range ? 'yes' : 'no'));
+    fillRow(tr, item);
     tbody.appendChild(tr);
   }
   table.appendChild(tbody);
   host.appendChild(table);
+}
+
+function drawRegions() {
+  drawTable('regions', data.pressure_regions, 'No pressure regions in this scene ("pressure": {"regions": [...]}).',
+    '<thead><tr><th class="name" rowspan="2">region</th><th colspan="2">target (mmHg)</th>' +
+    '<th rowspan="2">area (cm²)</th><th colspan="5">pressure (mmHg)</th><th rowspan="2">in target</th>' +
+    '<th rowspan="2">lift-off</th><th rowspan="2">RAL-GZ 387 class (median)</th><th rowspan="2">burn scar 15–25</th>' +
+    '<th rowspan="2">face mask 20–32</th></tr>' +
+    '<tr><th>min</th><th>max</th><th>min</th><th>median</th><th>mean</th><th>std</th><th>max</th></tr></thead>',
+    (tr, r) => {
+      cell(tr, r.name, 'name');
+      cell(tr, fmt(r.target_mmhg.min));
+      cell(tr, fmt(r.target_mmhg.max));
+      cell(tr, fmt(r.area_m2 * 1e4));
+      for (const k of ['min', 'median', 'mean', 'std', 'max']) cell(tr, r.pressure_mmhg ? fmt(r.pressure_mmhg[k]) : '–');
+      cell(tr, percent(r.share_in_target));
+      cell(tr, percent(r.lift_off_share), r.lift_off_share > 0 ? 'liftoff' : '');
+      cell(tr, r.ral_gz_387_class ?? '–');
+      cell(tr, r.burn_scar_range === null ? '–' : (r.burn_scar_range ? 'yes' : 'no'));
+      cell(tr, r.face_mask_range === null ? '–' : (r.face_mask_range ? 'yes' : 'no'));
+    });
 }
 
 /// The silhouettes of the shape target, the initial and the optimized garment in a
@@ -650,37 +659,22 @@ function drawSilhouettes() {
   }
 }
 
+/// One row per seam; the fit columns read '–' for a pattern without a fit (fmt).
 function drawSeams() {
-  const host = document.getElementById('seams');
-  const seams = Array.isArray(data.seams) ? data.seams : [];
-  if (seams.length === 0) {
-    host.textContent = 'No seams in this garment.';
-    return;
-  }
-  const table = document.createElement('table');
-  table.className = 'seam-table';
-  table.innerHTML = '<thead><tr><th class="name" rowspan="2">seam</th><th rowspan="2">pieces</th>' +
+  drawTable('seams', data.seams, 'No seams in this garment.',
+    '<thead><tr><th class="name" rowspan="2">seam</th><th rowspan="2">pieces</th>' +
     '<th colspan="3">pattern length (mm)</th><th rowspan="2">on the body (mm)</th><th colspan="2">sewing stretch</th>' +
     '<th colspan="2">traction (N/m)</th><th rowspan="2">angle to y (°)</th></tr>' +
-    '<tr><th>side a</th><th>side b</th><th>mismatch</th><th>side a</th><th>side b</th><th>mean</th><th>max</th></tr></thead>';
-  const tbody = document.createElement('tbody');
-  for (const s of seams) {
-    const tr = document.createElement('tr');
-    cell(tr, s.name, 'name');
-    cell(tr, `${s.piece_a} – ${s.piece_b}`);
-    cell(tr, fmt(s.length_a_mm));
-    cell(tr, fmt(s.length_b_mm));
-    cell(tr, fmt(s.mismatch_mm), s.mismatch_mm > 1 ? 'liftoff' : '');
-    cell(tr, s.sewn_length_mm === undefined ? '–' : fmt(s.sewn_length_mm));
-    cell(tr, s.stretch_a === undefined ? '–' : fmt(s.stretch_a));
-    cell(tr, s.stretch_b === undefined ? '–' : fmt(s.stretch_b));
-    cell(tr, s.traction_mean_n_per_m === undefined ? '–' : fmt(s.traction_mean_n_per_m));
-    cell(tr, s.traction_max_n_per_m === undefined ? '–' : fmt(s.traction_max_n_per_m));
-    cell(tr, s.angle_to_y_deg === undefined ? '–' : fmt(s.angle_to_y_deg));
-    tbody.appendChild(tr);
-  }
-  table.appendChild(tbody);
-  host.appendChild(table);
+    '<tr><th>side a</th><th>side b</th><th>mismatch</th><th>side a</th><th>side b</th><th>mean</th><th>max</th></tr></thead>',
+    (tr, s) => {
+      cell(tr, s.name, 'name');
+      cell(tr, `${s.piece_a} – ${s.piece_b}`);
+      cell(tr, fmt(s.length_a_mm));
+      cell(tr, fmt(s.length_b_mm));
+      cell(tr, fmt(s.mismatch_mm), s.mismatch_mm > 1 ? 'liftoff' : '');
+      for (const key of ['sewn_length_mm', 'stretch_a', 'stretch_b', 'traction_mean_n_per_m',
+        'traction_max_n_per_m', 'angle_to_y_deg']) cell(tr, fmt(s[key]));
+    });
 }
 
 function drawHistogram() {
