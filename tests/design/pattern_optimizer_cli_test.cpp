@@ -334,6 +334,40 @@ TEST_F(OptimizeCli, ResumeAfterARemeshingEndsLikeTheUninterruptedRun) {
       << r.output;
 }
 
+TEST_F(OptimizeCli, CheckGradientAtTheCheckpointOfARemeshedRun) {
+  // Where a run stopped (here after two remeshings), not only at the scene's pattern.
+  const fs::path scene = write_scene("scene.json", remesh_scene(5));
+  const fs::path run = dir_ / "run";
+  CliRun r = run_cli("optimize " + scene.string() + " --out " + run.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_GE(remeshings(read_json(run / "history.json")), 1);
+  r = run_cli("check-gradient " + scene.string() + " --at " + run.string() +
+              " --directions 2 --max-error 1e-5");
+  std::printf("%s", r.output.c_str());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("checkpoint.json, iteration 5"), std::string::npos) << r.output;
+
+  // The step cap of each iteration's first trial: step_growth (2) times the farthest
+  // converged trial of the iteration before, which is never nearer than its accepted step.
+  const nlohmann::json history = read_json(run / "history.json")["iterations"];
+  for (size_t k = 1; k < history.size(); ++k) {
+    const nlohmann::json& it = history[k];
+    EXPECT_GE(it["max_solved_move"].get<double>(), it["max_point_move"].get<double>());
+    const nlohmann::json& before = history[k - 1];
+    if (k >= 2 && it["line_search_trials"] == 1 && !before.contains("remesh")) {
+      EXPECT_LE(it["max_point_move"].get<double>(),
+                2.0 * before["max_solved_move"].get<double>() * (1 + 1e-12));
+    }
+  }
+
+  // A folder without a checkpoint: an input error naming the file.
+  fs::create_directories(dir_ / "empty");
+  r = run_cli("check-gradient " + scene.string() + " --at " + (dir_ / "empty").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find((dir_ / "empty" / "checkpoint.json").string()), std::string::npos)
+      << r.output;
+}
+
 TEST_F(OptimizeCli, CheckGradientAgreesWithFiniteDifferences) {
   nlohmann::json s = stretch_scene(1);
   s["optimize"]["regularizers"] = {{"seam_length", 1},

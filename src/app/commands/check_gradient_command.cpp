@@ -2,15 +2,21 @@
 /// "optimize" objective against fourth-order central finite differences of the whole
 /// simulate-then-evaluate pipeline, along random directions in the design space; for
 /// the weighted total and for every term alone. Exits 0 after printing; with
-/// `--max-error E` it exits 4 when some relative error exceeds E.
+/// `--max-error E` it exits 4 when some relative error exceeds E. With `--at DIR` the
+/// check is made at the pattern and equilibrium of DIR/checkpoint.json (an optimize run
+/// of the same scene, remeshed or not), e.g. where a run stalled.
 #include <cstdio>
 #include <cstdlib>
 
+#include <filesystem>
+
 #include "cli_checks.hpp"
 #include "command_registry.hpp"
-#include "tightfit/io/optimization_setup.hpp"
+#include "tightfit/common/error.hpp"
 #include "tightfit/design/adjoint_check.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
+#include "tightfit/design/pattern_optimizer.hpp"
+#include "tightfit/io/optimization_setup.hpp"
 #include "tightfit/io/scene_loader.hpp"
 
 namespace tightfit::app {
@@ -23,6 +29,7 @@ struct CheckArgs {
   unsigned seed = 1;
   double perturb = 0.0;
   double max_error = 0.0;
+  std::string at;  // optimize run folder whose checkpoint.json gives the pattern
 };
 
 double report(const std::string& label, const std::vector<DirectionalCheck>& checks) {
@@ -43,6 +50,10 @@ void run_check_gradient(const CheckArgs& args) {
   auto sim = make_simulation(*scene);
   const auto objective = build_objective(input.optimization, *sim);
   const std::vector<std::string> names = term_names(*objective);
+  // Read before the initial solve, so that a bad file fails at once.
+  std::optional<OptimizationCheckpoint> at;
+  const std::filesystem::path at_file = std::filesystem::path(args.at) / "checkpoint.json";
+  if (!args.at.empty()) at = read_checkpoint(at_file, names);
   const NewtonReport initial = sim->solve();
   std::printf(
       "tightfit check-gradient: %d garment vertices, initial equilibrium in %d Newton "
@@ -50,6 +61,7 @@ void run_check_gradient(const CheckArgs& args) {
       sim->garment().num_garment_vertices, initial.iterations, initial.final_force_norm);
   const EmbeddedState equilibrium = sim->problem().state();
   const Points2 initial_rest = sim->garment().rest_positions();
+  if (at) std::printf("  at %s, iteration %d\n", at_file.c_str(), at->iteration);
 
   GradientCheckOptions options;
   options.directions = args.directions;
@@ -58,23 +70,51 @@ void run_check_gradient(const CheckArgs& args) {
   std::printf("  %-22s %3s  %-19s  %-19s  %s\n", "term", "dir", "adjoint dT/dp.d",
               "finite difference", "rel. error");
   double worst = 0.0;
-  auto check = [&](const std::string& label, std::shared_ptr<const DesignTermSum> terms) {
-    sim->set_rest_positions(initial_rest);  // every check starts from the scene's pattern
-    sim->set_state(equilibrium);
-    DesignProblem problem(*sim, std::move(terms), input.optimization.problem);
+  const OptimizationSpec& spec = input.optimization;
+  // The objective of the check: the whole objective (term < 0) or its entry `term`, built
+  // for the given simulation (also after a remeshing, which rebuilds it).
+  auto objective_of = [&spec](int term) {
+    return [&spec, term](const GarmentSimulation& g) -> std::shared_ptr<DesignTermSum> {
+      auto whole = build_objective(spec, g);
+      if (term < 0) return whole;
+      auto single = std::make_shared<DesignTermSum>();
+      single->add(whole->entries()[static_cast<size_t>(term)].term,
+                  whole->entries()[static_cast<size_t>(term)].weight);
+      return single;
+    };
+  };
+  auto check = [&](const std::string& label, int term) {
+    // Every check starts from the scene's pattern, or from the checkpoint's (a remeshed
+    // checkpoint changes the garment, so each check then gets a simulation of its own).
+    std::unique_ptr<GarmentSimulation> own;
+    GarmentSimulation* s = sim.get();
+    if (at) {
+      own = make_simulation(*scene);
+      s = own.get();
+    }
+    s->set_rest_positions(initial_rest);
+    s->set_state(equilibrium);
+    const auto factory = objective_of(term);
+    DesignProblem problem(*s, factory(*s), spec.problem, factory);
     VecX p = problem.initial_parameters();
+    if (at) {
+      PatternOptimizer optimizer(problem, spec.optimizer);
+      try {
+        optimizer.resume(*at);
+      } catch (const InputError& e) {
+        if (e.source() == at_file.string()) throw;
+        throw InputError(at_file.string(), e.what());
+      }
+      p = problem.accepted_parameters();
+    }
     if (args.perturb > 0.0)
       p += args.perturb * problem.mean_boundary_edge() *
            random_design_direction(p.size(), args.seed + 1000);
     worst = std::max(worst, report(label, check_design_gradient(problem, p, options)));
   };
-  check("total", objective);
+  check("total", -1);
   if (names.size() > 1)
-    for (size_t k = 0; k < names.size(); ++k) {
-      auto single = std::make_shared<DesignTermSum>();
-      single->add(objective->entries()[k].term, objective->entries()[k].weight);
-      check(names[k], single);
-    }
+    for (size_t k = 0; k < names.size(); ++k) check(names[k], static_cast<int>(k));
   std::printf("  largest relative error: %.3e\n", worst);
   if (args.max_error > 0.0 && worst > args.max_error) {
     std::fprintf(stderr, "error: relative error %.3e exceeds --max-error %.3e\n", worst,
@@ -101,6 +141,9 @@ const CommandRegistration kCheckGradient{
                       "Check at the pattern moved randomly by this fraction of the mean boundary "
                       "edge (regularizers vanish on the initial pattern; default 0)")
           ->check(non_negative_number());
+      cmd->add_option("--at", args->at,
+                      "Check at the pattern of DIR/checkpoint.json (an optimize run of this "
+                      "scene) instead of the scene's initial pattern");
       cmd->add_option("--max-error", args->max_error,
                       "Exit with status 4 when a relative error exceeds this")
           ->check(non_negative_number());

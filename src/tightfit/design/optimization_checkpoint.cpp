@@ -119,6 +119,7 @@ nlohmann::json iteration_json(const OptimizationIteration& it,
           {"gradient_norm", it.gradient_norm},
           {"step_norm", it.step_norm},
           {"max_point_move", it.max_point_move},
+          {"max_solved_move", it.max_solved_move},
           {"step_factor", it.step_factor},
           {"line_search_trials", it.line_search_trials},
           {"failed_solves", it.failed_solves},
@@ -151,6 +152,8 @@ OptimizationIteration iteration_from_json(const nlohmann::json& j,
   it.gradient_norm = f.number("gradient_norm");
   it.step_norm = f.number("step_norm");
   it.max_point_move = f.number("max_point_move");
+  // Records written before the field existed: the accepted move was the reference.
+  it.max_solved_move = f.number("max_solved_move", it.max_point_move);
   it.step_factor = f.number("step_factor");
   it.line_search_trials = f.integer("line_search_trials");
   it.failed_solves = f.integer("failed_solves");

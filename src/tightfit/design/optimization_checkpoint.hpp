@@ -16,7 +16,8 @@
 /// bit-identical numbers.
 ///
 /// An iteration record: {"iteration", "objective", "terms": {name: w_j T_j},
-///   "gradient_norm", "step_norm" (m), "max_point_move" (m), "step_factor",
+///   "gradient_norm", "step_norm" (m), "max_point_move" (m), "max_solved_move" (m),
+///   "step_factor",
 ///   "line_search_trials", "failed_solves", "newton_iterations", "hessian_shift" (N/m),
 ///   "seconds"}.
 #include <filesystem>

@@ -30,7 +30,8 @@
 ///               "value_tolerance": 0, "relative_decrease_tolerance": 1e-9,
 ///               "stall_iterations": 3, "max_step": 0, "max_step_fraction": 0.5,
 ///               "step_growth": 2,         // first trial moves no point more than 2x
-///                                         // the previous accepted step (0: off)
+///                                         // the previous iteration's farthest
+///                                         // converged trial (0: off)
 ///               "armijo": 1e-4, "max_line_search": 30},
 ///     "remesh": {"enabled": true,          // remesh pieces whose rest mesh degrades:
 ///                "min_angle_deg": 10,      //   smallest angle below this (degrees),

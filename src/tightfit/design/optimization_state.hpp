@@ -39,6 +39,11 @@ struct OptimizationIteration {
   double gradient_norm = 0.0;       ///< ‖dT/dp‖₂ (units of T per m)
   double step_norm = 0.0;           ///< ‖Δp‖₂ (m) of the accepted step
   double max_point_move = 0.0;      ///< largest move of one boundary point (m)
+  /// Largest point move (m) among this iteration's line-search trials whose forward solve
+  /// converged (accepted or not): how far the equilibrium is known to follow a step. The
+  /// next iteration's first trial is capped relative to it (PatternOptimizerOptions::
+  /// step_growth). At least max_point_move.
+  double max_solved_move = 0.0;
   double step_factor = 0.0;         ///< accepted line-search factor α
   int line_search_trials = 0;       ///< forward solves tried for this step
   int failed_solves = 0;            ///< of them: rejected patterns / unconverged solves

@@ -214,12 +214,15 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
     const double max_step = options_.max_step > 0.0
                                 ? options_.max_step
                                 : options_.max_step_fraction * problem_.mean_boundary_edge();
-    // The largest point move of the previous accepted step (none after a remeshing:
-    // the parameters are new).
+    // How far the previous iteration's forward solves followed a step: its largest
+    // converged trial, accepted or not (none after a remeshing: the parameters are new).
+    // Not the accepted move alone: a step shortened by the sufficient-decrease test says
+    // nothing about the solver, and capping by it would shrink the steps geometrically
+    // once a few line searches backtrack (the run then stops as "stalled").
     const OptimizationIteration& last = history_.back();
-    const double previous_move =
-        history_.size() > 1 && !(last.remesh && last.remesh->failure.empty()) ? last.max_point_move
-                                                                              : 0.0;
+    const double previous_move = history_.size() > 1 && !(last.remesh && last.remesh->failure.empty())
+                                     ? std::max(last.max_solved_move, last.max_point_move)
+                                     : 0.0;
     OptimizationIteration rec;
     DesignEvaluation trial;
     VecX d;
@@ -258,6 +261,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
           alpha *= 0.5;
           continue;
         }
+        rec.max_solved_move = std::max(rec.max_solved_move, alpha * move);
         if (trial.value <= current.value + options_.armijo * alpha * slope) {
           const auto t_gradient = Clock::now();
           const bool gradient_ok = problem_.add_gradient(trial);

@@ -13,7 +13,8 @@
 /// Iteration k: d = −H_k ∇T (two-loop recursion over the last `memory` pairs, initial
 /// scaling γ = sᵀy / yᵀy; steepest descent when the memory is empty), capped so that no
 /// boundary point moves more than `max_step` (m), nor more than `step_growth` times as
-/// far as in the previous accepted step. Backtracking line search on α ∈ (0, 1]
+/// far as in the previous iteration's farthest trial whose forward solve converged
+/// (OptimizationIteration::max_solved_move). Backtracking line search on α ∈ (0, 1]
 /// with the Armijo condition T(p + α d) ≤ T(p) + c α ∇T·d (c = `armijo`), shrinking α
 /// by quadratic interpolation clamped to [0.1, 0.5]·α; a trial whose forward solve
 /// fails or whose pattern is rejected counts as "too far" and is halved. Accepted steps
@@ -58,9 +59,10 @@ struct PatternOptimizerOptions {
   double max_step = 0.0;
   double max_step_fraction = 0.5;
   /// The first trial of an iteration moves no boundary point more than this factor
-  /// times the largest move of the previous accepted step (0: no such cap). A step that
-  /// can only grow gradually rarely sends the forward solve somewhere it cannot
-  /// converge, so most iterations accept their first trial.
+  /// times the largest move of the previous iteration's trials whose forward solve
+  /// converged (0: no such cap). A step that can only grow gradually rarely sends the
+  /// forward solve somewhere it cannot converge, so most iterations accept their first
+  /// trial; a step shortened only by the sufficient-decrease test does not shrink the cap.
   double step_growth = 2.0;
   double armijo = 1e-4;
   int max_line_search = 30;  ///< trials per line search

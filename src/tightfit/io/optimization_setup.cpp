@@ -1,14 +1,16 @@
 #include "tightfit/io/optimization_setup.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <string>
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/regularizer_compactness.hpp"
 #include "tightfit/design/regularizer_edge_lengths.hpp"
 #include "tightfit/design/regularizer_smoothness.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
-#include "tightfit/geometry/mesh_measures.hpp"
+#include "tightfit/geometry/surface_sampling.hpp"
 #include "tightfit/objectives/all_poses_term.hpp"
 #include "tightfit/objectives/pinned_traction_regularizer.hpp"
 #include "tightfit/objectives/directional_stretch_objective.hpp"
@@ -43,17 +45,19 @@ std::vector<PoseMotions> pose_motions(const DesignPoses& poses, const Body& body
 
 ImlsSurface read_shape_target(const ShapeObjectiveSpec& spec) {
   const TriMesh mesh = read_tri_mesh(spec.target);
-  const Points3 normals = vertex_normals(mesh);
-  std::vector<Eigen::Index> used;
-  for (Eigen::Index i = 0; i < normals.rows(); ++i)
-    if (normals.row(i).squaredNorm() > 0.0) used.push_back(i);
-  if (used.empty()) throw InputError(spec.target.string(), "the shape target has no faces");
-  Points3 points(static_cast<Eigen::Index>(used.size()), 3), n(points.rows(), 3);
-  for (size_t k = 0; k < used.size(); ++k) {
-    points.row(static_cast<Eigen::Index>(k)) = mesh.vertices.row(used[k]);
-    n.row(static_cast<Eigen::Index>(k)) = normals.row(used[k]);
-  }
-  return ImlsSurface(points, n, spec.radius);
+  if (!(spec.radius > 0.0) || !std::isfinite(spec.radius))
+    throw InputError(spec.target.string(), "the IMLS radius must be positive");
+  const double spacing = 0.5 * spec.radius;
+  const std::int64_t count = count_surface_samples(mesh, spacing);
+  if (count == 0) throw InputError(spec.target.string(), "the shape target has no faces");
+  if (count > kMaxShapeTargetPoints)
+    throw InputError(spec.target.string(),
+                     "the shape target would need " + std::to_string(count) +
+                         " points at half the IMLS radius (" + std::to_string(spec.radius) +
+                         " m), more than " + std::to_string(kMaxShapeTargetPoints) +
+                         ": use a larger radius (and check the mesh's units)");
+  OrientedPoints samples = sample_surface(mesh, spacing);
+  return ImlsSurface(std::move(samples.points), std::move(samples.normals), spec.radius);
 }
 
 OptimizationScene read_optimization_scene(const std::string& file) {
