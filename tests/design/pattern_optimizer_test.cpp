@@ -87,6 +87,36 @@ TEST(PatternOptimizer, BacktracksOverFailedForwardSolvesAndFlippedPatterns) {
   expect_equilibrium(sim);
 }
 
+TEST(PatternOptimizer, AStopRequestEndsALongLineSearchBetweenTrials) {
+  // The first trials of iteration 1 fold the pattern (as above), so its line search
+  // needs several; a stop requested after the first of them ends the run there, with
+  // the pattern and equilibrium of iteration 0.
+  auto scene = make_sleeve_scene();
+  GarmentSimulation& sim = *scene->sim;
+  sim.solve();
+  auto objective = std::make_shared<DesignTermSum>();
+  objective->add(
+      std::make_shared<test::TargetPositionTerm>(test::turned_targets(sim, 0.0175, 0.002)), 1.0);
+  DesignProblem problem(sim, objective);
+  PatternOptimizerOptions options;
+  options.max_iterations = 4;
+  options.max_step = 20.0 * problem.mean_boundary_edge();
+  PatternOptimizer optimizer(problem, options);
+  int polls = 0;  // 1: before iteration 1; 2: before its second trial
+  const OptimizationResult result = optimizer.run({}, [&] { return ++polls >= 2; });
+  std::printf("  %s\n", result.stop_reason.c_str());
+  EXPECT_EQ(polls, 2);
+  EXPECT_TRUE(result.interrupted);
+  EXPECT_NE(result.stop_reason.find("line search of iteration 1"), std::string::npos)
+      << result.stop_reason;
+  ASSERT_EQ(optimizer.history().size(), 1u);
+  EXPECT_EQ(result.final_value, optimizer.history().front().value);
+  expect_equilibrium(sim);
+  const Points2 rest = problem.rest_positions(problem.accepted_parameters());
+  EXPECT_EQ((sim.garment().rest_positions() - rest).norm(), 0.0);
+  EXPECT_EQ((problem.accepted_parameters() - problem.initial_parameters()).norm(), 0.0);
+}
+
 TEST(PatternOptimizer, RejectsATrialThatFlipsARestTriangle) {
   auto scene = make_sleeve_scene();
   GarmentSimulation& sim = *scene->sim;

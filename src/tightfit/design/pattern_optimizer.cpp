@@ -228,7 +228,8 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
     VecX d;
     double alpha = 0.0;
     bool accepted = false;
-    for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
+    bool stopped_in_line_search = false;
+    for (int attempt = 0; attempt < 2 && !accepted && !stopped_in_line_search; ++attempt) {
       if (attempt == 1) {
         if (memory_.s.empty()) break;  // steepest descent already failed
         memory_ = {};
@@ -246,6 +247,12 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
       if (const double cap = options_.step_growth * previous_move; cap > 0.0 && alpha * move > cap)
         alpha = cap / move;
       for (int t = 0; t < options_.max_line_search; ++t) {
+        // A stop request ends the iteration between two trials: a hard line search can
+        // take minutes, and the last accepted iteration is what a stop keeps anyway.
+        if (t > 0 && stop_requested && stop_requested()) {
+          stopped_in_line_search = true;
+          break;
+        }
         ++rec.line_search_trials;
         const auto t_trial = Clock::now();
         trial = problem_.evaluate(p + alpha * d, false);
@@ -280,6 +287,14 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
         const double next = curvature > 0.0 ? -slope * alpha * alpha / curvature : 0.5 * alpha;
         alpha = std::clamp(next, 0.1 * alpha, 0.5 * alpha);
       }
+    }
+    if (stopped_in_line_search) {
+      problem_.restore_accepted();
+      reason << "interrupted during the line search of iteration " << iteration_ + 1
+             << " (" << rec.line_search_trials << " trials); the pattern of iteration "
+             << iteration_ << " is kept";
+      result.interrupted = true;
+      break;
     }
     if (!accepted) {
       problem_.restore_accepted();

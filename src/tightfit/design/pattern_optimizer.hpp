@@ -95,7 +95,8 @@ class PatternOptimizer {
 
   /// Runs until a stopping criterion (see the header comment), or until
   /// `stop_requested` (polled before each iteration, after the previous one was accepted
-  /// and reported) returns true: the state is then that of the last accepted iteration.
+  /// and reported, and between the trials of a line search) returns true: the state is
+  /// then that of the last accepted iteration.
   /// Throws SolverError when the starting point itself cannot be evaluated.
   OptimizationResult run(const IterationCallback& on_iteration = {},
                          const std::function<bool()>& stop_requested = {});
