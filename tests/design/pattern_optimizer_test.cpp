@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 
 #include "adjoint_test_scene.hpp"
+#include "tightfit/common/error.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
 
 namespace tightfit {
@@ -115,6 +117,33 @@ TEST(PatternOptimizer, AStopRequestEndsALongLineSearchBetweenTrials) {
   const Points2 rest = problem.rest_positions(problem.accepted_parameters());
   EXPECT_EQ((sim.garment().rest_positions() - rest).norm(), 0.0);
   EXPECT_EQ((problem.accepted_parameters() - problem.initial_parameters()).norm(), 0.0);
+}
+
+/// T = ½‖x − targets‖² whose gradient is NaN: an objective broken in its derivative.
+class NanGradientTerm : public test::TargetPositionTerm {
+ public:
+  using TargetPositionTerm::TargetPositionTerm;
+  void add_gradient(const DesignState& s, VecX& d_x, VecX& d_rest) const override {
+    TargetPositionTerm::add_gradient(s, d_x, d_rest);
+    d_x[0] = std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
+TEST(PatternOptimizer, NeverAcceptsANonFiniteValueOrGradient) {
+  auto scene = make_sleeve_scene();
+  GarmentSimulation& sim = *scene->sim;
+  sim.solve();
+  auto objective = std::make_shared<DesignTermSum>();
+  objective->add(std::make_shared<NanGradientTerm>(test::turned_targets(sim, 0.0175, 0.002)), 1.0);
+  DesignProblem problem(sim, objective);
+  const DesignEvaluation e = problem.evaluate(problem.initial_parameters(), true);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.failure.find("not finite"), std::string::npos) << e.failure;
+  EXPECT_THROW(problem.accept(), std::logic_error);
+  // The optimizer cannot even start from such a pattern: a solver error, no history.
+  PatternOptimizer optimizer(problem);
+  EXPECT_THROW(optimizer.run(), SolverError);
+  EXPECT_TRUE(optimizer.history().empty());
 }
 
 TEST(PatternOptimizer, RejectsATrialThatFlipsARestTriangle) {

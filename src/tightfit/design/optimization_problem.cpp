@@ -365,6 +365,13 @@ bool DesignProblem::add_gradient(DesignEvaluation& ev) {
     ev.krylov_iterations = r.krylov_iterations;
     ev.adjoint_factorizations = r.factorizations;
     if (r.solved) gradient_generation_ = adjoint_.generation();
+    // Never accepted with a non-finite gradient: it would enter the L-BFGS memory and
+    // every later direction.
+    if (!ev.gradient.allFinite()) {
+      ev.ok = false;
+      ev.failure = "adjoint: the design gradient is not finite";
+      last_ok_ = false;
+    }
   } catch (const SolverError& e) {
     ev.ok = false;
     ev.failure = std::string("adjoint: ") + e.what();

@@ -127,8 +127,8 @@ class DesignProblem {
   /// Evaluates T (and dT/dp when `with_gradient`) at p; see the header comment.
   DesignEvaluation evaluate(const VecX& p, bool with_gradient = true);
   /// Adds dT/dp to `ev`, the result of the last evaluate() (successful, without
-  /// gradient), at the simulation's current state. On an adjoint failure sets ev.ok =
-  /// false and ev.failure and returns false.
+  /// gradient), at the simulation's current state. On an adjoint failure, or a gradient
+  /// that is not finite, sets ev.ok = false and ev.failure and returns false.
   bool add_gradient(DesignEvaluation& ev);
 
   /// Makes the simulation's current state (the last successful evaluate()) and its p
