@@ -57,11 +57,13 @@ Walk walk(const ImlsSurface& surface, const std::vector<Vec3>& path) {
 }
 
 TEST(ShapeTarget, CoarseTargetIsSampledSoTheDistanceIsContinuous) {
-  // A generic coarse mesh: an icosahedron of circumradius 10 cm (edges 10.5 cm, ten
-  // times the IMLS radius) with its vertices moved in and out by up to 5 %.
-  TriMesh coarse = test::icosahedron();
+  // A coarse sphere: the icosahedron split twice, radius 0.5 m (edges of about 15 cm,
+  // fifteen times the IMLS radius), its vertices moved in and out by up to 1 %. The
+  // path below runs over its flat facets, which lie up to 9 mm inside the smooth
+  // surface the target stands for: within the radius.
+  TriMesh coarse = test::unit_icosphere();
   for (int k = 0; k < coarse.num_vertices(); ++k)
-    coarse.vertices.row(k) *= 0.1 * (1.0 + 0.05 * std::sin(7.0 * k + 1.0));
+    coarse.vertices.row(k) *= 0.5 * (1.0 + 0.01 * std::sin(7.0 * k + 1.0));
   const test::TempDir dir("shape_target");
   write_obj(dir / "target.obj", coarse);
   ShapeObjectiveSpec spec;
@@ -75,7 +77,7 @@ TEST(ShapeTarget, CoarseTargetIsSampledSoTheDistanceIsContinuous) {
   const Walk sampled = walk(target, path);
   EXPECT_EQ(sampled.fallbacks, 0);
   EXPECT_LT(sampled.largest_jump, 3.0 * step);  // |∇f| is about 1: no jump
-  EXPECT_LT(sampled.largest_value, 0.003);      // on the surface, f is near 0
+  EXPECT_LT(sampled.largest_value, 0.01);       // the facets' depth at most
 
   // The mesh's vertices alone (what the target used to be): far from every vertex,
   // the nearest-vertex fallback jumps (0.5 mm here) where the nearest vertex changes.

@@ -1,6 +1,7 @@
 #include "tightfit/geometry/surface_sampling.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -62,6 +63,17 @@ std::int64_t face_level(const TriMesh& mesh, int f, double spacing) {
   return n;
 }
 
+/// Phong tessellation with α = ½ at the flat point q = Σ w_i p_i (surface_sampling.hpp).
+template <int N>
+Vec3 phong_point(const std::array<Vec3, N>& p, const std::array<Vec3, N>& n,
+                 const std::array<double, N>& w) {
+  Vec3 flat = Vec3::Zero();
+  for (int i = 0; i < N; ++i) flat += w[i] * p[i];
+  Vec3 projected = Vec3::Zero();
+  for (int i = 0; i < N; ++i) projected += w[i] * (flat - (flat - p[i]).dot(n[i]) * n[i]);
+  return 0.5 * (flat + projected);
+}
+
 void check_spacing(double spacing) {
   if (!(spacing > 0.0) || !std::isfinite(spacing))
     throw std::invalid_argument("sample_surface: spacing must be positive and finite");
@@ -111,7 +123,8 @@ OrientedPoints sample_surface(const TriMesh& mesh, double spacing) {
     const Vec3 na = vertex_normal.row(a).transpose(), nb = vertex_normal.row(b).transpose();
     for (std::int64_t i = 1; i < n; ++i) {
       const double t = static_cast<double>(i) / static_cast<double>(n);
-      add((1.0 - t) * pa + t * pb, (1.0 - t) * na + t * nb, face_normal.row(e.face).transpose());
+      add(phong_point<2>({pa, pb}, {na, nb}, {1.0 - t, t}), (1.0 - t) * na + t * nb,
+          face_normal.row(e.face).transpose());
     }
   }
   for (int f : l.faces) {
@@ -127,7 +140,8 @@ OrientedPoints sample_surface(const TriMesh& mesh, double spacing) {
       for (std::int64_t j = 1; i + j < n; ++j) {
         const double wa = static_cast<double>(i) * inv, wb = static_cast<double>(j) * inv;
         const double wc = 1.0 - wa - wb;
-        add(wa * pa + wb * pb + wc * pc, wa * na + wb * nb + wc * nc, fallback);
+        add(phong_point<3>({pa, pb, pc}, {na, nb, nc}, {wa, wb, wc}),
+            wa * na + wb * nb + wc * nc, fallback);
       }
   }
   return out;

@@ -21,6 +21,16 @@ struct OrientedPoints {
 ///   * every face of non-zero area, on the barycentric grid of level n_f (the largest n_e
 ///     of its edges): the points (i a + j b + k c) / n_f with i, j, k ≥ 1.
 /// A mesh whose edges are all at most `spacing` long gives its vertices only.
+///
+/// The mesh is taken as a discretization of a smooth surface, not as its flat facets:
+/// a point with barycentric weights w over the vertices p_i (normals n_i) is placed by
+/// Phong tessellation (Boubekeur & Alexa 2008) with α = ½,
+///   p = ½ Σ w_i p_i + ½ Σ w_i π_i(Σ w_j p_j),  π_i(q) = q − ((q − p_i)·n_i) n_i,
+/// the value that reproduces curvature to second order: on a circle of radius R the
+/// chord's midpoint sags s²/8R inside, the tangent projections lift it s²/4R, and half
+/// of that lift puts it back on the circle. (Flat facets would put a coarse target's face
+/// centres inside the surface its vertices lie on.) Vertices stay where they are, edge
+/// points depend on their edge only, so the sampled surface has no cracks.
 /// Normals are the area-weighted vertex normals (vertex_normals) interpolated
 /// barycentrically and normalized: a field that turns smoothly across edges, where the
 /// face normals would jump. Order: vertices (ascending), edge points, face points.
