@@ -7,8 +7,11 @@
 /// radius (m). f is a signed distance (m): positive on the side the normals point to.
 /// Near a plane it is exactly the signed distance to the plane; on a target curved with
 /// radius R it is biased towards the concave side by O(h²/R) (measured: 0.16 h²/(2R) on
-/// a sphere), so choose h a few target-point spacings wide, not more. f is C³ wherever
-/// some target point lies within h (φ is C³ at r = h).
+/// a sphere): that bias is the floor of a shape fit, so choose h small against the
+/// target's radii of curvature, yet larger than the distances the garment starts at
+/// (beyond h the fallback below takes over), and the target points a few to a radius
+/// (io/optimization_setup.hpp samples a target mesh at h/2). f is C³ wherever some
+/// target point lies within h (φ is C³ at r = h).
 ///
 /// Fallback: where no target point lies within h, f(x) = n_k·(x − c_k) for the NEAREST
 /// target point k (the signed distance to the tangent plane of the nearest point). This
