@@ -1,6 +1,8 @@
 #include "tightfit/solve/embedded_equilibrium.hpp"
 
 #include <Eigen/Dense>
+#include <cmath>
+#include <sstream>
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/parallel.hpp"
@@ -193,22 +195,59 @@ bool EmbeddedEquilibrium::set_step(const VecX& dq, double alpha) {
 
 void EmbeddedEquilibrium::commit() { base_ = state_; }
 
+double EmbeddedEquilibrium::tangential_force_squared(int i, const VecX& g) const {
+  // Tangential force f with g_s = J_sᵀ f, f in the tangent plane: |f|² = g_sᵀ (J_sᵀJ_s)⁻¹ g_s.
+  Eigen::Matrix<double, 3, 2> Js;
+  Js.col(0) = xu_.row(i).transpose();
+  Js.col(1) = xv_.row(i).transpose();
+  const Mat2 metric = Js.transpose() * Js;
+  const Vec2 gs = g.segment<2>(garment_dof_[i]);
+  return gs.dot(metric.ldlt().solve(gs));
+}
+
 double EmbeddedEquilibrium::force_norm(const VecX& g) {
   double sum = 0.0;
-  for (int i = 0; i < num_garment_vertices(); ++i) {
-    const int d = garment_dof_[i];
-    if (d < 0) continue;
-    // Tangential force f with g_s = J_sᵀ f, f in the tangent plane: |f|² = g_sᵀ (J_sᵀJ_s)⁻¹ g_s.
-    Eigen::Matrix<double, 3, 2> Js;
-    Js.col(0) = xu_.row(i).transpose();
-    Js.col(1) = xv_.row(i).transpose();
-    const Mat2 metric = Js.transpose() * Js;
-    const Vec2 gs = g.segment<2>(d);
-    sum += gs.dot(metric.ldlt().solve(gs));
-  }
+  for (int i = 0; i < num_garment_vertices(); ++i)
+    if (garment_dof_[i] >= 0) sum += tangential_force_squared(i, g);
   for (int k = 0; k < static_cast<int>(body_dof_.size()); ++k)
     if (const int d = body_dof_[k]; d >= 0) sum += g.segment<3>(d).squaredNorm();
   return std::sqrt(sum);
+}
+
+std::string EmbeddedEquilibrium::locate_largest_force(const VecX& g) {
+  if (g.size() != num_dofs_) return {};
+  double largest = -1.0;
+  int garment = -1, body = -1;
+  for (int i = 0; i < num_garment_vertices(); ++i)
+    if (garment_dof_[i] >= 0)
+      if (const double f = tangential_force_squared(i, g); f > largest) {
+        largest = f;
+        garment = i;
+      }
+  for (int k = 0; k < static_cast<int>(body_dof_.size()); ++k)
+    if (const int d = body_dof_[k]; d >= 0)
+      if (const double f = g.segment<3>(d).squaredNorm(); f > largest) {
+        largest = f;
+        garment = -1;
+        body = k;
+      }
+  if (largest < 0.0 || !std::isfinite(largest)) return {};
+  std::ostringstream out;
+  out.precision(3);
+  out << std::sqrt(largest) << " N on ";
+  Vec3 at;
+  if (garment >= 0) {
+    out << "garment vertex " << garment;
+    if (setup_.garment_vertex_label)
+      if (const std::string label = setup_.garment_vertex_label(garment); !label.empty())
+        out << " (" << label << ")";
+    at = x_.row(garment).transpose();
+  } else {
+    out << (body < num_control_ ? "body surface vertex " : "body interior vertex ") << body;
+    at = state_.body.row(body).transpose();
+  }
+  out << " at (" << at.x() << ", " << at.y() << ", " << at.z() << ") m";
+  return out.str();
 }
 
 Vec3 EmbeddedEquilibrium::garment_normal(int i) const {

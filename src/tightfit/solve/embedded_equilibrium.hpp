@@ -7,6 +7,8 @@
 /// seams) are pulled back by the chain rule (Eq. 19) including the second-derivative
 /// terms of Eq. 18; energies on y (the body) are added directly. Steps move garment
 /// vertices across faces by walking in the parameter domain (Eq. 20).
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "tightfit/physics/energy.hpp"
@@ -37,6 +39,8 @@ struct EmbeddedSystemSetup {
   std::vector<int> pinned_garment;              ///< garment vertices held at their (face,u,v)
   double force_scale = 1.0;                     ///< characteristic force (N) for tolerances
   bool project_garment_hessians = true;         ///< per-element PSD projection of cloth terms
+  /// Optional: what a garment vertex belongs to, for messages (e.g. "piece 'front'").
+  std::function<std::string(int garment_vertex)> garment_vertex_label;
 };
 
 class EmbeddedEquilibrium : public NewtonProblem {
@@ -56,6 +60,9 @@ class EmbeddedEquilibrium : public NewtonProblem {
   bool set_step(const VecX& dq, double alpha) override;
   void commit() override;
   double force_norm(const VecX& gradient) override;
+  /// The free garment vertex (tangential force) or body vertex with the largest force,
+  /// with its label (setup), index and position.
+  std::string locate_largest_force(const VecX& gradient) override;
   double force_scale() override { return setup_.force_scale; }
 
   const EmbeddedState& state() const { return state_; }
@@ -74,6 +81,7 @@ class EmbeddedEquilibrium : public NewtonProblem {
 
  private:
   void evaluate_garment();  // stencils, x, derivatives at the current state
+  double tangential_force_squared(int garment_vertex, const VecX& gradient) const;  // N²
   double garment_energy(const VecX& x) const;
 
   EmbeddedSystemSetup setup_;

@@ -1,5 +1,7 @@
 #include "tightfit/solve/garment_simulation.hpp"
 
+#include <algorithm>
+
 #include <numeric>
 
 #include "tightfit/common/error.hpp"
@@ -78,6 +80,21 @@ std::vector<const RestDependentEnergy*> GarmentSimulation::rest_dependent_energi
   return out;
 }
 
+std::string GarmentSimulation::garment_vertex_piece(int vertex) const {
+  std::vector<std::string> names;
+  for (int p = 0; p < garment_.num_pattern_vertices(); ++p) {
+    if (garment_.pattern_to_garment[static_cast<size_t>(p)] != vertex) continue;
+    const auto piece = std::upper_bound(garment_.piece_offset.begin(), garment_.piece_offset.end(), p) -
+                       garment_.piece_offset.begin() - 1;
+    const std::string& name = garment_.pattern.pieces[static_cast<size_t>(piece)].name;
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  if (names.empty()) return {};
+  std::string out = names.size() == 1 ? "piece " : "pieces ";
+  for (size_t k = 0; k < names.size(); ++k) out += (k ? ", '" : "'") + names[k] + "'";
+  return out;
+}
+
 void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
   EmbeddedSystemSetup setup;
   setup.surface = &surface_;
@@ -91,6 +108,7 @@ void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
   }
   setup.pinned_garment = garment_.pinned;
   setup.force_scale = force_scale_;
+  setup.garment_vertex_label = [this](int vertex) { return garment_vertex_piece(vertex); };
   problem_ = std::make_unique<EmbeddedEquilibrium>(std::move(setup), state);
 }
 

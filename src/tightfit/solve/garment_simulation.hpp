@@ -100,6 +100,8 @@ class GarmentSimulation {
  private:
   void rebuild_problem(const EmbeddedState& state);
   void build_garment_energies();
+  /// "piece 'NAME'" (or "pieces 'A', 'B'" on a seam) of a garment vertex, for messages.
+  std::string garment_vertex_piece(int vertex) const;
 
   const Body& body_;
   const LimitSurface& surface_;

@@ -2,6 +2,8 @@
 /// The interface Newton's method sees. The physics (a sum of energies over an
 /// embedded garment and a body) lives behind it; the solver knows only energies,
 /// gradients, Hessians and how to take a step.
+#include <string>
+
 #include "tightfit/common/types.hpp"
 
 namespace tightfit {
@@ -32,6 +34,10 @@ class NewtonProblem {
   virtual double force_norm(const VecX& gradient) { return gradient.norm(); }
   /// A characteristic force (N) of the problem; the relative tolerance is relative to it.
   virtual double force_scale() { return 1.0; }
+  /// Where the force of `gradient` is largest, in words a user can find it by (e.g.
+  /// "0.42 N on garment vertex 17 (piece 'front') at (0.12, 0.85, 0.03) m"), for the
+  /// message of a solve that did not converge; empty when the problem cannot say.
+  virtual std::string locate_largest_force(const VecX& gradient) { return {}; }
 };
 
 }  // namespace tightfit

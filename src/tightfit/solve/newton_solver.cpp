@@ -157,6 +157,9 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
     msg << "Newton did not converge: " << report.message << " after " << report.iterations
         << " iterations; force residual " << report.final_force_norm << " N > tolerance "
         << report.tolerance << " N";
+    // The last accepted state (a failed step was taken back): where to look.
+    if (const std::string where = problem.locate_largest_force(problem.gradient()); !where.empty())
+      msg << "; largest force " << where;
     throw SolverError(msg.str());
   }
   return report;
