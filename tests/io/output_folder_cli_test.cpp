@@ -106,5 +106,39 @@ TEST_F(OutputFolderCli, OutDotWorksAndAFileIsAnInputError) {
   EXPECT_NE(r.output.find("cannot create the output folder"), std::string::npos) << r.output;
 }
 
+TEST_F(OutputFolderCli, AFailedSolveKeepsItsLastStateWhereTheUserAsked) {
+  // One Newton iteration is not enough: the solve fails (exit 3), --out is not created,
+  // and --keep-failed holds the last state with the unbalanced force per vertex.
+  nlohmann::json s = nlohmann::json::parse(read_text(dir_ / "scene.json"));
+  s["solver"] = {{"max_iterations", 1}};
+  std::ofstream(dir_ / "failing.json") << s.dump();
+  const fs::path out = dir_ / "out", kept = dir_ / "failed";
+  CliRun r = run_cli("simulate " + (dir_ / "failing.json").string() + " --out " + out.string() +
+                     " --keep-failed " + kept.string());
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("largest force "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("on garment vertex"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  for (const char* name : {"garment_residual.ply", "body_residual.ply", "report.html",
+                           "result.json", "state.json", "garment.ply"})
+    EXPECT_TRUE(fs::exists(kept / name)) << name;
+  const nlohmann::json result = nlohmann::json::parse(read_text(kept / "result.json"));
+  EXPECT_FALSE(result["newton"]["converged"].get<bool>());
+  EXPECT_GT(result["newton"]["final_force_residual_n"].get<double>(),
+            result["newton"]["force_tolerance_n"].get<double>());
+  EXPECT_GT(result["failure"]["garment_residual_max_n"].get<double>(), 0.0);
+  const std::string ply = read_text(kept / "garment_residual.ply");
+  EXPECT_NE(ply.find("property double residual_n"), std::string::npos);
+  EXPECT_NE(ply.find("property double residual_force_2"), std::string::npos);
+  // The kept folder is a run folder: export regenerates its report.
+  r = run_cli("export " + kept.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  // --keep-failed must not be the output folder.
+  r = run_cli("simulate " + (dir_ / "failing.json").string() + " --out " + out.string() +
+              " --keep-failed " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--keep-failed"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace tightfit

@@ -1,10 +1,16 @@
-/// `tightfit simulate SCENE --out DIR`: the static equilibrium of a garment on a body.
+/// `tightfit simulate SCENE --out DIR [--keep-failed DIR2]`: the static equilibrium of a
+/// garment on a body. With --keep-failed, a solve that does not converge leaves its last
+/// state in DIR2 (the fit outputs plus per-vertex maps of the unbalanced force), so that
+/// the user can see which part of the layout is at fault; DIR stays untouched.
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 
 #include "command_registry.hpp"
 #include "run_outputs.hpp"
+#include "tightfit/common/error.hpp"
 #include "tightfit/common/output_directory.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/scene_loader.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
 
@@ -18,9 +24,60 @@ double seconds_since(Clock::time_point t0) {
 
 double energy_of(const Energy* e, const VecX& x) { return e ? e->value(x) : 0.0; }
 
-void run_simulate(const std::string& scene_file, const std::string& out_dir, bool force) {
+/// A per-vertex force map as PLY vertex fields: |f| (N) and f (N, 3 columns).
+PlyAttributes force_fields(const Points3& forces) {
+  PlyAttributes a;
+  a.vertex_fields.push_back({"residual_n", forces.rowwise().norm()});
+  a.vertex_fields.push_back({"residual_force", forces});
+  return a;
+}
+
+/// Writes the last state of a failed solve into `dir`: the fit outputs at that state
+/// (report.html, garment.ply, result.json with "newton": {"converged": false, ...},
+/// state.json, ...) and garment_residual.ply / body_residual.ply with the unbalanced force
+/// per vertex. Returns the files written.
+std::vector<std::string> keep_failed_state(const std::filesystem::path& dir, bool force,
+                                           const std::string& scene_file,
+                                           const LoadedScene& scene, GarmentSimulation& sim,
+                                           const std::string& message) {
+  OutputDirectory failed(dir, force, "simulate");
+  EmbeddedEquilibrium& problem = sim.problem();
+  const VecX g = problem.gradient();
+  const Points3 garment_forces = problem.garment_residual_forces(g);
+  const Points3 body_forces = problem.body_residual_forces(g);
+  const NewtonOptions& o = sim.newton().options();
+  RunState state = make_run_state("simulate", scene.spec, sim.garment(), problem.state());
+  nlohmann::json& result = state.result;
+  result["run"] = run_identity_json("simulate");
+  result["scene"] = scene_file;
+  result["newton"] = {{"converged", false},
+                      {"message", message},
+                      {"final_force_residual_n", problem.force_norm(g)},
+                      {"force_tolerance_n", std::max(o.absolute_force_tolerance,
+                                                     o.relative_force_tolerance * problem.force_scale())}};
+  result["failure"] = {{"largest_force", problem.locate_largest_force(g)},
+                       {"garment_residual_max_n", garment_forces.rowwise().norm().maxCoeff()},
+                       {"body_residual_max_n", body_forces.rowwise().norm().maxCoeff()}};
+  result["compute"] = compute_json();
+  std::vector<std::string> files =
+      write_fit_run_outputs(failed.staging(), sim, sim.analyze(), scene.spec.pressure_operator, state);
+  TriMesh garment{sim.garment_positions(), sim.garment().garment_triangles};
+  write_ply(failed.file("garment_residual.ply"), garment, force_fields(garment_forces));
+  const int surface_vertices = scene.body.surface.num_vertices();
+  TriMesh body{sim.body_positions().topRows(surface_vertices), scene.body.surface.faces};
+  write_ply(failed.file("body_residual.ply"), body,
+            force_fields(body_forces.topRows(surface_vertices)));
+  return failed.commit();
+}
+
+void run_simulate(const std::string& scene_file, const std::string& out_dir,
+                  const std::string& keep_failed, bool force) {
   const auto t_start = Clock::now();
   SceneSpec spec = read_scene(scene_file);  // bad input fails before the folder is touched
+  namespace fs = std::filesystem;
+  if (!keep_failed.empty() &&
+      fs::weakly_canonical(fs::absolute(keep_failed)) == fs::weakly_canonical(fs::absolute(out_dir)))
+    throw InputError("--keep-failed", "must name another folder than --out (" + out_dir + ")");
   OutputDirectory out(out_dir, force, "simulate");
   auto scene = load_scene(std::move(spec));
   auto sim = make_simulation(*scene);
@@ -29,7 +86,19 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir, boo
               sim->garment().num_garment_vertices,
               static_cast<int>(sim->garment().garment_triangles.rows()));
   auto t0 = Clock::now();
-  const NewtonReport report = sim->solve();
+  NewtonReport report;
+  try {
+    report = sim->solve();
+  } catch (const SolverError& e) {
+    if (!keep_failed.empty()) {
+      for (const auto& f : keep_failed_state(keep_failed, force, scene_file, *scene, *sim, e.what()))
+        std::printf("  %s/%s\n", keep_failed.c_str(), f.c_str());
+      std::printf("  the last state of the failed solve is in %s (garment_residual.ply, "
+                  "body_residual.ply: the unbalanced force per vertex; report.html)\n",
+                  keep_failed.c_str());
+    }
+    throw;
+  }
   const double t_solve = seconds_since(t0);
   std::printf("  Newton converged in %d iterations, force residual %.3e N (tolerance %.3e N), %.2f s\n",
               report.iterations, report.final_force_norm, report.tolerance, t_solve);
@@ -87,8 +156,13 @@ const CommandRegistration kSimulate{"simulate", [](CLI::App& root) {
   cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")
       ->required();
   cmd->add_option("--out", *out, kOutHelp)->required();
+  auto keep_failed = std::make_shared<std::string>();
+  cmd->add_option("--keep-failed", *keep_failed,
+                  "When the solve does not converge, write its last state to this folder: the "
+                  "fit outputs and garment_residual.ply / body_residual.ply (unbalanced force "
+                  "per vertex, N); --out stays untouched");
   cmd->add_flag("--force", *force, kForceHelp);
-  cmd->callback([scene, out, force] { run_simulate(*scene, *out, *force); });
+  cmd->callback([scene, out, keep_failed, force] { run_simulate(*scene, *out, *keep_failed, *force); });
 }};
 
 }  // namespace

@@ -214,6 +214,27 @@ double EmbeddedEquilibrium::force_norm(const VecX& g) {
   return std::sqrt(sum);
 }
 
+Points3 EmbeddedEquilibrium::garment_residual_forces(const VecX& g) const {
+  Points3 f = Points3::Zero(num_garment_vertices(), 3);
+  for (int i = 0; i < num_garment_vertices(); ++i) {
+    const int d = garment_dof_[i];
+    if (d < 0) continue;
+    Eigen::Matrix<double, 3, 2> Js;
+    Js.col(0) = xu_.row(i).transpose();
+    Js.col(1) = xv_.row(i).transpose();
+    const Vec2 gs = g.segment<2>(d);
+    f.row(i) = -(Js * (Js.transpose() * Js).ldlt().solve(gs)).transpose();
+  }
+  return f;
+}
+
+Points3 EmbeddedEquilibrium::body_residual_forces(const VecX& g) const {
+  Points3 f = Points3::Zero(static_cast<Eigen::Index>(body_dof_.size()), 3);
+  for (int k = 0; k < static_cast<int>(body_dof_.size()); ++k)
+    if (const int d = body_dof_[k]; d >= 0) f.row(k) = -g.segment<3>(d).transpose();
+  return f;
+}
+
 std::string EmbeddedEquilibrium::locate_largest_force(const VecX& g) {
   if (g.size() != num_dofs_) return {};
   double largest = -1.0;
