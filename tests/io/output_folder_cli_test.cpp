@@ -130,9 +130,13 @@ TEST_F(OutputFolderCli, AFailedSolveKeepsItsLastStateWhereTheUserAsked) {
   const std::string ply = read_text(kept / "garment_residual.ply");
   EXPECT_NE(ply.find("property double residual_n"), std::string::npos);
   EXPECT_NE(ply.find("property double residual_force_2"), std::string::npos);
-  // The kept folder is a run folder: export regenerates its report.
-  r = run_cli("export " + kept.string());
+  // The report colours the garment by the unbalanced force; the kept folder is a run
+  // folder, and export regenerates the same report from its state.
+  const std::string coloring = "Unbalanced force (the solve did not converge)";
+  EXPECT_NE(read_text(kept / "report.html").find(coloring), std::string::npos);
+  r = run_cli("export " + kept.string() + " --out " + (dir_ / "exported").string());
   EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(read_text(dir_ / "exported" / "report.html").find(coloring), std::string::npos);
   // --keep-failed must not be the output folder.
   r = run_cli("simulate " + (dir_ / "failing.json").string() + " --out " + out.string() +
               " --keep-failed " + out.string());

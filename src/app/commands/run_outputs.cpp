@@ -69,6 +69,16 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
     view.poses = std::move(poses.views);
     view.garment_fields.push_back({std::string(fit_fields::kSlidingExcess), "N", poses.worst_excess});
   }
+  // A state whose solve did not converge (simulate --keep-failed): where it failed.
+  if (const auto n = state.result.find("newton");
+      n != state.result.end() && n->is_object() && !n->value("converged", true)) {
+    const VecX residual = sim.problem().garment_residual_forces().rowwise().norm();
+    const Triangles& faces = sim.garment().garment_triangles;
+    MatX per_face(faces.rows(), 1);
+    for (Eigen::Index f = 0; f < faces.rows(); ++f)
+      per_face(f, 0) = (residual[faces(f, 0)] + residual[faces(f, 1)] + residual[faces(f, 2)]) / 3.0;
+    view.garment_fields.push_back({std::string(fit_fields::kResidualForce), "N", per_face});
+  }
   if (shape) {
     view.garment_fields.push_back(shape_distance_field(sim.garment().garment_triangles, shape->distance));
     view.shape_target = shape->target;

@@ -43,8 +43,8 @@ std::vector<std::string> keep_failed_state(const std::filesystem::path& dir, boo
   OutputDirectory failed(dir, force, "simulate");
   EmbeddedEquilibrium& problem = sim.problem();
   const VecX g = problem.gradient();
-  const Points3 garment_forces = problem.garment_residual_forces(g);
-  const Points3 body_forces = problem.body_residual_forces(g);
+  const Points3 garment_forces = problem.garment_residual_forces();
+  const Points3 body_forces = problem.body_residual_forces();
   const NewtonOptions& o = sim.newton().options();
   RunState state = make_run_state("simulate", scene.spec, sim.garment(), problem.state());
   nlohmann::json& result = state.result;

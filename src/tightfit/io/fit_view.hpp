@@ -40,6 +40,10 @@ inline constexpr std::string_view kSlidingExcess = "sliding_excess_n";
 /// Distance to the shape objective's target (mm): per face the mean |distance| of its
 /// corners (io/shape_outputs.hpp); only in fits of scenes with a shape objective.
 inline constexpr std::string_view kShapeDistance = "shape_distance_mm";
+/// The force the state leaves unbalanced (N), per face the mean of its vertices'
+/// (EmbeddedEquilibrium::garment_residual_forces); only in fits whose solve did not
+/// converge (`simulate --keep-failed`).
+inline constexpr std::string_view kResidualForce = "residual_force_n";
 }  // namespace fit_fields
 
 /// The fit in one pose of the body (io/pose_outputs.hpp): the garment carried there with

@@ -222,6 +222,10 @@ std::vector<FieldColoring> fit_report_colorings(const FitView& view) {
     colorings.push_back({std::string(fit_fields::kSlidingExcess),
                          "Sliding: tangential force above the friction limit", "N", 1.0,
                          ColorMap::kViridis, 0.0, std::nullopt, true, std::nullopt});
+  if (find_field(view.garment_fields, fit_fields::kResidualForce))
+    colorings.push_back({std::string(fit_fields::kResidualForce),
+                         "Unbalanced force (the solve did not converge)", "N", 1.0,
+                         ColorMap::kViridis, 0.0, std::nullopt, true, std::nullopt});
   if (find_field(view.garment_fields, fit_fields::kShapeDistance))
     colorings.push_back({std::string(fit_fields::kShapeDistance), "Distance to the shape target",
                          "mm", 1.0, ColorMap::kViridis, 0.0, std::nullopt, true, std::nullopt});

@@ -87,7 +87,9 @@ VecX EmbeddedEquilibrium::garment_energy_gradient() const {
   return gx;
 }
 
-VecX EmbeddedEquilibrium::gradient() {
+VecX EmbeddedEquilibrium::gradient() { return total_gradient(); }
+
+VecX EmbeddedEquilibrium::total_gradient() const {
   const VecX gx = garment_energy_gradient();
   const VecX y = flat(state_.body);
   VecX gy = VecX::Zero(y.size());
@@ -214,7 +216,8 @@ double EmbeddedEquilibrium::force_norm(const VecX& g) {
   return std::sqrt(sum);
 }
 
-Points3 EmbeddedEquilibrium::garment_residual_forces(const VecX& g) const {
+Points3 EmbeddedEquilibrium::garment_residual_forces() const {
+  const VecX g = total_gradient();
   Points3 f = Points3::Zero(num_garment_vertices(), 3);
   for (int i = 0; i < num_garment_vertices(); ++i) {
     const int d = garment_dof_[i];
@@ -228,7 +231,8 @@ Points3 EmbeddedEquilibrium::garment_residual_forces(const VecX& g) const {
   return f;
 }
 
-Points3 EmbeddedEquilibrium::body_residual_forces(const VecX& g) const {
+Points3 EmbeddedEquilibrium::body_residual_forces() const {
+  const VecX g = total_gradient();
   Points3 f = Points3::Zero(static_cast<Eigen::Index>(body_dof_.size()), 3);
   for (int k = 0; k < static_cast<int>(body_dof_.size()); ++k)
     if (const int d = body_dof_[k]; d >= 0) f.row(k) = -g.segment<3>(d).transpose();

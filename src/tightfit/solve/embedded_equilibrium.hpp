@@ -63,11 +63,12 @@ class EmbeddedEquilibrium : public NewtonProblem {
   /// The free garment vertex (tangential force) or body vertex with the largest force,
   /// with its label (setup), index and position.
   std::string locate_largest_force(const VecX& gradient) override;
-  /// The forces (N) a state leaves unbalanced, from its `gradient` (num_dofs): per garment
-  /// vertex the tangential force −J_s (J_sᵀJ_s)⁻¹ g_s (n_g×3; zero rows for pinned
-  /// vertices), per body vertex −g_y (n_b×3; zero rows for pinned ones).
-  Points3 garment_residual_forces(const VecX& gradient) const;
-  Points3 body_residual_forces(const VecX& gradient) const;
+  /// The forces (N) the current state leaves unbalanced, −gradient() per vertex: per
+  /// garment vertex the tangential force −J_s (J_sᵀJ_s)⁻¹ g_s (n_g×3; zero rows for
+  /// pinned vertices), per body vertex −g_y (n_b×3; zero rows for pinned ones). Zero
+  /// at an equilibrium; where a solve did not converge, the map of where it failed.
+  Points3 garment_residual_forces() const;
+  Points3 body_residual_forces() const;
   double force_scale() override { return setup_.force_scale; }
 
   const EmbeddedState& state() const { return state_; }
@@ -86,6 +87,7 @@ class EmbeddedEquilibrium : public NewtonProblem {
 
  private:
   void evaluate_garment();  // stencils, x, derivatives at the current state
+  VecX total_gradient() const;  // gradient() (the interface's is not const)
   double tangential_force_squared(int garment_vertex, const VecX& gradient) const;  // N²
   double garment_energy(const VecX& x) const;
 
