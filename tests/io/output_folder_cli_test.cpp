@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -142,6 +143,32 @@ TEST_F(OutputFolderCli, AFailedSolveKeepsItsLastStateWhereTheUserAsked) {
               " --keep-failed " + out.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--keep-failed"), std::string::npos) << r.output;
+}
+
+TEST_F(OutputFolderCli, AFullDiskIsAnInputErrorAndLeavesTheFolderAsItWas) {
+  // A 96 kB file system: the report alone does not fit.
+  const fs::path disk = dir_ / "disk";
+  fs::create_directories(disk);
+  if (std::system(("mount -t tmpfs -o size=96k tmpfs " + disk.string() + " 2>/dev/null").c_str()) != 0)
+    GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
+  struct Unmount {
+    fs::path path;
+    ~Unmount() { (void)!std::system(("umount " + path.string()).c_str()); }
+  } unmount{disk};
+  fs::create_directories(disk / "mine");
+  std::ofstream(disk / "mine" / "notes.txt") << "my notes\n";
+
+  CliRun r = run_cli("simulate " + scene() + " --out " + (disk / "run").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(disk / "run"));
+  // Into a folder of the user's (--force): their file stays, nothing else is left.
+  r = run_cli("simulate " + scene() + " --out " + (disk / "mine").string() + " --force");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(disk / "mine")) names.push_back(e.path().filename());
+  EXPECT_EQ(names, std::vector<std::string>{"notes.txt"});
+  EXPECT_EQ(read_text(disk / "mine" / "notes.txt"), "my notes\n");
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 
 #include "tightfit/common/error.hpp"
@@ -26,6 +28,13 @@ bool sync_path(const std::filesystem::path& path, bool directory) {
   const bool ok = ::fsync(fd) == 0;
   ::close(fd);
   return ok;
+}
+
+/// ": REASON" from errno after a failed stream operation (e.g. "No space left on
+/// device"), or nothing when the system gave no reason.
+std::string system_reason() {
+  const int error = errno;
+  return error != 0 ? std::string(": ") + std::strerror(error) : std::string();
 }
 
 }  // namespace
@@ -53,11 +62,12 @@ void write_file_atomically(const std::filesystem::path& path,
   const auto tmp = temporary_path_for(path);
   try {
     {
+      errno = 0;
       std::ofstream out(tmp, binary ? std::ios::out | std::ios::binary : std::ios::out);
-      if (!out) throw InputError(path.string(), "cannot open for writing");
+      if (!out) throw InputError(path.string(), "cannot open for writing" + system_reason());
       write(out);
       out.flush();
-      if (!out) throw InputError(path.string(), "write failed");
+      if (!out) throw InputError(path.string(), "write failed" + system_reason());
     }
     commit_temporary(tmp, path);
   } catch (...) {
