@@ -184,7 +184,7 @@ TEST_F(OptimizeCli, ResumeContinuesFromTheCheckpoint) {
 
 TEST_F(OptimizeCli, InterruptedRunWritesItsResultsAndResumes) {
   // The sphere-pressure example (about 0.7 s per iteration): interrupted with SIGINT once
-  // iteration 1 is reported, it finishes the iteration it is in, writes the outputs of the
+  // iteration 1 is reported, it finishes the forward solve it is in, writes the outputs of the
   // last accepted pattern and exits with 130; the folder exports and resumes.
   const fs::path scene = fs::path(TIGHTFIT_SOURCE_DIR) / "examples/optimize_sphere_pressure.json";
   const fs::path out = dir_ / "out", log = dir_ / "log.txt", code = dir_ / "code.txt";

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include "cli_checks.hpp"
 #include "command_registry.hpp"
@@ -39,8 +40,26 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-void print_iteration(const OptimizationIteration& it, const std::vector<std::string>& names) {
-  std::printf("  it %3d  T %.6e", it.iteration, it.value);
+/// "1m40s" / "42 s" for progress lines.
+std::string duration_text(double seconds) {
+  char text[32];
+  if (seconds < 60.0)
+    std::snprintf(text, sizeof text, "%.0f s", seconds);
+  else if (seconds < 3600.0)
+    std::snprintf(text, sizeof text, "%dm%02ds", static_cast<int>(seconds / 60.0),
+                  static_cast<int>(seconds) % 60);
+  else
+    std::snprintf(text, sizeof text, "%dh%02dm", static_cast<int>(seconds / 3600.0),
+                  static_cast<int>(seconds / 60.0) % 60);
+  return text;
+}
+
+/// One progress line: "it 12/150", the objective and its terms, the gradient, the step
+/// and its cost, the elapsed time and, from the mean time per iteration so far, the
+/// time left if the run goes on to its iteration limit (it may stop earlier).
+void print_iteration(const OptimizationIteration& it, const std::vector<std::string>& names,
+                     int max_iterations) {
+  std::printf("  it %3d/%d  T %.6e", it.iteration, max_iterations, it.value);
   for (size_t k = 0; k < names.size() && k < it.term_values.size(); ++k)
     std::printf("  %s %.4e", names[k].c_str(), it.term_values[k]);
   std::printf("  |g| %.3e  step %.2e m  trials %d  newton %d (chord %d)  chol %d",
@@ -49,7 +68,11 @@ void print_iteration(const OptimizationIteration& it, const std::vector<std::str
   if (it.failed_solves > 0) std::printf(" (failed trials %d)", it.failed_solves);
   if (it.hessian_shift > 0.0)
     std::printf("  [adjoint H shifted by %.1e: inexact]", it.hessian_shift);
-  std::printf("  %.1f s\n", it.seconds);
+  std::printf("  %.1f s", it.seconds);
+  if (it.iteration > 0 && it.iteration < max_iterations)
+    std::printf(" (left at most %s)",
+                duration_text(it.seconds / it.iteration * (max_iterations - it.iteration)).c_str());
+  std::printf("\n");
   if (const auto& r = it.remesh) {
     std::string pieces;
     for (const std::string& p : r->pieces) pieces += (pieces.empty() ? "" : ", ") + p;
@@ -118,7 +141,7 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
       [&](const OptimizationIteration& it) {
         if (it.iteration == 0 && resume_dir.empty())
           initial_garment = TriMesh{sim->garment_positions(), sim->garment().garment_triangles};
-        print_iteration(it, names);
+        print_iteration(it, names, spec.optimizer.max_iterations);
         write_text_atomically(out / "history.json",
                               history_json(optimizer.history(), names).dump(2) + "\n");
         if (it.iteration % spec.checkpoint_every == 0)
