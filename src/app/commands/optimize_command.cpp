@@ -20,6 +20,7 @@
 
 #include "cli_checks.hpp"
 #include "command_registry.hpp"
+#include "tightfit/common/stopwatch.hpp"
 #include "tightfit/io/optimization_setup.hpp"
 #include "run_outputs.hpp"
 #include "tightfit/common/output_directory.hpp"
@@ -35,10 +36,7 @@ namespace tightfit::app {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using Clock = SteadyClock;
 
 /// "1m40s" / "42 s" for progress lines.
 std::string duration_text(double seconds) {

@@ -10,6 +10,7 @@
 #include "run_outputs.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/output_directory.hpp"
+#include "tightfit/common/stopwatch.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/scene_loader.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
@@ -17,10 +18,7 @@
 namespace tightfit::app {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using Clock = SteadyClock;
 
 double energy_of(const Energy* e, const VecX& x) { return e ? e->value(x) : 0.0; }
 

@@ -1,6 +1,6 @@
 #include "tightfit/body/body_builder.hpp"
 
-#include "tightfit/body/stopwatch.hpp"
+#include "tightfit/common/stopwatch.hpp"
 #include "tightfit/body/surface_distance.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
 

@@ -6,7 +6,7 @@
 #include "tightfit/body/loop_limit.hpp"
 #include "tightfit/body/scan_import.hpp"
 #include "tightfit/body/skeleton.hpp"
-#include "tightfit/body/stopwatch.hpp"
+#include "tightfit/common/stopwatch.hpp"
 #include "tightfit/body/surface_distance.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"

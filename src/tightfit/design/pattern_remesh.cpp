@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <array>
+#include <numbers>
 #include <set>
 #include <stdexcept>
 
@@ -15,7 +16,7 @@
 namespace tightfit {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 double signed_area(const Vec2& a, const Vec2& b, const Vec2& c) {
   const Vec2 e1 = b - a, e2 = c - a;

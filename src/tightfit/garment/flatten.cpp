@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "tightfit/common/error.hpp"
@@ -14,7 +15,7 @@
 namespace tightfit {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 /// A triangle in its own plane: corner 0 at the origin, corner 1 on the x axis.
 struct LocalTriangle {

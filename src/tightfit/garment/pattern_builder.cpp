@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -49,7 +50,7 @@ double length_3d(const LayoutPanel& panel, const BoundarySegment& s) {
 double turning_angle_deg(const LayoutPanel& panel, const Points2& flat, int i) {
   const Vec2 a = flat.row(loop_vertex(panel, i)) - flat.row(loop_vertex(panel, i - 1));
   const Vec2 b = flat.row(loop_vertex(panel, i + 1)) - flat.row(loop_vertex(panel, i));
-  return std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b)) * 180.0 / 3.14159265358979323846;
+  return std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b)) * 180.0 / std::numbers::pi;
 }
 
 /// Grain direction of a flattened panel in flat coordinates (unit).

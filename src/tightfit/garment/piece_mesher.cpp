@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -193,7 +194,7 @@ double min_angle_deg(const Points2& x, const Triangles& t) {
       const Vec2 a = x.row(t(f, (k + 1) % 3)) - x.row(t(f, k));
       const Vec2 b = x.row(t(f, (k + 2) % 3)) - x.row(t(f, k));
       const double ang = std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
-      best = std::min(best, ang * 180.0 / 3.14159265358979323846);
+      best = std::min(best, ang * 180.0 / std::numbers::pi);
     }
   return best;
 }

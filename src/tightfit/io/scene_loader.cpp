@@ -4,14 +4,12 @@
 #include <cstdio>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/stopwatch.hpp"
 
 namespace tightfit {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using Clock = SteadyClock;
 
 }  // namespace
 

@@ -1,8 +1,16 @@
 #pragma once
-/// Wall-clock timing of build stages (steady clock, seconds).
+/// Wall-clock timing (steady clock, seconds): the one stopwatch of tightfit's stages,
+/// solvers and commands.
 #include <chrono>
 
 namespace tightfit {
+
+using SteadyClock = std::chrono::steady_clock;
+
+/// Seconds from `start` to now.
+inline double seconds_since(SteadyClock::time_point start) {
+  return std::chrono::duration<double>(SteadyClock::now() - start).count();
+}
 
 class Stopwatch {
  public:
