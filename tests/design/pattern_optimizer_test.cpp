@@ -5,6 +5,8 @@
 
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <optional>
 
 #include "adjoint_test_scene.hpp"
 #include "tightfit/common/error.hpp"
@@ -67,18 +69,31 @@ TEST(PatternOptimizer, TargetRunDecreasesMonotonicallyThroughConvergedStates) {
   EXPECT_EQ((sim.garment().rest_positions() - rest).norm(), 0.0);
 }
 
-TEST(PatternOptimizer, BacktracksOverFailedForwardSolvesAndFlippedPatterns) {
-  auto scene = make_sleeve_scene();
+/// The sleeve pulled towards turned targets with steps of up to 20 boundary edges: the
+/// first trials of an iteration fold the pattern, so line searches backtrack.
+struct FoldingRun {
+  std::unique_ptr<test::SleeveScene> scene = make_sleeve_scene();
   GarmentSimulation& sim = *scene->sim;
-  sim.solve();
-  auto objective = std::make_shared<DesignTermSum>();
-  objective->add(
-      std::make_shared<test::TargetPositionTerm>(test::turned_targets(sim, 0.0175, 0.002)), 1.0);
-  DesignProblem problem(sim, objective);
-  PatternOptimizerOptions options;
-  options.max_iterations = 4;
-  options.max_step = 20.0 * problem.mean_boundary_edge();  // first trials fold the pattern
-  PatternOptimizer optimizer(problem, options);
+  std::optional<DesignProblem> problem;
+  std::optional<PatternOptimizer> optimizer;
+
+  FoldingRun() {
+    sim.solve();
+    auto objective = std::make_shared<DesignTermSum>();
+    objective->add(
+        std::make_shared<test::TargetPositionTerm>(test::turned_targets(sim, 0.0175, 0.002)), 1.0);
+    problem.emplace(sim, objective);
+    PatternOptimizerOptions options;
+    options.max_iterations = 4;
+    options.max_step = 20.0 * problem->mean_boundary_edge();
+    optimizer.emplace(*problem, options);
+  }
+};
+
+TEST(PatternOptimizer, BacktracksOverFailedForwardSolvesAndFlippedPatterns) {
+  FoldingRun run;
+  GarmentSimulation& sim = run.sim;
+  PatternOptimizer& optimizer = *run.optimizer;
   optimizer.run();
   print_history(optimizer.history());
   int failed = 0;
@@ -93,17 +108,10 @@ TEST(PatternOptimizer, AStopRequestEndsALongLineSearchBetweenTrials) {
   // The first trials of iteration 1 fold the pattern (as above), so its line search
   // needs several; a stop requested after the first of them ends the run there, with
   // the pattern and equilibrium of iteration 0.
-  auto scene = make_sleeve_scene();
-  GarmentSimulation& sim = *scene->sim;
-  sim.solve();
-  auto objective = std::make_shared<DesignTermSum>();
-  objective->add(
-      std::make_shared<test::TargetPositionTerm>(test::turned_targets(sim, 0.0175, 0.002)), 1.0);
-  DesignProblem problem(sim, objective);
-  PatternOptimizerOptions options;
-  options.max_iterations = 4;
-  options.max_step = 20.0 * problem.mean_boundary_edge();
-  PatternOptimizer optimizer(problem, options);
+  FoldingRun run;
+  GarmentSimulation& sim = run.sim;
+  DesignProblem& problem = *run.problem;
+  PatternOptimizer& optimizer = *run.optimizer;
   int polls = 0;  // 1: before iteration 1; 2: before its second trial
   const OptimizationResult result = optimizer.run({}, [&] { return ++polls >= 2; });
   std::printf("  %s\n", result.stop_reason.c_str());
