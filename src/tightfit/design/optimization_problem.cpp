@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
 #include "tightfit/common/stopwatch.hpp"
 
 namespace tightfit {
@@ -16,9 +17,8 @@ using Clock = SteadyClock;
 VecX signed_areas(const Triangles& triangles, const Points2& rest) {
   VecX a(triangles.rows());
   for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-    const Vec2 e1 = rest.row(triangles(t, 1)) - rest.row(triangles(t, 0));
-    const Vec2 e2 = rest.row(triangles(t, 2)) - rest.row(triangles(t, 0));
-    a[t] = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+    a[t] = signed_area(rest.row(triangles(t, 0)), rest.row(triangles(t, 1)),
+                       rest.row(triangles(t, 2)));
   }
   return a;
 }

@@ -4,24 +4,17 @@
 #include <cmath>
 #include <limits>
 #include <array>
-#include <numbers>
 #include <set>
 #include <stdexcept>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
 #include "tightfit/garment/piece_mesher.hpp"
 #include "tightfit/garment/triangle_geometry.hpp"
 #include "tightfit/subdiv/limit_projector.hpp"
 
 namespace tightfit {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-double signed_area(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const Vec2 e1 = b - a, e2 = c - a;
-  return 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
-}
 
 std::string piece_source(const PatternPiece& piece) { return "pattern piece " + piece.name; }
 
@@ -115,7 +108,7 @@ PieceQuality piece_quality(const PatternPiece& piece) {
     }
     for (int c = 0; c < 3; ++c) {
       const Vec2 a = p[(c + 1) % 3] - p[c], b = p[(c + 2) % 3] - p[c];
-      const double angle = std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b)) * 180.0 / kPi;
+      const double angle = angle_between_deg(a, b);
       q.min_angle_deg = std::min(q.min_angle_deg, angle);
     }
   }

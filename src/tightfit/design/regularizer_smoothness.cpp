@@ -6,11 +6,10 @@
 #include <string>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
 
 namespace tightfit {
 namespace {
-
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// Whether the turn at a vertex is too close to a fold-back to evaluate κ.
 bool folded(double l1, double l2, double den) { return !(den > 1e-14 * l1 * l2); }
@@ -48,7 +47,7 @@ double BoundarySmoothnessRegularizer::value(const DesignState& state) const {
     const double l1 = e1.norm(), l2 = e2.norm();
     const double den = l1 * l2 + e1.dot(e2);
     if (folded(l1, l2, den)) return std::numeric_limits<double>::infinity();
-    const double kappa = 2.0 * cross(e1, e2) / den;
+    const double kappa = 2.0 * cross2(e1, e2) / den;
     total += kappa * kappa / (l1 + l2);
   }
   return total;
@@ -67,7 +66,7 @@ void BoundarySmoothnessRegularizer::add_gradient(const DesignState& state, VecX&
     if (folded(l1, l2, den))
       throw SolverError("boundary smoothness: the boundary folds back at pattern vertex " +
                         std::to_string(t[1]));
-    const double cr = cross(e1, e2);
+    const double cr = cross2(e1, e2);
     const double kappa = 2.0 * cr / den;
     const double sum = l1 + l2;
     // R = κ²/s: dR = (2κ/s) dκ − (κ²/s²)(dl1 + dl2), dκ = 2 dcr/den − 2 cr dden/den².

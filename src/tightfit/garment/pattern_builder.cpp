@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
 #include "tightfit/garment/piece_mesher.hpp"
 #include "tightfit/garment/triangle_geometry.hpp"
 #include "tightfit/geometry/surface_topology.hpp"
@@ -50,7 +50,7 @@ double length_3d(const LayoutPanel& panel, const BoundarySegment& s) {
 double turning_angle_deg(const LayoutPanel& panel, const Points2& flat, int i) {
   const Vec2 a = flat.row(loop_vertex(panel, i)) - flat.row(loop_vertex(panel, i - 1));
   const Vec2 b = flat.row(loop_vertex(panel, i + 1)) - flat.row(loop_vertex(panel, i));
-  return std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b)) * 180.0 / std::numbers::pi;
+  return angle_between_deg(a, b);
 }
 
 /// Grain direction of a flattened panel in flat coordinates (unit).
@@ -79,7 +79,7 @@ Vec2 grain_direction(const LayoutPanel& panel, const Points2& flat, const Patter
   Mat2 second = Mat2::Zero();
   for (int f = 0; f < m.num_faces(); ++f) {
     const Vec2 q0 = flat.row(m.faces(f, 0)), q1 = flat.row(m.faces(f, 1)), q2 = flat.row(m.faces(f, 2));
-    const double a = 0.5 * std::abs((q1 - q0).x() * (q2 - q0).y() - (q1 - q0).y() * (q2 - q0).x());
+    const double a = std::abs(signed_area(q0, q1, q2));
     for (const Vec2& q : {q0, q1, q2}) {
       c += a / 3.0 * q;
       second += a / 3.0 * q * q.transpose();

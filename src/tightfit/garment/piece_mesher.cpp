@@ -1,5 +1,7 @@
 #include "tightfit/garment/piece_mesher.hpp"
 
+#include "tightfit/common/planar.hpp"
+
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
@@ -9,7 +11,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -28,11 +29,9 @@ using Fb = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K, CGAL::Constrai
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 double polygon_area(const std::vector<Vec2>& p) {
   double a = 0.0;
-  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
+  for (size_t i = 0; i < p.size(); ++i) a += cross2(p[i], p[(i + 1) % p.size()]);
   return 0.5 * a;
 }
 
@@ -151,11 +150,11 @@ PieceMesh mesh_piece(const Points2& boundary_points, double h, int smoothing_ite
     std::vector<std::vector<int>> star(interior.size());
     for (size_t t = 0; t < tris.size(); ++t) {
       const Vec2 a = point(tris[t][0]), b = point(tris[t][1]), c = point(tris[t][2]);
-      const double area2 = cross(b - a, c - a);
+      const double area2 = cross2(b - a, c - a);
       if (area2 <= 0) continue;
       const Vec2 ab = b - a, ac = c - a;
       const Vec2 cc = a + (ac.squaredNorm() * Vec2(ab.y(), -ab.x()) - ab.squaredNorm() * Vec2(ac.y(), -ac.x())) /
-                              (-2.0 * cross(ab, ac));
+                              (-2.0 * cross2(ab, ac));
       for (int k = 0; k < 3; ++k)
         if (tris[t][k] >= nb) {
           sum[tris[t][k] - nb] += 0.5 * area2 * cc;
@@ -170,7 +169,7 @@ PieceMesh mesh_piece(const Points2& boundary_points, double h, int smoothing_ite
       bool folds = false;
       for (int t : star[v]) {
         const Vec2 a = point(tris[t][0]), b = point(tris[t][1]), c = point(tris[t][2]);
-        if (cross(b - a, c - a) <= 1e-3 * h * h) folds = true;
+        if (cross2(b - a, c - a) <= 1e-3 * h * h) folds = true;
       }
       if (folds) interior[v] = old;
     }
@@ -193,8 +192,7 @@ double min_angle_deg(const Points2& x, const Triangles& t) {
     for (int k = 0; k < 3; ++k) {
       const Vec2 a = x.row(t(f, (k + 1) % 3)) - x.row(t(f, k));
       const Vec2 b = x.row(t(f, (k + 2) % 3)) - x.row(t(f, k));
-      const double ang = std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
-      best = std::min(best, ang * 180.0 / std::numbers::pi);
+      best = std::min(best, angle_between_deg(a, b));
     }
   return best;
 }

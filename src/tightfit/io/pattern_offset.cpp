@@ -6,11 +6,10 @@
 #include <numeric>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
 
 namespace tightfit {
 namespace {
-
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// Outward unit normal of a counter-clockwise edge direction.
 Vec2 outward(const Vec2& direction) { return Vec2(direction.y(), -direction.x()); }
@@ -52,7 +51,7 @@ std::vector<Vec2> raw_offset(const std::vector<Edge>& edges, CornerStyle style, 
     const Vec2 n1 = outward(e1.dir);
     const double a0 = e0.distance;
     const double a1 = e1.distance;
-    const double c = cross(e0.dir, e1.dir);
+    const double c = cross2(e0.dir, e1.dir);
     const double d = e0.dir.dot(e1.dir);
     const double angle = std::atan2(c, d);  // turn to the left, (-pi, pi]
     if (std::abs(angle) < 1e-9) {           // straight on
@@ -65,7 +64,7 @@ std::vector<Vec2> raw_offset(const std::vector<Edge>& edges, CornerStyle style, 
       if (style == CornerStyle::Mitre && std::abs(c) > 1e-12) {
         // p + n0 a0 + t d0 = p + n1 a1 + s d1  →  solve for t.
         const Vec2 rhs = n1 * a1 - n0 * a0;
-        const double t = cross(rhs, e1.dir) / c;
+        const double t = cross2(rhs, e1.dir) / c;
         const Vec2 mitre = p + n0 * a0 + e0.dir * t;
         if ((mitre - p).norm() <= mitre_limit * amax + 1e-12) {
           out.push_back(mitre);
@@ -151,11 +150,11 @@ Polygon2 outer_envelope(const std::vector<Vec2>& curve, double scale) {
           std::min(q.y(), curve[(j + 1) % m].y()) > iymax + eps) {
         continue;
       }
-      const double denom = cross(r, s);
+      const double denom = cross2(r, s);
       if (std::abs(denom) <= 1e-15 * r.norm() * s.norm()) continue;  // parallel
       const Vec2 qp = q - p;
-      const double t = cross(qp, s) / denom;
-      const double u = cross(qp, r) / denom;
+      const double t = cross2(qp, s) / denom;
+      const double u = cross2(qp, r) / denom;
       const double tol = 1e-12;
       if (t < -tol || t > 1.0 + tol || u < -tol || u > 1.0 + tol) continue;
       const double tc = std::clamp(t, 0.0, 1.0);
@@ -228,7 +227,7 @@ Polygon2 outer_envelope(const std::vector<Vec2>& curve, double scale) {
     double chosen_turn = 0.0;
     for (int w : outgoing[static_cast<size_t>(next)]) {
       const Vec2 dout = pos(w) - pos(next);
-      double turn = std::atan2(cross(din, dout), din.dot(dout));
+      double turn = std::atan2(cross2(din, dout), din.dot(dout));
       if (turn <= -std::numbers::pi + 1e-12) turn = std::numbers::pi;  // reversal last
       if (chosen < 0 || turn < chosen_turn) {
         chosen = w;
@@ -247,7 +246,7 @@ Polygon2 outer_envelope(const std::vector<Vec2>& curve, double scale) {
 double signed_area(const Polygon2& polygon) {
   double area2 = 0.0;
   for (size_t i = 0; i < polygon.size(); ++i) {
-    area2 += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+    area2 += cross2(polygon[i], polygon[(i + 1) % polygon.size()]);
   }
   return 0.5 * area2;
 }
@@ -260,7 +259,7 @@ Vec2 area_centroid(const Polygon2& polygon) {
   for (size_t i = 0; i < polygon.size(); ++i) {
     const Vec2 a = polygon[i] - origin;
     const Vec2 b = polygon[(i + 1) % polygon.size()] - origin;
-    const double w = cross(a, b);
+    const double w = cross2(a, b);
     area2 += w;
     sum += (a + b) * w;
   }
