@@ -117,6 +117,7 @@ TEST_F(OutputFolderCli, AFailedSolveKeepsItsLastStateWhereTheUserAsked) {
   CliRun r = run_cli("simulate " + (dir_ / "failing.json").string() + " --out " + out.string() +
                      " --keep-failed " + kept.string());
   EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("  newton   1  force before "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("largest force "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("on garment vertex"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));

@@ -78,6 +78,13 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir,
     throw InputError("--keep-failed", "must name another folder than --out (" + out_dir + ")");
   OutputDirectory out(out_dir, force, "simulate");
   auto scene = load_scene(std::move(spec));
+  // Newton's progress, one line per step: a full-body solve takes minutes.
+  scene->spec.newton.on_step = [step = 0](const NewtonIteration& it, double seconds) mutable {
+    std::printf("  newton %3d  force before %.3e N  energy %.6e J  step %.3g%s%s  %.1f s\n", ++step,
+                it.force_norm, it.energy, it.step_size, it.chord ? "  (chord)" : "",
+                it.regularization > 0.0 ? "  (shifted)" : "", seconds);
+    std::fflush(stdout);
+  };
   auto sim = make_simulation(*scene);
   std::printf("tightfit simulate: %d body vertices (%d tets), %d garment vertices, %d triangles\n",
               scene->body.num_vertices(), scene->body.volume.num_tets(),

@@ -148,6 +148,7 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
     record.step_size = alpha;
     if (record.chord) ++report.chord_steps;
     report.history.push_back(record);
+    if (options_.on_step) options_.on_step(record, seconds_since(t_start));
   }
   report.seconds_total = seconds_since(t_start);
   if (!report.converged && options_.throw_on_failure) {

@@ -2,6 +2,7 @@
 /// Newton's method with a backtracking line search on the total energy and
 /// exponentially growing diagonal regularization when the Hessian is not positive
 /// definite (paper Sec. 3.3). Failure is reported as a SolverError naming the residual.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,8 @@
 #include "tightfit/solve/newton_problem.hpp"
 
 namespace tightfit {
+
+struct NewtonIteration;
 
 /// Tolerances in SI units. Converged when force_norm(g) ≤ max(absolute_force_tolerance,
 /// relative_force_tolerance · force_scale()).
@@ -29,6 +32,10 @@ struct NewtonOptions {
   /// times the previous one; then a new factorization. 0: plain Newton.
   int max_chord_steps = 4;
   double chord_contraction = 0.25;
+  /// Called after every accepted step with its record (forces before the step) and the
+  /// seconds since the solve started: progress reports of long solves. Not part of the
+  /// numerics; empty by default.
+  std::function<void(const NewtonIteration&, double seconds)> on_step;
 };
 
 /// One Newton iteration, for reports and convergence tests.
