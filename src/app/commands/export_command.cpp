@@ -38,8 +38,7 @@ std::vector<std::string> export_fit(const LoadedScene& scene, const Garment& gar
   EmbeddedEquilibrium& problem = sim->problem();
   const double residual = problem.force_norm(problem.gradient());
   const NewtonOptions& newton = scene.spec.newton;
-  const double tolerance = std::max(newton.absolute_force_tolerance,
-                                    newton.relative_force_tolerance * problem.force_scale());
+  const double tolerance = newton.force_tolerance(problem.force_scale());
   std::printf("  force residual of the saved state %.3e N (tolerance %.3e N): %s\n", residual,
               tolerance,
               residual <= tolerance ? "an equilibrium"

@@ -51,8 +51,7 @@ std::vector<std::string> keep_failed_state(const std::filesystem::path& dir, boo
   result["newton"] = {{"converged", false},
                       {"message", message},
                       {"final_force_residual_n", problem.force_norm(g)},
-                      {"force_tolerance_n", std::max(o.absolute_force_tolerance,
-                                                     o.relative_force_tolerance * problem.force_scale())}};
+                      {"force_tolerance_n", o.force_tolerance(problem.force_scale())}};
   result["failure"] = {{"largest_force", problem.locate_largest_force(g)},
                        {"garment_residual_max_n", garment_forces.rowwise().norm().maxCoeff()},
                        {"body_residual_max_n", body_forces.rowwise().norm().maxCoeff()}};

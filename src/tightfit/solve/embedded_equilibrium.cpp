@@ -197,11 +197,16 @@ bool EmbeddedEquilibrium::set_step(const VecX& dq, double alpha) {
 
 void EmbeddedEquilibrium::commit() { base_ = state_; }
 
-double EmbeddedEquilibrium::tangential_force_squared(int i, const VecX& g) const {
-  // Tangential force f with g_s = J_sᵀ f, f in the tangent plane: |f|² = g_sᵀ (J_sᵀJ_s)⁻¹ g_s.
+Eigen::Matrix<double, 3, 2> EmbeddedEquilibrium::tangent_basis(int i) const {
   Eigen::Matrix<double, 3, 2> Js;
   Js.col(0) = xu_.row(i).transpose();
   Js.col(1) = xv_.row(i).transpose();
+  return Js;
+}
+
+double EmbeddedEquilibrium::tangential_force_squared(int i, const VecX& g) const {
+  // Tangential force f with g_s = J_sᵀ f, f in the tangent plane: |f|² = g_sᵀ (J_sᵀJ_s)⁻¹ g_s.
+  const Eigen::Matrix<double, 3, 2> Js = tangent_basis(i);
   const Mat2 metric = Js.transpose() * Js;
   const Vec2 gs = g.segment<2>(garment_dof_[i]);
   return gs.dot(metric.ldlt().solve(gs));
@@ -222,9 +227,7 @@ Points3 EmbeddedEquilibrium::garment_residual_forces() const {
   for (int i = 0; i < num_garment_vertices(); ++i) {
     const int d = garment_dof_[i];
     if (d < 0) continue;
-    Eigen::Matrix<double, 3, 2> Js;
-    Js.col(0) = xu_.row(i).transpose();
-    Js.col(1) = xv_.row(i).transpose();
+    const Eigen::Matrix<double, 3, 2> Js = tangent_basis(i);
     const Vec2 gs = g.segment<2>(d);
     f.row(i) = -(Js * (Js.transpose() * Js).ldlt().solve(gs)).transpose();
   }

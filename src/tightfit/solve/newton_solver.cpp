@@ -43,8 +43,7 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
   const SparseCholesky* held = chords.held;
   const auto t_start = Clock::now();
   NewtonReport report;
-  report.tolerance = std::max(options_.absolute_force_tolerance,
-                              options_.relative_force_tolerance * problem.force_scale());
+  report.tolerance = options_.force_tolerance(problem.force_scale());
   double energy = problem.energy();
   if (!std::isfinite(energy))
     throw SolverError("Newton: the initial state is inadmissible (energy is not finite)");

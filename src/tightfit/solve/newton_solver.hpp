@@ -2,6 +2,7 @@
 /// Newton's method with a backtracking line search on the total energy and
 /// exponentially growing diagonal regularization when the Hessian is not positive
 /// definite (paper Sec. 3.3). Failure is reported as a SolverError naming the residual.
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -36,6 +37,11 @@ struct NewtonOptions {
   /// seconds since the solve started: progress reports of long solves. Not part of the
   /// numerics; empty by default.
   std::function<void(const NewtonIteration&, double seconds)> on_step;
+
+  /// The force tolerance (N) the convergence test applies to a problem of this force scale.
+  double force_tolerance(double force_scale) const {
+    return std::max(absolute_force_tolerance, relative_force_tolerance * force_scale);
+  }
 };
 
 /// One Newton iteration, for reports and convergence tests.
