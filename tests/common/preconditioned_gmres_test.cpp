@@ -104,5 +104,27 @@ TEST(FactorizeShifted, ShiftsAnIndefiniteMatrixUntilItFactorizes) {
   EXPECT_EQ(from_hint, 1);
 }
 
+TEST(FactorizeShifted, ShiftsEachDofInProportionToItsStiffness) {
+  // Newton's unknowns mix units (a garment vertex's surface coordinates, a body vertex's
+  // metres): rescaling some unknowns, A -> D A D, must not change which shifts
+  // factorize (an identity shift would need a different relative shift for each D).
+  SparseMatrix A = laplacian_1d(30, 0.0);
+  A.coeffRef(5, 5) = -0.5;
+  A.coeffRef(20, 20) = 0.2;
+  VecX d = VecX::Ones(30);
+  for (int i = 0; i < 30; i += 3) d[i] = 10.0;
+  for (int i = 1; i < 30; i += 7) d[i] = 0.1;
+  const SparseMatrix B = SparseMatrix(d.asDiagonal() * A * d.asDiagonal());
+  SparseCholesky chol;
+  int count_a = 0, count_b = 0;
+  const auto shift_a = factorize_shifted(chol, A, ShiftSequence{}, count_a);
+  const auto shift_b = factorize_shifted(chol, B, ShiftSequence{}, count_b);
+  ASSERT_TRUE(shift_a && shift_b);
+  EXPECT_GT(count_a, 2);
+  EXPECT_EQ(count_a, count_b);
+  EXPECT_NEAR(*shift_a / A.diagonal().cwiseAbs().mean(),
+              *shift_b / B.diagonal().cwiseAbs().mean(), 1e-12 * *shift_a / A.diagonal().cwiseAbs().mean());
+}
+
 }  // namespace
 }  // namespace tightfit

@@ -159,15 +159,24 @@ std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMa
     ++factorizations;
     if (cholesky.factorize(A, ordering)) return 0.0;
   }
-  double mean_diag = A.diagonal().cwiseAbs().mean();
+  const VecX diag = A.diagonal().cwiseAbs();
+  double mean_diag = diag.mean();
   if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
+  // The shift of DOF i is δ·max(|A_ii|, floor)/mean|A_ii|: each DOF is shifted relative to
+  // its own stiffness (Levenberg–Marquardt scaling), so that soft DOFs (a garment
+  // sliding on a body many times stiffer) are not swamped by a shift sized for the
+  // stiff ones; δ is the shift at a DOF of mean stiffness.
+  SparseMatrix scaling(A.rows(), A.cols());
+  scaling.reserve(Eigen::VectorXi::Constant(A.cols(), 1));
+  for (Eigen::Index i = 0; i < A.rows(); ++i)
+    scaling.insert(i, i) = std::isfinite(diag[i])
+                               ? std::max(diag[i], shifts.diagonal_floor * mean_diag) / mean_diag
+                               : 1.0;
   double shift = shifts.initial * mean_diag;
-  SparseMatrix identity(A.rows(), A.cols());
-  identity.setIdentity();
   for (int k = 0; k < shifts.attempts; ++k) {
     if (last_shift) *last_shift = shift;
     ++factorizations;
-    if (cholesky.factorize(SparseMatrix(A + shift * identity), ordering)) return shift;
+    if (cholesky.factorize(SparseMatrix(A + shift * scaling), ordering)) return shift;
     shift *= shifts.growth;
   }
   return std::nullopt;

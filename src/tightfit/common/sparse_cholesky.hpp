@@ -63,15 +63,19 @@ class SparseCholesky {
 };
 
 /// The growing diagonal shifts tried when a matrix is not positive definite:
-/// δ_k = initial · mean|diag(A)| · growth^k, k = 0 … attempts − 1.
+/// A + δ_k S with δ_k = initial · mean|diag(A)| · growth^k, k = 0 … attempts − 1, and
+/// S = diag(max(|A_ii|, diagonal_floor · mean|diag(A)|)) / mean|diag(A)|: each DOF is
+/// shifted in proportion to its own stiffness (Levenberg–Marquardt scaling), δ_k being
+/// the shift of a DOF of mean stiffness.
 struct ShiftSequence {
   double initial = 1e-8;  ///< relative to mean |diag(A)|
   double growth = 10.0;
   int attempts = 30;
   bool try_unshifted = true;  ///< try A itself before the first shift
+  double diagonal_floor = 1e-6;  ///< smallest |A_ii| a shift is scaled by, relative to the mean
 };
 
-/// Factorizes A (when shifts.try_unshifted), or else A + δI with the smallest δ of
+/// Factorizes A (when shifts.try_unshifted), or else A + δS with the smallest δ of
 /// `shifts` that succeeds. Returns
 /// δ (0 when A itself was positive definite), or nullopt when every shift failed (the
 /// factor is then unusable; `last_shift` receives the largest δ tried). `factorizations`

@@ -38,8 +38,8 @@
 /// where the equilibrium is not locally unique (e.g. slack or wrinkled cloth with no
 /// stiffness along a direction the objective cares about). GMRES solves an indefinite
 /// but regular system exactly. In the fallback, if the Cholesky factorization of H fails,
-/// H + δI is factorized with the smallest δ of a growing sequence (as in Newton) and the
-/// result reports δ > 0: that gradient is then NOT the exact derivative (it is the
+/// H + δS (S: ShiftSequence's diagonal scaling) is factorized with the smallest δ of a
+/// growing sequence (as in Newton) and the result reports δ > 0: that gradient is then NOT the exact derivative (it is the
 /// gradient of a problem whose equilibrium is stiffened by δ), only a descent-ish
 /// direction. Callers should surface `hessian_shift`.
 ///

@@ -49,7 +49,8 @@ struct NewtonIteration {
   double energy = 0.0;            ///< J, before the step
   double force_norm = 0.0;        ///< N, before the step
   double step_size = 0.0;         ///< accepted line-search alpha
-  double regularization = 0.0;    ///< absolute diagonal shift used (0 if none)
+  double regularization = 0.0;    ///< diagonal shift δ used (N/m at a DOF of mean
+                                  ///< stiffness, ShiftSequence; 0 if none)
   bool chord = false;             ///< step from the held factorization (no new Hessian)
   double seconds_assembly = 0.0;  ///< gradient + Hessian
   double seconds_factorization = 0.0;
@@ -115,7 +116,8 @@ class NewtonSolver {
   const NewtonOptions& options() const { return options_; }
 
  private:
-  /// Factorizes H + δI with the smallest δ of the growing sequence that succeeds.
+  /// Factorizes H + δS (ShiftSequence: S scales the shift by each DOF's stiffness) with the
+  /// smallest δ of the growing sequence that succeeds.
   /// Counts the attempts in `factorizations`. A new symbolic analysis uses `ordering`
   /// when given (SparseCholesky::factorize).
   double factorize_regularized(const SparseMatrix& H, int& factorizations,
