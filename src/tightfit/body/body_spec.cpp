@@ -193,14 +193,10 @@ TriMesh prepare_mesh(const BodySpec& spec, BuildReport* report) {
   std::vector<std::string> ignored_warnings;
   const std::string file = m.path.string();
   Stopwatch clock;
-  TriMesh surface = keep_largest_closed_component(read_tri_mesh(m.path), file,
-                                                  report ? report->warnings : ignored_warnings);
-  const double units = m.units > 0.0 ? m.units
-                       : m.scale_given
-                           ? 1.0
-                           : guess_units_to_metres(surface, file,
-                                                   report ? report->warnings : ignored_warnings);
-  surface.vertices *= units * m.scale;
+  // Repaired, largest part, in metres (units guessed when 0).
+  const double file_units = (m.units > 0.0 ? m.units : m.scale_given ? 1.0 : 0.0) * m.scale;
+  TriMesh surface = import_scan(read_tri_mesh(m.path), file, file_units,
+                                report ? report->warnings : ignored_warnings);
   validate_surface(surface, file);  // closed, manifold, outward, no self-intersections
   if (report) {
     report->input_vertices = surface.num_vertices();

@@ -1,6 +1,8 @@
 #pragma once
-/// Body scans as they come (issue 13): several surfaces in one file, and files in
-/// millimetres or centimetres. Both steps report what they did as warnings.
+/// Body scans as they come (issue 13): several surfaces in one file, files in
+/// millimetres or centimetres, and (scan_repair.hpp) duplicate and non-manifold
+/// elements, small holes, a million triangles. Every step reports what it did as a
+/// warning (prefixed with the file's name).
 #include <string>
 #include <vector>
 
@@ -22,6 +24,18 @@ TriMesh keep_largest_closed_component(const TriMesh& mesh, const std::string& so
 ///   unit: InputError (source `source`) asking for "units".
 double guess_units_to_metres(const TriMesh& mesh, const std::string& source,
                              std::vector<std::string>& warnings);
+
+/// The body surface of a scan (`mesh`, in the file's units), in metres: elements
+/// repaired (repair_mesh_elements), small holes of every part filled
+/// (fill_small_holes), the part that encloses the most volume kept (a warning lists
+/// the others, as keep_largest_closed_component's), turned outwards if it was inside
+/// out, scaled by `metres_per_file_unit` (times any "scale"; 0: guessed by
+/// guess_units_to_metres). A warning says how many holes were filled and how large
+/// (boundary length in m, edges, where). Throws InputError(source) when the kept part
+/// still has a hole (too large to fill: the error gives its size, place and the limit),
+/// or from the steps above.
+TriMesh import_scan(const TriMesh& mesh, const std::string& source, double metres_per_file_unit,
+                    std::vector<std::string>& warnings);
 
 /// Metres per unit of "m", "cm" or "mm" (InputError otherwise).
 double metres_per_unit(const std::string& units, const std::string& source);
