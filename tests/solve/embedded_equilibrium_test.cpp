@@ -132,6 +132,19 @@ TEST(EmbeddedEquilibrium, ChainRuleGradientAndHessianMatchFiniteDifferences) {
   EXPECT_LT(test::check_hessian(gradient_at, MatX(H), zero, 1e-6).relative_error, 1e-6);
 }
 
+TEST(EmbeddedEquilibrium, HessianOperatorIsTheProductWithTheNewtonHessian) {
+  const Scene s = make_scene(3);
+  EmbeddedEquilibrium problem = make_problem(s);
+  problem.set_step(VecX::LinSpaced(problem.num_dofs(), -1e-3, 1e-3), 1.0);
+  problem.commit();
+  const SparseMatrix H = problem.hessian();
+  const std::optional<LinearOperator> op = problem.hessian_operator();
+  ASSERT_TRUE(op.has_value());
+  const VecX v = VecX::LinSpaced(problem.num_dofs(), 1.0, -2.0);
+  const VecX Hv = H * v;
+  EXPECT_LT(((*op)(v) - Hv).norm(), 1e-12 * Hv.norm());
+}
+
 TEST(EmbeddedEquilibrium, PositionJacobianMatchesFiniteDifferences) {
   const Scene s = make_scene(4);
   EmbeddedEquilibrium problem = make_problem(s);

@@ -161,6 +161,38 @@ TEST(NewtonSolver, ReusingItsOwnFactorizationsSavesFactorizations) {
   EXPECT_LT((plain_problem.q() - reuse_problem.q()).norm(), 1e-8 * plain_problem.q().norm());
 }
 
+/// The chain with a Hessian operator: Newton–Krylov chord steps are possible.
+class OperatorChainProblem : public ChainProblem {
+ public:
+  using ChainProblem::ChainProblem;
+  std::optional<LinearOperator> hessian_operator() override {
+    return LinearOperator([H = hessian()](const VecX& v) { return VecX(H * v); });
+  }
+};
+
+TEST(NewtonSolver, KrylovChordStepsConvergeWithFewerFactorizations) {
+  // After a design step too large for plain chord steps to contract fast, conjugate
+  // gradients on the current Newton system, preconditioned by the held factorization,
+  // reach the same equilibrium with fewer factorizations.
+  OperatorChainProblem krylov_problem(200), chord_problem(200);
+  SparseCholesky held_k, held_c;
+  solve_and_factorize(krylov_problem, held_k);
+  solve_and_factorize(chord_problem, held_c);
+  krylov_problem.scale_load(1.3);
+  chord_problem.scale_load(1.3);
+  NewtonOptions plain_chords;
+  plain_chords.krylov_chords = false;
+  NewtonSolver krylov, chords(plain_chords);
+  const NewtonReport k = krylov.solve(krylov_problem, {&held_k, true});
+  const NewtonReport c = chords.solve(chord_problem, {&held_c, true});
+  ASSERT_TRUE(k.converged);
+  ASSERT_TRUE(c.converged);
+  EXPECT_GT(k.krylov_iterations, 0);
+  EXPECT_EQ(c.krylov_iterations, 0);
+  EXPECT_LT(k.factorizations, c.factorizations);
+  EXPECT_LT((krylov_problem.q() - chord_problem.q()).norm(), 1e-8 * chord_problem.q().norm());
+}
+
 TEST(NewtonSolver, IgnoresAHeldFactorizationOfAnotherSize) {
   ChainProblem small(10);
   SparseCholesky held;

@@ -266,7 +266,9 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
           alpha *= 0.5;
           continue;
         }
-        rec.max_solved_move = std::max(rec.max_solved_move, alpha * move);
+        // The same computation as the accepted step's max_point_move below (not
+        // alpha · move, which differs from it by round-off).
+        rec.max_solved_move = std::max(rec.max_solved_move, max_point_move(VecX(alpha * d)));
         if (trial.value <= current.value + options_.armijo * alpha * slope) {
           const auto t_gradient = Clock::now();
           const bool gradient_ok = problem_.add_gradient(trial);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 #include "tightfit/common/error.hpp"
@@ -128,15 +129,31 @@ SparseMatrix EmbeddedEquilibrium::position_jacobian() const {
 }
 
 SparseMatrix EmbeddedEquilibrium::hessian(HessianKind kind) {
+  const HessianParts parts = hessian_parts(kind);
+  SparseMatrix H = SparseMatrix(parts.J.transpose() * parts.Hxx * parts.J);
+  H += parts.extra;
+  H.makeCompressed();
+  return H;
+}
+
+std::optional<LinearOperator> EmbeddedEquilibrium::hessian_operator() {
+  auto parts = std::make_shared<const HessianParts>(hessian_parts(HessianKind::kNewton));
+  return LinearOperator([parts](const VecX& v) {
+    const VecX xv = parts->J * v;
+    return VecX(parts->J.transpose() * (parts->Hxx * xv) + parts->extra * v);
+  });
+}
+
+EmbeddedEquilibrium::HessianParts EmbeddedEquilibrium::hessian_parts(HessianKind kind) const {
   const int ng = num_garment_vertices();
   const VecX x = flat(x_);
   const bool project = kind == HessianKind::kNewton && setup_.project_garment_hessians;
   std::vector<Triplet> hx;
   for (const Energy* energy : setup_.garment_energies) energy->add_hessian(x, hx, project);
-  SparseMatrix Hxx(3 * ng, 3 * ng);
-  Hxx.setFromTriplets(hx.begin(), hx.end());
-  const SparseMatrix J = position_jacobian();
-  SparseMatrix H = SparseMatrix(J.transpose() * Hxx * J);
+  HessianParts parts;
+  parts.Hxx.resize(3 * ng, 3 * ng);
+  parts.Hxx.setFromTriplets(hx.begin(), hx.end());
+  parts.J = position_jacobian();
 
   // Second-derivative terms of Eq. 18 contracted with dU/dx, and the body Hessian.
   const VecX gx = garment_energy_gradient();
@@ -169,11 +186,9 @@ SparseMatrix EmbeddedEquilibrium::hessian(HessianKind kind) {
     const int r = body_dof_[e.row() / 3], c = body_dof_[e.col() / 3];
     if (r >= 0 && c >= 0) t.emplace_back(r + e.row() % 3, c + e.col() % 3, e.value());
   }
-  SparseMatrix extra(num_dofs_, num_dofs_);
-  extra.setFromTriplets(t.begin(), t.end());
-  H += extra;
-  H.makeCompressed();
-  return H;
+  parts.extra.resize(num_dofs_, num_dofs_);
+  parts.extra.setFromTriplets(t.begin(), t.end());
+  return parts;
 }
 
 bool EmbeddedEquilibrium::set_step(const VecX& dq, double alpha) {

@@ -8,6 +8,7 @@
 /// terms of Eq. 18; energies on y (the body) are added directly. Steps move garment
 /// vertices across faces by walking in the parameter domain (Eq. 20).
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,9 @@ class EmbeddedEquilibrium : public NewtonProblem {
   VecX gradient() override;
   /// The Newton Hessian (HessianKind::kNewton).
   SparseMatrix hessian() override { return hessian(HessianKind::kNewton); }
+  /// The product with the Newton Hessian at the current state, v ↦ Jᵀ(H_xx (J v)) + E v,
+  /// from its factors (no sparse matrix product).
+  std::optional<LinearOperator> hessian_operator() override;
   /// The Hessian of the given kind at the current state (num_dofs × num_dofs, N/m, both
   /// triangles stored, the pattern independent of the state and of the kind).
   SparseMatrix hessian(HessianKind kind);
@@ -86,6 +90,12 @@ class EmbeddedEquilibrium : public NewtonProblem {
   Vec3 garment_normal(int i) const;
 
  private:
+  /// The Hessian as J (dx/dq), H_xx (the garment energies' Hessian in x) and E (the
+  /// second-derivative terms of Eq. 18 and the body): H = Jᵀ H_xx J + E.
+  struct HessianParts {
+    SparseMatrix J, Hxx, extra;
+  };
+  HessianParts hessian_parts(HessianKind kind) const;
   void evaluate_garment();  // stencils, x, derivatives at the current state
   VecX total_gradient() const;  // gradient() (the interface's is not const)
   Eigen::Matrix<double, 3, 2> tangent_basis(int garment_vertex) const;  // [x_u x_v]

@@ -2,8 +2,10 @@
 /// The interface Newton's method sees. The physics (a sum of energies over an
 /// embedded garment and a body) lives behind it; the solver knows only energies,
 /// gradients, Hessians and how to take a step.
+#include <optional>
 #include <string>
 
+#include "tightfit/common/preconditioned_gmres.hpp"
 #include "tightfit/common/types.hpp"
 
 namespace tightfit {
@@ -22,6 +24,9 @@ class NewtonProblem {
   virtual VecX gradient() = 0;
   /// Hessian d²U/dq² at the current state (n×n, symmetric, both triangles stored).
   virtual SparseMatrix hessian() = 0;
+  /// The product v ↦ hessian()·v at the current state, where the problem can apply it
+  /// more cheaply than assembling hessian() (Newton–Krylov steps); nullopt: it cannot.
+  virtual std::optional<LinearOperator> hessian_operator() { return std::nullopt; }
 
   /// Sets the state to (committed state) ⊕ alpha·dq. The problem decides what ⊕ is
   /// (a garment vertex walks across body faces). Returns false when the step cannot be

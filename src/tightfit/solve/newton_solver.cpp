@@ -7,6 +7,7 @@
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/stopwatch.hpp"
+#include "tightfit/common/truncated_cg.hpp"
 
 namespace tightfit {
 namespace {
@@ -102,9 +103,31 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
     }
     last_was_chord = record.chord;
 
-    t0 = Clock::now();
-    const VecX dq = factor->solve(VecX(-g));
-    record.seconds_solve = seconds_since(t0);
+    VecX dq;
+    if (record.chord && options_.krylov_chords) {
+      // Newton–Krylov: the Newton system at this state, solved by conjugate gradients
+      // preconditioned with the held factorization.
+      t0 = Clock::now();
+      const std::optional<LinearOperator> H = problem.hessian_operator();
+      record.seconds_assembly += seconds_since(t0);
+      t0 = Clock::now();
+      if (H) {
+        TruncatedCgReport cg;
+        dq = truncated_cg(*H, [&](const VecX& r) { return factor->solve(r); }, VecX(-g), cg,
+                          {options_.krylov_tolerance, options_.krylov_iterations});
+        record.krylov_iterations = cg.iterations;
+        report.krylov_iterations += cg.iterations;
+        // The held factorization no longer preconditions well: factorize next time.
+        if (!cg.converged) reuse = false;
+      } else {
+        dq = factor->solve(VecX(-g));
+      }
+      record.seconds_solve = seconds_since(t0);
+    } else {
+      t0 = Clock::now();
+      dq = factor->solve(VecX(-g));
+      record.seconds_solve = seconds_since(t0);
+    }
 
     t0 = Clock::now();
     const double slope = g.dot(dq);

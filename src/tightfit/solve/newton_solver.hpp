@@ -33,6 +33,14 @@ struct NewtonOptions {
   /// times the previous one; then a new factorization. 0: plain Newton.
   int max_chord_steps = 4;
   double chord_contraction = 0.25;
+  /// Chord steps as Newton–Krylov steps where the problem offers hessian_operator():
+  /// the Newton system at the current state solved by conjugate gradients preconditioned
+  /// with the held factorization (truncated_cg.hpp) to `krylov_tolerance` (relative
+  /// residual) in at most `krylov_iterations` products; when CG does not get there the
+  /// next step factorizes. false: plain chord steps, dq = −F⁻¹ g.
+  bool krylov_chords = true;
+  double krylov_tolerance = 1e-3;
+  int krylov_iterations = 20;
   /// Called after every accepted step with its record (forces before the step) and the
   /// seconds since the solve started: progress reports of long solves. Not part of the
   /// numerics; empty by default.
@@ -52,6 +60,7 @@ struct NewtonIteration {
   double regularization = 0.0;    ///< diagonal shift δ used (N/m at a DOF of mean
                                   ///< stiffness, ShiftSequence; 0 if none)
   bool chord = false;             ///< step from the held factorization (no new Hessian)
+  int krylov_iterations = 0;      ///< of a chord step: conjugate-gradient products
   double seconds_assembly = 0.0;  ///< gradient + Hessian
   double seconds_factorization = 0.0;
   double seconds_solve = 0.0;
@@ -63,6 +72,7 @@ struct NewtonReport {
   int iterations = 0;             ///< steps taken (chord steps included)
   int chord_steps = 0;            ///< of them: with the held factorization
   int factorizations = 0;         ///< Hessians factorized (shifted retries included)
+  int krylov_iterations = 0;      ///< conjugate-gradient products of the chord steps
   double final_energy = 0.0;
   double final_force_norm = 0.0;   ///< N
   double tolerance = 0.0;          ///< N, the force tolerance that was applied
