@@ -151,6 +151,43 @@ void expect_monotone_across_remeshes(const std::vector<OptimizationIteration>& h
   }
 }
 
+TEST(DesignProblemRemesh, AFailureAfterTheNewGarmentIsBuiltPutsEverythingBack) {
+  // The objective factory builds other terms for the remeshed garment (a logic error,
+  // std::invalid_argument): remesh() reports it and leaves the problem as it was.
+  SleeveSceneOptions so;
+  so.jitter = 0.0;
+  auto scene = make_sleeve_scene(so);
+  GarmentSimulation& sim = *scene->sim;
+  sim.solve();
+  const PatternPiece& piece0 = sim.garment().pattern.pieces[0];
+  const double width = piece0.rest.col(0).maxCoeff(), top = piece0.rest.col(1).maxCoeff();
+  int calls = 0;
+  auto factory = [&](const GarmentSimulation& s) {
+    auto sum = std::make_shared<DesignTermSum>();
+    sum->add(std::make_shared<DipTerm>(s.garment(), "last ring", top, 0.2 * top, width), 1.0);
+    if (++calls > 1)
+      sum->add(std::make_shared<DipTerm>(s.garment(), "last ring", top, 0.1 * top, width), 1.0);
+    return sum;
+  };
+  DesignProblem problem(sim, factory(sim), {}, factory);
+  const VecX p = problem.initial_parameters();
+  const DesignEvaluation before = problem.evaluate(p, true);
+  ASSERT_TRUE(before.ok) << before.failure;
+  problem.accept();
+  const int parameters = problem.num_parameters();
+  const int vertices = sim.garment().num_garment_vertices;
+
+  const RemeshOutcome out = problem.remesh({0});
+  EXPECT_FALSE(out.ok);
+  EXPECT_NE(out.failure.find("objective factory"), std::string::npos) << out.failure;
+  EXPECT_EQ(problem.num_parameters(), parameters);
+  EXPECT_EQ(sim.garment().num_garment_vertices, vertices);
+  EXPECT_EQ(problem.objective().entries().size(), 1u);
+  const DesignEvaluation after = problem.evaluate(p, true);
+  ASSERT_TRUE(after.ok) << after.failure;
+  EXPECT_NEAR(after.value, before.value, 1e-12 * std::abs(before.value));
+}
+
 TEST(PatternOptimizerRemesh, ADegradingPieceIsRemeshedAndTheRunGoesOn) {
   SleeveSceneOptions so;
   so.jitter = 0.0;  // a regular mesh: 44° smallest angle

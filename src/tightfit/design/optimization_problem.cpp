@@ -104,7 +104,7 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
   try {
     r = remesh_garment(old_garment, old_state, positions, sim_.surface(), pieces, target_edge_,
                        options_.remesh.smoothing_iterations);
-  } catch (const InputError& e) {
+  } catch (const std::exception& e) {  // an input, solver or logic error: nothing applied yet
     out.failure = std::string("remeshing: ") + e.what();
     out.seconds = seconds_since(t0);
     return out;
@@ -161,9 +161,9 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
     if (!objective || objective->entries().size() != old_objective->entries().size())
       throw std::invalid_argument("the objective factory built other terms after remeshing");
     objective_ = std::move(objective);
-  } catch (const InputError& e) {
-    return undo(std::string("remeshing: ") + e.what());
-  } catch (const SolverError& e) {
+  } catch (const std::exception& e) {
+    // Whatever failed (a rejected pattern, a solver, an objective factory that built
+    // other terms): the problem is put back as it was, never left half-remeshed.
     return undo(std::string("remeshing: ") + e.what());
   }
   reset_reference();
