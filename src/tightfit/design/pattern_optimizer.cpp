@@ -80,6 +80,16 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
                                    "has no remeshing");
   if (checkpoint.history.empty())
     throw InputError("checkpoint", "it has no history (not even the initial iteration)");
+  const GarmentSimulation& sim = problem_.simulation();
+  check_surface_points(checkpoint.state.garment, sim.surface().num_faces(), "checkpoint",
+                       "/state/garment");
+  if (checkpoint.state.body.rows() != sim.body_positions().rows() ||
+      !checkpoint.state.body.allFinite())
+    throw InputError("checkpoint", "its body state has " +
+                                       std::to_string(checkpoint.state.body.rows()) +
+                                       " finite positions, the body has " +
+                                       std::to_string(sim.body_positions().rows()) +
+                                       " vertices (another body?)");
   if (checkpoint.remeshed) {
     if (!problem_.can_remesh())
       throw InputError("checkpoint", "it was written after a remeshing, and this problem "
@@ -96,6 +106,13 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
   for (size_t k = 0; k < checkpoint.memory.s.size(); ++k)
     if (checkpoint.memory.s[k].size() != n || checkpoint.memory.y[k].size() != n)
       throw InputError("checkpoint", "its L-BFGS memory does not match the design parameters");
+  if (static_cast<int>(checkpoint.state.garment.size()) !=
+      problem_.simulation().garment().num_garment_vertices)
+    throw InputError("checkpoint", "its state has " +
+                                       std::to_string(checkpoint.state.garment.size()) +
+                                       " garment surface points, the garment has " +
+                                       std::to_string(problem_.simulation().garment().num_garment_vertices) +
+                                       " vertices (another garment or mesh?)");
   problem_.set_accepted(checkpoint.parameters, checkpoint.state, checkpoint.held_ordering);
   memory_ = checkpoint.memory;
   while (static_cast<int>(memory_.s.size()) > options_.memory) {

@@ -304,16 +304,7 @@ Garment run_state_garment(const RunState& s, const Garment& scene_garment, const
                                  (s.pattern ? "saved pattern's" : "scene's") + " garment has " +
                                  std::to_string(garment.num_garment_vertices) + " vertices" +
                                  kChanged);
-  constexpr double kSlack = 1e-9;  // (u, v) of a point on a face edge may round outside
-  for (size_t i = 0; i < s.state.garment.size(); ++i) {
-    const SurfacePoint& q = s.state.garment[i];
-    if (q.face < 0 || q.face >= num_surface_faces)
-      throw InputError(source, at("/garment", i) + "/0: face " + std::to_string(q.face) +
-                                   " does not exist (the body surface has " +
-                                   std::to_string(num_surface_faces) + " faces)");
-    if (q.u < -kSlack || q.v < -kSlack || q.u + q.v > 1.0 + kSlack)
-      throw InputError(source, at("/garment", i) + ": (u, v) outside the face");
-  }
+  check_surface_points(s.state.garment, num_surface_faces, source, "/garment");
   if (s.state.body.rows() != body.num_vertices())
     throw InputError(source, "/body: " + std::to_string(s.state.body.rows()) +
                                  " positions, the scene's body has " +

@@ -52,7 +52,6 @@ struct LimitSurface::Impl {
 
 namespace {
 
-constexpr double kInsideTolerance = 1e-12;
 
 /// Per-thread scratch for raw stencils: 6 arrays of `n` doubles.
 double* scratch(int n) {
@@ -261,14 +260,13 @@ void LimitSurface::raw_stencil(int face, double u, double v, double* p, double* 
 
 namespace {
 
-/// Checks that s lies in its face (up to kInsideTolerance) and returns clamped (u,v).
+/// Checks that s lies in its face (is_surface_point) and returns clamped (u,v).
 Vec2 checked_uv(SurfacePoint s, int num_faces) {
   if (s.face < 0 || s.face >= num_faces) {
     throw std::invalid_argument("SurfacePoint: face " + std::to_string(s.face) + " out of range [0, " +
                                 std::to_string(num_faces) + ")");
   }
-  if (!(s.u >= -kInsideTolerance && s.v >= -kInsideTolerance &&
-        s.u + s.v <= 1.0 + kInsideTolerance)) {
+  if (!is_surface_point(s, num_faces)) {
     throw std::invalid_argument("SurfacePoint: (u, v) = (" + std::to_string(s.u) + ", " +
                                 std::to_string(s.v) + ") is outside face " + std::to_string(s.face));
   }
