@@ -12,6 +12,7 @@
 
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/finite_output.hpp"
 
 namespace tightfit {
 
@@ -29,6 +30,7 @@ class GltfBuffers {
   int add_vec3(const std::vector<float>& data, bool with_bounds) {
     const auto count = data.size() / 3;
     const int view = add_view(data.data(), data.size() * sizeof(float), kArrayBuffer);
+    float_views_.push_back(view);
     nlohmann::json accessor = {
         {"bufferView", view}, {"componentType", kFloat}, {"count", count}, {"type", "VEC3"}};
     if (with_bounds) {
@@ -55,6 +57,19 @@ class GltfBuffers {
     return static_cast<int>(accessors_.size()) - 1;
   }
 
+  /// Throws NonFiniteOutput naming the accessor of the first NaN or infinity in a
+  /// float view (positions, normals, colours).
+  void require_finite() const {
+    for (const int view : float_views_) {
+      const nlohmann::json& v = views_[static_cast<std::size_t>(view)];
+      const std::size_t count = v["byteLength"].get<std::size_t>() / sizeof(float);
+      std::vector<float> values(count);
+      std::memcpy(values.data(), bytes_.data() + v["byteOffset"].get<std::size_t>(),
+                  count * sizeof(float));
+      require_finite_values(values.data(), count, "buffer view " + std::to_string(view));
+    }
+  }
+
   const std::vector<char>& bytes() const { return bytes_; }
   const nlohmann::json& views() const { return views_; }
   const nlohmann::json& accessors() const { return accessors_; }
@@ -71,6 +86,7 @@ class GltfBuffers {
   }
 
   std::vector<char> bytes_;
+  std::vector<int> float_views_;
   nlohmann::json views_ = nlohmann::json::array();
   nlohmann::json accessors_ = nlohmann::json::array();
 };
@@ -253,7 +269,11 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
   file += binary;
   write_file_atomically(
       path,
-      [&](std::ostream& out) { out.write(file.data(), static_cast<std::streamsize>(file.size())); },
+      [&](std::ostream& out) {
+        require_finite_json(gltf);
+        buffers.require_finite();
+        out.write(file.data(), static_cast<std::streamsize>(file.size()));
+      },
       true);
   return coloring;
 }
