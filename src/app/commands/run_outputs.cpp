@@ -2,6 +2,7 @@
 
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/finite_output.hpp"
+#include "tightfit/io/body_up.hpp"
 #include "tightfit/common/parallel.hpp"
 #include "tightfit/common/version.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
@@ -66,6 +67,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   files.push_back("state.json");
   FitView view = make_fit_view(sim, fit, pressure_operator, state.scene, records);
   view.pressure_regions = regions;
+  view.up = body_up_direction(scene.body);
   if (!poses.views.empty()) {
     view.poses = std::move(poses.views);
     view.garment_fields.push_back({std::string(fit_fields::kSlidingExcess), "N", poses.worst_excess});
