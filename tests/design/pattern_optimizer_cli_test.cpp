@@ -5,12 +5,15 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -606,6 +609,131 @@ TEST_F(OptimizeCli, SceneWithoutOptimizeSectionIsAnInputError) {
   const CliRun bad = run_cli("check-gradient " + write_scene("bad.json", s).string());
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("/optimize/objectives/stretch/mni"), std::string::npos) << bad.output;
+}
+
+/// Decodes standard base64 (RFC 4648, with padding).
+std::string base64_decode(const std::string& text) {
+  static const std::string alphabet =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  unsigned value = 0;
+  int bits = 0;
+  for (char c : text) {
+    if (c == '=') break;
+    value = (value << 6) | static_cast<unsigned>(alphabet.find(c));
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<char>((value >> bits) & 0xFFu));
+    }
+  }
+  return out;
+}
+
+/// Non-finite floats (little-endian float32) in `bytes`.
+int non_finite_floats(const char* bytes, std::size_t count) {
+  int bad = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    float v = 0.0f;
+    std::memcpy(&v, bytes + 4 * i, 4);
+    if (!std::isfinite(v)) ++bad;
+  }
+  return bad;
+}
+
+/// Nulls in a parsed JSON document (JSON itself has no NaN: nlohmann writes it as
+/// null), and non-finite float32 arrays of the report's "f32:" base64 strings.
+void scan_json(const nlohmann::json& j, const std::string& path, std::string& found) {
+  if (j.is_null()) found += path + " is null; ";
+  if (j.is_string() && j.get<std::string>().starts_with("f32:")) {
+    const std::string bytes = base64_decode(j.get<std::string>().substr(4));
+    if (non_finite_floats(bytes.data(), bytes.size() / 4) > 0) found += path + " has NaN/inf; ";
+  }
+  if (j.is_array())
+    for (size_t k = 0; k < j.size(); ++k) scan_json(j[k], path + "/" + std::to_string(k), found);
+  if (j.is_object())
+    for (auto it = j.begin(); it != j.end(); ++it) scan_json(it.value(), path + "/" + it.key(), found);
+}
+
+std::uint32_t le32(const std::string& bytes, std::size_t offset) {
+  std::uint32_t v = 0;
+  std::memcpy(&v, bytes.data() + offset, 4);
+  return v;
+}
+
+/// Every output of a run folder scanned for a NaN, an infinity or a null standing for a
+/// number: JSON files parsed; the report's data (its numbers and float arrays); the
+/// glb's JSON chunk and float accessors; text files (PLY, SVG, DXF, the marker) for
+/// the words nan / inf / infinity. PDFs are cairo's compressed drawing of the same
+/// pattern pieces.json holds. Returns what was found ("" when clean).
+std::string scan_outputs(const fs::path& dir) {
+  static const std::regex word(R"(\b(nan|inf|infinity)\b)", std::regex::icase);
+  std::string found;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    const std::string ext = e.path().extension().string();
+    const std::string text = test::read_text(e.path());
+    std::string local;
+    if (ext == ".json") {
+      scan_json(nlohmann::json::parse(text), "", local);
+    } else if (ext == ".html") {
+      const std::string open = "<script type=\"application/json\" id=\"tightfit-data\">";
+      const size_t begin = text.find(open);
+      if (begin == std::string::npos) {
+        local += "no data script; ";
+      } else {
+        const size_t start = begin + open.size();
+        scan_json(nlohmann::json::parse(text.substr(start, text.find("</script>", start) - start)),
+                  "", local);
+      }
+    } else if (ext == ".glb") {
+      const std::uint32_t json_length = le32(text, 12);
+      const nlohmann::json gltf = nlohmann::json::parse(text.substr(20, json_length));
+      scan_json(gltf, "", local);
+      const std::size_t bin = 20 + json_length + 8;
+      for (const auto& a : gltf["accessors"]) {
+        if (a["componentType"] != 5126) continue;
+        const auto& view = gltf["bufferViews"][a["bufferView"].get<size_t>()];
+        const std::size_t count = a["count"].get<std::size_t>() * (a["type"] == "VEC3" ? 3 : 1);
+        if (non_finite_floats(text.data() + bin + view["byteOffset"].get<std::size_t>(), count) > 0)
+          local += "a float accessor has NaN/inf; ";
+      }
+    } else if (ext != ".pdf") {
+      std::smatch m;
+      if (std::regex_search(text, m, word)) local += "'" + m.str() + "'; ";
+    }
+    if (!local.empty()) found += name + ": " + local;
+  }
+  return found;
+}
+
+TEST_F(OptimizeCli, ANonFiniteResumedStateEndsWithExitThreeAndNoOutputHoldsANaN) {
+  // The tapered-cylinder example (soft body) for two iterations, then its checkpoint's
+  // body pushed to 1e300 m: the resumed equilibrium's energy is not finite.
+  const fs::path scene = fs::path(TIGHTFIT_SOURCE_DIR) / "examples/optimize_cylinder_tapered.json";
+  const fs::path out = dir_ / "out";
+  CliRun r = run_cli("optimize " + scene.string() + " --out " + out.string() +
+                     " --max-iterations 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(scan_outputs(out), "");
+  nlohmann::json checkpoint = read_json(out / "checkpoint.json");
+  checkpoint["state"]["body"][0][0] = 1e300;
+  std::ofstream(out / "checkpoint.json") << checkpoint.dump();
+  const std::string before = test::read_text(out / "result.json");
+
+  r = run_cli("optimize " + scene.string() + " --out " + out.string() + " --resume " +
+              out.string() + " --max-iterations 4");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  for (const std::string& says : std::vector<std::string>{
+           "optimize failed during the start of the run: initial equilibrium (resumed at "
+        "iteration 2): the starting pattern cannot be evaluated",
+        "not finite", "last checkpoint: " + (out / "checkpoint.json").string() +
+                          " (iteration 2, the one this run resumed from)",
+        "--resume " + out.string()})
+    EXPECT_NE(r.output.find(says), std::string::npos) << says << "\n" << r.output;
+  // The outputs of the good run stay, and no file of the folder holds a NaN.
+  EXPECT_EQ(test::read_text(out / "result.json"), before);
+  EXPECT_EQ(scan_outputs(out), "");
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -33,6 +35,14 @@ nlohmann::json report_data(const fs::path& file) {
   if (begin == std::string::npos) return nullptr;
   const auto start = begin + open.size();
   return nlohmann::json::parse(html.substr(start, html.find("</script>", start) - start));
+}
+
+/// The JSON chunk of a .glb file.
+nlohmann::json glb_json(const fs::path& file) {
+  const std::string bytes = read_text(file);
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return nlohmann::json::parse(bytes.substr(20, length));
 }
 
 /// Same structure; numbers equal within `tol` relative to max(1, |a|).
@@ -141,6 +151,18 @@ TEST_F(ExportCli, SimulateRunIsRegeneratedExactly) {
   EXPECT_FALSE(fs::exists(copy / "history.json"));
   expect_json_near(read_json(copy / "result.json"), read_json(original / "result.json"), 1e-12);
   EXPECT_EQ(report_data(copy / "report.html"), report_data(original / "report.html"));
+  // fit.glb is y up: the cylinder's axis (z) was turned onto +y, so the body's length
+  // (0.16 m side and two 0.05 m round caps) is its y extent, its 0.1 m diameter the
+  // z extent; the export writes it alike.
+  for (const fs::path& folder : {original, copy}) {
+    const nlohmann::json gltf = glb_json(folder / "fit.glb");
+    EXPECT_EQ(gltf["asset"]["extras"]["scene_up"], nlohmann::json({0.0, 0.0, 1.0}));
+    const auto& body = gltf["accessors"][gltf["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
+                                             .get<std::size_t>()];
+    const double height = body["max"][1].get<double>() - body["min"][1].get<double>();
+    EXPECT_NEAR(height, 0.16 + 2 * 0.05, 0.01);  // side and round caps
+    EXPECT_LT(body["max"][2].get<double>() - body["min"][2].get<double>(), 0.11);
+  }
   // The saved state is still the equilibrium Newton found.
   const auto [res, tol] = residual(r.output);
   const nlohmann::json newton = read_json(original / "result.json")["newton"];

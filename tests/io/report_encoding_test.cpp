@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "tightfit/common/finite_output.hpp"
+
 namespace tightfit {
 namespace {
 
@@ -23,7 +25,9 @@ TEST(ReportEncoding, TypedArraysAreLittleEndian) {
   EXPECT_EQ(base64_float32({1.0}), base64_encode(std::string("\x00\x00\x80\x3f", 4)));
   EXPECT_EQ(base64_uint32({1, 258}),
             base64_encode(std::string("\x01\x00\x00\x00\x02\x01\x00\x00", 8)));
-  EXPECT_EQ(base64_float32({std::nan("")}).size(), 8u);
+  // No report carries a NaN or an infinity (common/finite_output.hpp).
+  EXPECT_THROW(base64_float32({1.0, std::nan("")}), NonFiniteOutput);
+  EXPECT_THROW(base64_float32({HUGE_VAL}), NonFiniteOutput);
   EXPECT_THROW(base64_uint32({-1}), std::invalid_argument);
 }
 
@@ -32,6 +36,7 @@ TEST(ReportEncoding, JsonForScriptHasNoTagsAndParsesBack) {
   const std::string text = json_for_script(j);
   EXPECT_EQ(text.find('<'), std::string::npos) << text;
   EXPECT_EQ(nlohmann::json::parse(text), j);
+  EXPECT_THROW(json_for_script({{"v", std::nan("")}}), NonFiniteOutput);
 }
 
 }  // namespace

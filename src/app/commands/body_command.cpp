@@ -10,6 +10,7 @@
 #include "tightfit/body/body_spec.hpp"
 #include "tightfit/body/body_stats.hpp"
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/output_directory.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/json_fields.hpp"
@@ -64,7 +65,7 @@ void write_outputs(const fs::path& out, bool force, const Body& body, const nloh
   OutputDirectory folder(out, force, "body");
   write_tri_mesh(folder.file("surface.obj"), body.surface);
   write_vtu(folder.file("volume.vtu"), body.volume, body_point_fields(body), body_cell_fields(body));
-  write_text_atomically(folder.file("body.json"), summary.dump(2) + "\n");
+  write_json_atomically(folder.file("body.json"), summary, 2);
   folder.commit();
 }
 

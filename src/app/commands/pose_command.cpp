@@ -13,6 +13,7 @@
 #include "tightfit/body/posed_body.hpp"
 #include "tightfit/body/skin_transfer.hpp"
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/output_directory.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
@@ -69,7 +70,7 @@ void run_pose(const std::string& scene_file, const std::string& out_dir, bool fo
   }
   OutputDirectory folder(fs::path(out_dir), force, "pose");
   for (const auto& [name, mesh] : meshes) write_tri_mesh(folder.file(name), mesh);
-  write_text_atomically(folder.file("poses.json"), summary.dump(2) + "\n");
+  write_json_atomically(folder.file("poses.json"), summary, 2);
   folder.commit();
   for (const auto& [name, mesh] : meshes) std::printf("  %s\n", (fs::path(out_dir) / name).string().c_str());
   std::printf("  %s\n", (fs::path(out_dir) / "poses.json").string().c_str());

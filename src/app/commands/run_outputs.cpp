@@ -1,6 +1,8 @@
 #include "run_outputs.hpp"
 
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
+#include "tightfit/io/body_up.hpp"
 #include "tightfit/common/parallel.hpp"
 #include "tightfit/common/version.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
@@ -51,13 +53,13 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
     state.result["poses"] = poses.statistics;
     files.insert(files.end(), poses.files.begin(), poses.files.end());
   }
-  write_text_atomically(folder / "result.json", state.result.dump(2) + "\n");
-  write_text_atomically(folder / "scene.json", state.scene.dump(2) + "\n");
+  write_json_atomically(folder / "result.json", state.result, 2);
+  write_json_atomically(folder / "scene.json", state.scene, 2);
   files.insert(files.end(), {"result.json", "scene.json"});
   nlohmann::json records = nlohmann::json::array();
   if (state.command == "optimize") {
     const nlohmann::json history = history_json(state.history, state.term_names);
-    write_text_atomically(folder / "history.json", history.dump(2) + "\n");
+    write_json_atomically(folder / "history.json", history, 2);
     files.push_back("history.json");
     records = history["iterations"];
   }
@@ -65,6 +67,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   files.push_back("state.json");
   FitView view = make_fit_view(sim, fit, pressure_operator, state.scene, records);
   view.pressure_regions = regions;
+  view.up = body_up_direction(scene.body);
   if (!poses.views.empty()) {
     view.poses = std::move(poses.views);
     view.garment_fields.push_back({std::string(fit_fields::kSlidingExcess), "N", poses.worst_excess});
@@ -116,7 +119,7 @@ std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& f
   for (int i = 0; i < garment.num_garment_vertices; ++i)
     x.row(i) = surface.position(garment.embedding[i], control).transpose();
   write_ply(folder / "garment_embedded.ply", TriMesh{x, garment.garment_triangles});
-  write_text_atomically(folder / "layout.json", state.result.dump(2) + "\n");
+  write_json_atomically(folder / "layout.json", state.result, 2);
   write_run_state(folder / "state.json", state);
   files.insert(files.end(), {"garment_embedded.ply", "layout.json", "state.json"});
   return files;

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/finite_output.hpp"
 
 namespace tightfit {
 
@@ -70,6 +71,11 @@ void write_file_atomically(const std::filesystem::path& path,
       if (!out) throw InputError(path.string(), "write failed" + system_reason());
     }
     commit_temporary(tmp, path);
+  } catch (const NonFiniteOutput& e) {
+    // A NaN or infinity about to be written: the file is not made (finite_output.hpp).
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw SolverError(path.string() + ": not written: " + e.what());
   } catch (...) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);

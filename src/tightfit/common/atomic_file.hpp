@@ -9,8 +9,10 @@
 namespace tightfit {
 
 /// Calls `write(stream)` on a temporary file next to `path`, then renames it to
-/// `path`. On any exception the temporary file is removed and the exception rethrown.
-/// `binary` opens the stream in binary mode.
+/// `path`. On any exception the temporary file is removed and the exception rethrown;
+/// a NonFiniteOutput (finite_output.hpp: `write` found a NaN or infinity in what it was
+/// about to write) becomes a SolverError "PATH: not written: WHERE". `binary` opens the
+/// stream in binary mode.
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write,
                            bool binary = false);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/json_fields.hpp"
 #include "tightfit/garment/pattern_record.hpp"
 
@@ -306,7 +307,7 @@ OptimizationCheckpoint checkpoint_from_json(const nlohmann::json& j,
 
 void write_checkpoint(const std::filesystem::path& file, const OptimizationCheckpoint& c,
                       const std::vector<std::string>& term_names) {
-  write_text_atomically(file, checkpoint_json(c, term_names).dump() + "\n");
+  write_json_atomically(file, checkpoint_json(c, term_names));
 }
 
 OptimizationCheckpoint read_checkpoint(const std::filesystem::path& file,

@@ -1,5 +1,7 @@
 #include "tightfit/design/optimization_problem.hpp"
 
+#include "tightfit/design/finite_state.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -109,6 +111,12 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
     out.seconds = seconds_since(t0);
     return out;
   }
+  // A remeshing never hands on a NaN: that is a solver failure, not a step to undo
+  // and retry (nothing has been changed yet).
+  if (std::string place = non_finite_place(r.garment.pattern); !place.empty())
+    throw SolverError("the remeshed pattern has a non-finite rest position at " + place);
+  if (std::string place = non_finite_place(r.state); !place.empty())
+    throw SolverError("the remeshed garment's transferred state is not finite at " + place);
   out.pieces = r.remeshed;
   out.min_angle_before = 180.0;
   out.min_angle_after = 180.0;
@@ -318,6 +326,10 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
     ev.force_residual = report.final_force_norm;
     if (!report.converged) {
       ev.failure = "forward solve: " + report.message;
+      return ev;
+    }
+    if (const std::string place = non_finite_place(sim_.problem().state()); !place.empty()) {
+      ev.failure = "forward solve: the equilibrium is not finite at " + place;
       return ev;
     }
   } catch (const InputError& e) {

@@ -20,7 +20,7 @@
 ///  * a rest triangle flips or shrinks below `min_area_ratio` of its initial area,
 ///  * the rest-dependent energies reject the rest shape (InputError),
 ///  * the forward Newton solve does not converge (SolverError or report),
-///  * T or its gradient is not finite;
+///  * the equilibrium, T or its gradient is not finite;
 /// the optimizer then backtracks. After a failure the simulation holds an unspecified
 /// state until the next evaluate() or restore_accepted().
 ///
@@ -30,7 +30,9 @@
 /// the ObjectiveFactory: terms hold index sets of one topology) and the biharmonic
 /// coordinates (pieces left unchanged keep theirs), makes the remeshed pattern the new
 /// reference (initial parameters, areas), and solves the equilibrium from the
-/// transferred state. If that solve fails, everything is put back as it was.
+/// transferred state. If that solve fails, everything is put back as it was. A remeshed
+/// pattern or transferred state holding a NaN or infinity is a SolverError instead
+/// (finite_state.hpp): the run ends there, nothing is changed.
 /// remeshed_design() describes the result for a checkpoint, and restore_remeshed_design()
 /// puts a problem built from the scene back into that remeshed state (--resume).
 #include <functional>
@@ -170,7 +172,8 @@ class DesignProblem {
   std::vector<int> degraded_pieces() const;
   /// Remeshes `pieces` (see the header comment) at the accepted point; on success the
   /// accepted point is the remeshed pattern's equilibrium. Throws std::logic_error
-  /// without an objective factory.
+  /// without an objective factory, SolverError (nothing changed) when the remeshed
+  /// pattern or its transferred state is not finite.
   RemeshOutcome remesh(const std::vector<int>& pieces);
 
   /// After a successful remesh(): the remeshed pattern with the reference rest positions

@@ -163,7 +163,10 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
   VecX p = problem_.accepted_parameters();
   DesignEvaluation current = problem_.evaluate(p, true);
   if (!current.ok)
-    throw SolverError("optimizer: the starting pattern cannot be evaluated: " + current.failure);
+    throw SolverError("initial equilibrium" +
+                      (resumed_ ? " (resumed at iteration " + std::to_string(iteration_) + ")"
+                                : std::string()) +
+                      ": the starting pattern cannot be evaluated: " + current.failure);
   problem_.accept();
   if (!resumed_) {
     history_.clear();
@@ -346,7 +349,13 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
         iteration_ > remesh_blocked_until_) {
       const std::vector<int> degraded = problem_.degraded_pieces();
       if (!degraded.empty()) {
-        RemeshOutcome o = problem_.remesh(degraded);
+        RemeshOutcome o;
+        try {
+          o = problem_.remesh(degraded);
+        } catch (const SolverError& e) {
+          throw SolverError("remeshing after iteration " + std::to_string(iteration_) + ": " +
+                            e.what());
+        }
         RemeshRecord r;
         for (int k : o.pieces.empty() ? degraded : o.pieces)
           r.pieces.push_back(problem_.simulation().garment().pattern.pieces[static_cast<size_t>(k)].name);

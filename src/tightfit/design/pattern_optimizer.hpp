@@ -28,7 +28,8 @@
 /// (DesignProblem::degraded_pieces) are remeshed (DesignProblem::remesh): the run
 /// continues from the remeshed pattern's equilibrium with an empty L-BFGS memory, and
 /// the iteration's record carries a RemeshRecord. A remeshing that fails is undone
-/// (recorded with its failure) and not tried again for 5 iterations. A checkpoint
+/// (recorded with its failure) and not tried again for 5 iterations; one that produces
+/// a NaN or infinity ends the run with a SolverError "remeshing after iteration N: …". A checkpoint
 /// written after a remeshing carries the remeshed design (RemeshedDesign); resume()
 /// restores it (DesignProblem::restore_remeshed_design) before the parameters, so the
 /// run continues on the remeshed pattern with the same coordinates and reference. The
@@ -97,7 +98,10 @@ class PatternOptimizer {
   /// `stop_requested` (polled before each iteration, after the previous one was accepted
   /// and reported, and between the trials of a line search) returns true: the state is
   /// then that of the last accepted iteration.
-  /// Throws SolverError when the starting point itself cannot be evaluated.
+  /// Throws SolverError when the starting point itself cannot be evaluated ("initial
+  /// equilibrium…: …", e.g. a state that is not finite) or a remeshing produced a
+  /// non-finite pattern ("remeshing after iteration N: …"); the state is then that of
+  /// the last accepted iteration, whose checkpoint() is still valid.
   OptimizationResult run(const IterationCallback& on_iteration = {},
                          const std::function<bool()>& stop_requested = {});
 

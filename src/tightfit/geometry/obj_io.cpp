@@ -4,6 +4,7 @@
 #include <unordered_map>
 
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/text_parsing.hpp"
@@ -146,6 +147,7 @@ ObjGroups read_obj_with_groups(const std::filesystem::path& path) { return parse
 
 void write_obj(const std::filesystem::path& path, const TriMesh& mesh) {
   write_file_atomically(path, [&](std::ostream& out) {
+    require_finite_matrix(mesh.vertices, "the vertex positions");
     out << "# tightfit triangle mesh: " << mesh.num_vertices() << " vertices, " << mesh.num_faces()
         << " faces\n";
     write_vertices(out, mesh);
@@ -164,6 +166,7 @@ void write_obj_with_groups(const std::filesystem::path& path, const ObjGroups& g
     if (name.find_first_of("\r\n") != std::string::npos)
       throw std::invalid_argument("write_obj_with_groups: group name with a line break");
   write_file_atomically(path, [&](std::ostream& out) {
+    require_finite_matrix(mesh.vertices, "the vertex positions");
     out << "# tightfit triangle mesh with " << ng << " groups\n";
     write_vertices(out, mesh);
     int current = -1;

@@ -2,6 +2,7 @@
 #include <ostream>
 
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/text_parsing.hpp"
@@ -85,6 +86,7 @@ TriMesh read_off(const std::filesystem::path& path) {
 
 void write_off(const std::filesystem::path& path, const TriMesh& mesh) {
   write_file_atomically(path, [&](std::ostream& out) {
+    require_finite_matrix(mesh.vertices, "the vertex positions");
     out << "OFF\n" << mesh.num_vertices() << ' ' << mesh.num_faces() << " 0\n";
     for (int i = 0; i < mesh.num_vertices(); ++i)
       out << text::format_double(mesh.vertices(i, 0)) << ' '

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/text_parsing.hpp"
@@ -432,6 +433,11 @@ void write_ply(const std::filesystem::path& path, const TriMesh& mesh,
   write_file_atomically(
       path,
       [&](std::ostream& out) {
+        require_finite_matrix(mesh.vertices, "the vertex positions");
+        for (const auto& f : attributes.vertex_fields)
+          require_finite_matrix(f.values, "the vertex field '" + f.name + "'");
+        for (const auto& f : attributes.face_fields)
+          require_finite_matrix(f.values, "the face field '" + f.name + "'");
         out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\n"
             << "comment written by tightfit\n"
             << "element vertex " << nv << '\n'

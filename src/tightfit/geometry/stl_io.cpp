@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/text_parsing.hpp"
@@ -150,6 +151,7 @@ void write_stl(const std::filesystem::path& path, const TriMesh& mesh) {
   write_file_atomically(
       path,
       [&](std::ostream& out) {
+        require_finite_matrix(mesh.vertices, "the vertex positions");
         std::string header = "binary STL written by tightfit";
         header.resize(80, ' ');
         out.write(header.data(), 80);

@@ -2,6 +2,7 @@
 #include <ostream>
 
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 #include "tightfit/geometry/text_parsing.hpp"
@@ -119,6 +120,7 @@ TetMesh read_tetgen(const std::filesystem::path& path) {
 void write_tetgen(const std::filesystem::path& path, const TetMesh& mesh) {
   const auto base = base_of(path);
   write_file_atomically(with_suffix(base, ".node"), [&](std::ostream& out) {
+    require_finite_matrix(mesh.vertices, "the node positions");
     out << mesh.num_vertices() << " 3 0 0\n";
     for (int i = 0; i < mesh.num_vertices(); ++i)
       out << i << ' ' << text::format_double(mesh.vertices(i, 0)) << ' '

@@ -62,7 +62,8 @@ struct FaceField {
   std::string name;  ///< [A-Za-z0-9_]+, unique within its mesh (e.g. "pressure_pa")
   std::string unit;  ///< "Pa", "mmHg", "N", "" for dimensionless, ...
   /// num_faces × components: one row per face, 1 column for a scalar, 3 for a 3D
-  /// vector. NaN marks a face without a value.
+  /// vector. NaN marks a face without a value (no writer puts one in a file:
+  /// common/finite_output.hpp).
   MatX values;
 
   int components() const { return static_cast<int>(values.cols()); }
@@ -80,6 +81,9 @@ struct FitRegion {
 };
 
 struct FitView {
+  /// The body's up direction in the scene's frame (io/body_up.hpp); the glb turns it
+  /// onto glTF's +y.
+  Vec3 up = Vec3::UnitY();
   TriMesh body;                           ///< deformed body surface (m)
   std::vector<FaceField> body_fields;     ///< per body face; may be empty
   TriMesh garment;                        ///< garment in 3D (m), welded across seams

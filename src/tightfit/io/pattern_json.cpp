@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/json_fields.hpp"
 #include "tightfit/io/pattern_drawing.hpp"
 #include "tightfit/io/pattern_validate.hpp"
@@ -177,7 +178,7 @@ void write_pieces_json(const Pattern& pattern, const PatternExportOptions& optio
     pinned.push_back(side);
   }
   root["pinned"] = pinned;
-  write_text_atomically(path, root.dump(1) + "\n");
+  write_json_atomically(path, root, 1);
 }
 
 Pattern read_pieces_json(const std::filesystem::path& path) {

@@ -3,6 +3,8 @@
 #include <bit>
 #include <stdexcept>
 
+#include "tightfit/common/finite_output.hpp"
+
 namespace tightfit {
 
 namespace {
@@ -50,6 +52,7 @@ std::string base64_encode(std::string_view bytes) {
 }
 
 std::string base64_float32(const std::vector<double>& values) {
+  require_finite_values(values.data(), values.size(), "a float32 array of the report data");
   std::string bytes;
   bytes.reserve(4 * values.size());
   for (const double v : values)
@@ -68,6 +71,7 @@ std::string base64_uint32(const std::vector<std::int64_t>& values) {
 }
 
 std::string json_for_script(const nlohmann::json& json) {
+  require_finite_json(json);
   std::string text = json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   // '<' only occurs inside JSON strings, where the escape u+003C is the same character.
   replace_all(text, "<", "\\u003c");

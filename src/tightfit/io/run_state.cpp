@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "tightfit/common/atomic_file.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/json_fields.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
@@ -201,7 +202,7 @@ RunState run_state_from_json(const nlohmann::json& j, const std::string& source)
 }
 
 void write_run_state(const std::filesystem::path& file, const RunState& state) {
-  write_text_atomically(file, run_state_json(state).dump() + "\n");
+  write_json_atomically(file, run_state_json(state));
 }
 
 RunState read_run_state(const std::filesystem::path& file) {
