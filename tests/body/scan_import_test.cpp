@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "support/cli_run.hpp"
+#include "support/sphere_mesh.hpp"
 #include "tightfit/body/generators.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_components.hpp"
@@ -15,15 +16,6 @@
 
 namespace tightfit {
 namespace {
-
-TriMesh sphere_at(double radius, const Vec3& center, double edge) {
-  SphereParams p;
-  p.radius = radius;
-  p.center = center;
-  p.edge_length = edge;
-  p.fit_limit = false;
-  return sphere_surface(p);
-}
 
 /// `parts` stacked into one mesh.
 TriMesh join(const std::vector<TriMesh>& parts) {
@@ -46,7 +38,7 @@ TriMesh join(const std::vector<TriMesh>& parts) {
 }
 
 TEST(ScanImport, ComponentsAreSplitAndRenumbered) {
-  const TriMesh big = sphere_at(0.1, Vec3::Zero(), 0.03), small = sphere_at(0.02, Vec3(1, 0, 0), 0.01);
+  const TriMesh big = test::sphere_mesh(0.1, Vec3::Zero(), 0.03), small = test::sphere_mesh(0.02, Vec3(1, 0, 0), 0.01);
   const std::vector<MeshComponent> parts = connected_components(join({small, big}));
   ASSERT_EQ(parts.size(), 2u);
   EXPECT_EQ(parts[0].mesh.num_faces(), std::max(big.num_faces(), small.num_faces()));
@@ -58,10 +50,10 @@ TEST(ScanImport, ComponentsAreSplitAndRenumbered) {
 }
 
 TEST(ScanImport, KeepsTheLargestClosedPartWithAWarning) {
-  const TriMesh body = sphere_at(0.1, Vec3::Zero(), 0.02);
-  const TriMesh blob = sphere_at(0.03, Vec3(0.5, 0, 0), 0.01);
+  const TriMesh body = test::sphere_mesh(0.1, Vec3::Zero(), 0.02);
+  const TriMesh blob = test::sphere_mesh(0.03, Vec3(0.5, 0, 0), 0.01);
   // An open sheet with more faces than the body: a floor scanned along.
-  TriMesh sheet = sphere_at(0.3, Vec3(0, -2, 0), 0.01);
+  TriMesh sheet = test::sphere_mesh(0.3, Vec3(0, -2, 0), 0.01);
   sheet.faces.conservativeResize(sheet.num_faces() - 1, 3);
   std::vector<std::string> warnings;
   const TriMesh kept = keep_largest_closed_component(join({blob, sheet, body}), "scan.obj", warnings);
@@ -111,7 +103,7 @@ TEST(ScanImport, BodyCommandReadsABodyInMillimetres) {
                    ("tightfit_scan_import_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  TriMesh sphere = sphere_at(0.2, Vec3::Zero(), 0.04);
+  TriMesh sphere = test::sphere_mesh(0.2, Vec3::Zero(), 0.04);
   sphere.vertices *= 1000.0;  // a 400 mm ball
   write_tri_mesh(dir / "ball_mm.obj", sphere);
   const test::CliRun r = test::run_cli("body --mesh " + (dir / "ball_mm.obj").string() +
@@ -124,7 +116,7 @@ TEST(ScanImport, BodyCommandReadsABodyInMillimetres) {
       (built.vertices.colwise().maxCoeff() - built.vertices.colwise().minCoeff()).maxCoeff();
   EXPECT_NEAR(extent, 0.4, 0.02);
   // 200 units is ambiguous (a 2 m body in cm, a 0.2 m part in mm): "units" settles it.
-  TriMesh small = sphere_at(0.1, Vec3::Zero(), 0.02);
+  TriMesh small = test::sphere_mesh(0.1, Vec3::Zero(), 0.02);
   small.vertices *= 1000.0;
   write_tri_mesh(dir / "small_mm.obj", small);
   const std::string args = "body --mesh " + (dir / "small_mm.obj").string() +

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "support/cli_run.hpp"
+#include "support/sphere_mesh.hpp"
 #include "tightfit/body/generators.hpp"
 #include "tightfit/body/scan_import.hpp"
 #include "tightfit/common/error.hpp"
@@ -14,15 +15,6 @@
 
 namespace tightfit {
 namespace {
-
-TriMesh ball(double radius, double edge, const Vec3& center = Vec3::Zero()) {
-  SphereParams p;
-  p.radius = radius;
-  p.center = center;
-  p.edge_length = edge;
-  p.fit_limit = false;
-  return sphere_surface(p);
-}
 
 TriMesh legs_body() {
   return read_tri_mesh(std::filesystem::path(TIGHTFIT_DATA_DIR) / "bodies/mh_legs_male.obj");
@@ -119,7 +111,7 @@ TEST(ScanRepair, AFilledHoleIsRefinedAndFaired) {
   // vertices inside, faired onto the sphere's curvature, much closer to it than a flat
   // patch through the rim (its centre is that far off).
   const double radius = 0.2;
-  const TriMesh sphere = ball(radius, 0.008);
+  const TriMesh sphere = test::sphere_mesh(radius, Vec3::Zero(), 0.008);
   int top = 0;
   for (int v = 0; v < sphere.num_vertices(); ++v)
     if (sphere.vertices(v, 2) > sphere.vertices(top, 2)) top = v;
@@ -141,7 +133,7 @@ TEST(ScanRepair, AFilledHoleIsRefinedAndFaired) {
 }
 
 TEST(ScanRepair, DuplicateVerticesAndFacesAreMerged) {
-  const TriMesh sphere = ball(0.1, 0.02);
+  const TriMesh sphere = test::sphere_mesh(0.1, Vec3::Zero(), 0.02);
   std::vector<std::string> warnings;
   const TriMesh repaired = repair_mesh_elements(as_soup(sphere), "scan.stl", warnings);
   EXPECT_EQ(repaired.num_vertices(), sphere.num_vertices());
@@ -160,11 +152,11 @@ TEST(ScanRepair, DuplicateVerticesAndFacesAreMerged) {
 
 TEST(ScanRepair, NonManifoldVertexIsSplitAndTheLargerPartKept) {
   // Two balls touching at one shared vertex (the small one's bottom on the big one's top).
-  const TriMesh big = ball(0.1, 0.02);
+  const TriMesh big = test::sphere_mesh(0.1, Vec3::Zero(), 0.02);
   int top = 0;
   for (int v = 0; v < big.num_vertices(); ++v)
     if (big.vertices(v, 2) > big.vertices(top, 2)) top = v;
-  TriMesh small = ball(0.03, 0.01);
+  TriMesh small = test::sphere_mesh(0.03, Vec3::Zero(), 0.01);
   int bottom = 0;
   for (int v = 0; v < small.num_vertices(); ++v)
     if (small.vertices(v, 2) < small.vertices(bottom, 2)) bottom = v;
@@ -189,7 +181,7 @@ TEST(ScanRepair, NonManifoldVertexIsSplitAndTheLargerPartKept) {
 
 TEST(ScanRepair, NonManifoldEdgeIsCutAndItsFinLeftOut) {
   // A third face on an edge of the ball: a fin sticking out.
-  const TriMesh sphere = ball(0.1, 0.02);
+  const TriMesh sphere = test::sphere_mesh(0.1, Vec3::Zero(), 0.02);
   TriMesh fin = sphere;
   const int a = sphere.faces(0, 0), b = sphere.faces(0, 1);
   const Vec3 tip = 0.5 * (sphere.vertices.row(a) + sphere.vertices.row(b)) * 1.3;
@@ -206,13 +198,13 @@ TEST(ScanRepair, NonManifoldEdgeIsCutAndItsFinLeftOut) {
 }
 
 TEST(ScanRepair, UnrepairableInputsNameTheFile) {
-  TriMesh pinched = ball(0.1, 0.03);
+  TriMesh pinched = test::sphere_mesh(0.1, Vec3::Zero(), 0.03);
   pinched.faces.col(1) = pinched.faces.col(0);  // every face has a repeated corner
   std::vector<std::string> warnings;
   std::string message = input_error([&] { import_scan(pinched, "scan.obj", 0.0, warnings); });
   EXPECT_TRUE(contains(message, "scan.obj: no face is left after removing duplicate faces"))
       << message;
-  TriMesh broken = ball(0.1, 0.03);
+  TriMesh broken = test::sphere_mesh(0.1, Vec3::Zero(), 0.03);
   broken.vertices(3, 1) = std::nan("");
   message = input_error([&] { import_scan(broken, "scan.obj", 0.0, warnings); });
   EXPECT_TRUE(contains(message, "scan.obj: vertex 3 has a coordinate that is not a finite number"))
@@ -230,12 +222,12 @@ TEST(ScanRepair, AHoleTooLargeToFillIsAnError) {
       << message;
   EXPECT_TRUE(contains(message, "holes are filled up to a boundary of 0.2")) << message;
   // A small ball whose top third is missing: no closed part is kept in its place.
-  const TriMesh cap = without_faces(ball(0.1, 0.02), [](const Vec3& p) { return p.z() > 0.05; });
+  const TriMesh cap = without_faces(test::sphere_mesh(0.1, Vec3::Zero(), 0.02), [](const Vec3& p) { return p.z() > 0.05; });
   EXPECT_THROW(import_scan(cap, "x", 0.0, warnings), InputError);
 }
 
 TEST(ScanRepair, InsideOutSurfaceIsTurned) {
-  TriMesh sphere = ball(0.1, 0.03);
+  TriMesh sphere = test::sphere_mesh(0.1, Vec3::Zero(), 0.03);
   const double volume = signed_volume(sphere);
   sphere.faces.col(1).swap(sphere.faces.col(2));
   std::vector<std::string> warnings;
@@ -251,7 +243,7 @@ TEST(ScanRepair, BodyCommandRepairsAScan) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   // A ball of 0.2 m without the faces around its top vertex.
-  const TriMesh sphere = ball(0.2, 0.02);
+  const TriMesh sphere = test::sphere_mesh(0.2, Vec3::Zero(), 0.02);
   int top = 0;
   for (int v = 0; v < sphere.num_vertices(); ++v)
     if (sphere.vertices(v, 2) > sphere.vertices(top, 2)) top = v;
