@@ -200,6 +200,33 @@ TEST_F(OptimizeCli, ResumeContinuesFromTheCheckpoint) {
   }
 }
 
+TEST_F(OptimizeCli, AFailedInitialEquilibriumIsKeptWhereTheUserAsked) {
+  // A force tolerance no solve reaches: the initial equilibrium fails (exit 3, naming the
+  // stage), and --keep-failed holds its last state with the unbalanced force per vertex.
+  nlohmann::json s = stretch_scene(2);
+  s["solver"] = {{"max_iterations", 2}, {"relative_force_tolerance", 1e-30},
+                 {"absolute_force_tolerance", 1e-30}};
+  const fs::path scene = write_scene("failing.json", s);
+  const fs::path out = dir_ / "out", kept = dir_ / "kept";
+  CliRun r = run_cli("optimize " + scene.string() + " --out " + out.string() + " --keep-failed " +
+                     kept.string());
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("optimize failed during the start of the run"), std::string::npos)
+      << r.output;
+  for (const char* name : {"garment_residual.ply", "body_residual.ply", "report.html",
+                           "result.json", "state.json"})
+    EXPECT_TRUE(fs::exists(kept / name)) << name;
+  const nlohmann::json result = read_json(kept / "result.json");
+  EXPECT_FALSE(result["newton"]["converged"].get<bool>());
+  EXPECT_GT(result["failure"]["garment_residual_max_n"].get<double>(), 0.0);
+  EXPECT_FALSE(fs::exists(out / "checkpoint.json"));
+  // --keep-failed must not be the output folder.
+  r = run_cli("optimize " + scene.string() + " --out " + out.string() + " --keep-failed " +
+              out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--keep-failed"), std::string::npos) << r.output;
+}
+
 TEST_F(OptimizeCli, InterruptedRunWritesItsResultsAndResumes) {
   // The sphere-pressure example (about 0.7 s per iteration): interrupted with SIGINT once
   // iteration 1 is reported, it finishes the forward solve it is in, writes the outputs of the

@@ -20,6 +20,7 @@
 
 #include "cli_checks.hpp"
 #include "command_registry.hpp"
+#include "kept_failure.hpp"
 #include "tightfit/common/stopwatch.hpp"
 #include "tightfit/io/optimization_setup.hpp"
 #include "run_outputs.hpp"
@@ -86,6 +87,9 @@ void print_iteration(const OptimizationIteration& it, const std::vector<std::str
   std::fflush(stdout);
 }
 
+/// The stage of a run before its first iteration is reported (the initial equilibrium).
+constexpr const char* kStartOfRun = "the start of the run";
+
 /// The checkpoint a failed run can be resumed from (empty file: none yet).
 struct LastCheckpoint {
   fs::path file;
@@ -109,9 +113,11 @@ std::string failure_message(const std::string& stage, const std::string& what,
 }
 
 void run_optimize(const std::string& scene_file, const std::string& out_dir,
-                  const std::string& resume_dir, int max_iterations, bool force) {
+                  const std::string& resume_dir, int max_iterations, bool force,
+                  const std::string& keep_failed) {
   const auto t_start = Clock::now();
   OptimizationScene input = read_optimization_scene(scene_file);
+  check_keep_failed_folder(keep_failed, out_dir);
   if (max_iterations >= 0) input.optimization.optimizer.max_iterations = max_iterations;
   const OptimizationSpec& spec = input.optimization;
   const fs::path out(out_dir);
@@ -157,7 +163,7 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
   // A solver failure from here on (a non-finite state, a NaN refused by a writer, see
   // common/finite_output.hpp) names the stage it happened in and the last good
   // checkpoint, the one a --resume continues from.
-  std::string stage = "the start of the run";
+  std::string stage = kStartOfRun;
   LastCheckpoint last;
   if (!resume_dir.empty())
     last = {fs::path(resume_dir) / "checkpoint.json", optimizer.checkpoint().iteration, true};
@@ -248,6 +254,15 @@ void run_optimize(const std::string& scene_file, const std::string& out_dir,
       throw Interrupted{signal};
     }
   } catch (const SolverError& e) {
+    // The initial equilibrium is the one forward solve whose failure ends a run (later
+    // trials back off): keep its last state where the user asked.
+    if (!keep_failed.empty() && stage == kStartOfRun) {
+      try {
+        report_kept_failure(keep_failed, force, scene_file, *scene, *sim, e.what());
+      } catch (const std::exception& kept) {
+        std::printf("  the failed state could not be kept: %s\n", kept.what());
+      }
+    }
     throw SolverError(failure_message(stage, e.what(), last, scene_file));
   }
 }
@@ -278,8 +293,13 @@ const CommandRegistration kOptimize{
                       "Stop after this many L-BFGS iterations (overrides the scene's "
                       "optimize/max_iterations)")
           ->check(non_negative_number());
-      cmd->callback([scene, out, resume, max_iterations, force] {
-        run_optimize(*scene, *out, *resume, *max_iterations, *force);
+      auto keep_failed = std::make_shared<std::string>();
+      cmd->add_option("--keep-failed", *keep_failed,
+                      "When the initial equilibrium does not converge, write its last state to "
+                      "this folder: the fit outputs and garment_residual.ply / "
+                      "body_residual.ply (unbalanced force per vertex, N)");
+      cmd->callback([scene, out, resume, max_iterations, force, keep_failed] {
+        run_optimize(*scene, *out, *resume, *max_iterations, *force, *keep_failed);
       });
     }};
 

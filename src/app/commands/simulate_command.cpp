@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "command_registry.hpp"
+#include "kept_failure.hpp"
 #include "run_outputs.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/output_directory.hpp"
@@ -22,59 +23,11 @@ using Clock = SteadyClock;
 
 double energy_of(const Energy* e, const VecX& x) { return e ? e->value(x) : 0.0; }
 
-/// A per-vertex force map as PLY vertex fields: |f| (N) and f (N, 3 columns).
-PlyAttributes force_fields(const Points3& forces) {
-  PlyAttributes a;
-  a.vertex_fields.push_back({"residual_n", forces.rowwise().norm()});
-  a.vertex_fields.push_back({"residual_force", forces});
-  return a;
-}
-
-/// Writes the last state of a failed solve into `dir`: the fit outputs at that state
-/// (report.html, garment.ply, result.json with "newton": {"converged": false, ...},
-/// state.json, ...) and garment_residual.ply / body_residual.ply with the unbalanced force
-/// per vertex. Returns the files written.
-std::vector<std::string> keep_failed_state(const std::filesystem::path& dir, bool force,
-                                           const std::string& scene_file,
-                                           const LoadedScene& scene, GarmentSimulation& sim,
-                                           const std::string& message) {
-  OutputDirectory failed(dir, force, "simulate");
-  EmbeddedEquilibrium& problem = sim.problem();
-  const VecX g = problem.gradient();
-  const Points3 garment_forces = problem.garment_residual_forces();
-  const Points3 body_forces = problem.body_residual_forces();
-  const NewtonOptions& o = sim.newton().options();
-  RunState state = make_run_state("simulate", scene.spec, sim.garment(), problem.state());
-  nlohmann::json& result = state.result;
-  result["run"] = run_identity_json("simulate");
-  result["scene"] = scene_file;
-  result["newton"] = {{"converged", false},
-                      {"message", message},
-                      {"final_force_residual_n", problem.force_norm(g)},
-                      {"force_tolerance_n", o.force_tolerance(problem.force_scale())}};
-  result["failure"] = {{"largest_force", problem.locate_largest_force(g)},
-                       {"garment_residual_max_n", garment_forces.rowwise().norm().maxCoeff()},
-                       {"body_residual_max_n", body_forces.rowwise().norm().maxCoeff()}};
-  result["compute"] = compute_json();
-  std::vector<std::string> files =
-      write_fit_run_outputs(failed.staging(), sim, sim.analyze(), scene.spec.pressure_operator, state);
-  TriMesh garment{sim.garment_positions(), sim.garment().garment_triangles};
-  write_ply(failed.file("garment_residual.ply"), garment, force_fields(garment_forces));
-  const int surface_vertices = scene.body.surface.num_vertices();
-  TriMesh body{sim.body_positions().topRows(surface_vertices), scene.body.surface.faces};
-  write_ply(failed.file("body_residual.ply"), body,
-            force_fields(body_forces.topRows(surface_vertices)));
-  return failed.commit();
-}
-
 void run_simulate(const std::string& scene_file, const std::string& out_dir,
                   const std::string& keep_failed, bool force) {
   const auto t_start = Clock::now();
   SceneSpec spec = read_scene(scene_file);  // bad input fails before the folder is touched
-  namespace fs = std::filesystem;
-  if (!keep_failed.empty() &&
-      fs::weakly_canonical(fs::absolute(keep_failed)) == fs::weakly_canonical(fs::absolute(out_dir)))
-    throw InputError("--keep-failed", "must name another folder than --out (" + out_dir + ")");
+  check_keep_failed_folder(keep_failed, out_dir);
   OutputDirectory out(out_dir, force, "simulate");
   auto scene = load_scene(std::move(spec));
   // Newton's progress, one line per step: a full-body solve takes minutes.
@@ -94,13 +47,8 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir,
   try {
     report = sim->solve();
   } catch (const SolverError& e) {
-    if (!keep_failed.empty()) {
-      for (const auto& f : keep_failed_state(keep_failed, force, scene_file, *scene, *sim, e.what()))
-        std::printf("  %s/%s\n", keep_failed.c_str(), f.c_str());
-      std::printf("  the last state of the failed solve is in %s (garment_residual.ply, "
-                  "body_residual.ply: the unbalanced force per vertex; report.html)\n",
-                  keep_failed.c_str());
-    }
+    if (!keep_failed.empty())
+      report_kept_failure(keep_failed, force, scene_file, *scene, *sim, e.what());
     throw;
   }
   const double t_solve = seconds_since(t0);
