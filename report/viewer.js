@@ -424,12 +424,15 @@ function drawPattern() {
       label.textContent = e.name;
       g.appendChild(label);
     }
-    if (p.boundary.length > 1) {
+    // The outer outline and the openings' rims.
+    for (const loop of [p.boundary, ...(p.holes ?? [])]) {
+      if (loop.length < 2) continue;
       const outline = document.createElementNS(SVG_NS, 'polygon');
-      outline.setAttribute('points', p.boundary.map((v) => pt(v).join(',')).join(' '));
+      outline.setAttribute('points', loop.map((v) => pt(v).join(',')).join(' '));
       outline.setAttribute('fill', 'none');
       outline.setAttribute('stroke', '#1d232b');
       outline.setAttribute('stroke-width', stroke * 1.5);
+      if (loop !== p.boundary) outline.setAttribute('class', 'opening-outline');
       g.appendChild(outline);
     }
     // Grain line through the piece's centre.

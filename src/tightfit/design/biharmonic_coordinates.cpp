@@ -31,7 +31,7 @@ void validate(const PatternPiece& piece) {
     throw InputError(src, "boundary loop has " + std::to_string(piece.boundary.size()) +
                               " vertices, at least 3 are needed");
   std::vector<char> seen(n, 0);
-  for (int v : piece.boundary) {
+  for (int v : piece.boundary_vertices()) {
     if (v < 0 || v >= n)
       throw InputError(
           src, "boundary vertex " + std::to_string(v) + " outside [0, " + std::to_string(n) + ")");
@@ -95,7 +95,7 @@ void weak_laplacian(const PatternPiece& piece, SparseMatrix& laplacian, VecX& ma
 }  // namespace
 
 PieceBiharmonicCoordinates::PieceBiharmonicCoordinates(const PatternPiece& piece)
-    : boundary_(piece.boundary) {
+    : boundary_(piece.boundary_vertices()) {
   validate(piece);
   const int n = static_cast<int>(piece.rest.rows());
   const int nb = static_cast<int>(boundary_.size());
@@ -163,7 +163,7 @@ BiharmonicCoordinates::BiharmonicCoordinates(const Pattern& pattern) {
   pieces_.reserve(pattern.pieces.size());
   for (const PatternPiece& piece : pattern.pieces) {
     pieces_.emplace_back(piece);
-    for (int v : piece.boundary) parameter_vertices_.push_back(offset_.back() + v);
+    for (int v : piece.boundary_vertices()) parameter_vertices_.push_back(offset_.back() + v);
     offset_.push_back(offset_.back() + static_cast<int>(piece.rest.rows()));
     parameter_offset_.push_back(static_cast<int>(parameter_vertices_.size()));
   }
@@ -182,14 +182,14 @@ BiharmonicCoordinates::BiharmonicCoordinates(const Pattern& pattern,
     const PatternPiece& piece = pattern.pieces[k];
     if (reuse[k]) {
       const PieceBiharmonicCoordinates& old = previous.piece(static_cast<int>(k));
-      if (old.num_vertices() != piece.rest.rows() || old.boundary() != piece.boundary)
+      if (old.num_vertices() != piece.rest.rows() || old.boundary() != piece.boundary_vertices())
         throw std::invalid_argument("BiharmonicCoordinates: reused piece " + piece.name +
                                     " has another mesh");
       pieces_.push_back(old);
     } else {
       pieces_.emplace_back(piece);
     }
-    for (int v : piece.boundary) parameter_vertices_.push_back(offset_.back() + v);
+    for (int v : piece.boundary_vertices()) parameter_vertices_.push_back(offset_.back() + v);
     offset_.push_back(offset_.back() + static_cast<int>(piece.rest.rows()));
     parameter_offset_.push_back(static_cast<int>(parameter_vertices_.size()));
   }

@@ -21,7 +21,8 @@
 /// constructing a new object.
 ///
 /// Parameter layout: p stacks, piece after piece, the vertices of each piece's boundary
-/// loop (PatternPiece::boundary, in loop order) as (x, y) pairs: p has 2·Σ n_b entries,
+/// loops (PatternPiece::boundary_vertices(): the outer loop, then each hole's, in loop
+/// order) as (x, y) pairs: p has 2·Σ n_b entries,
 /// parameter point j is global pattern vertex parameter_vertices()[j]. Xbar is the
 /// stacked rest positions of all pattern vertices (n_p×2, global numbering piece after
 /// piece as in Garment::piece_offset).
@@ -39,13 +40,14 @@ class PieceBiharmonicCoordinates {
   /// piece NAME") for bad indices, a boundary loop with repeated or out-of-range
   /// vertices, fewer than 3 boundary vertices, a vertex in no triangle, or a degenerate
   /// or clockwise (inverted) triangle; SolverError when Q_II is not positive definite.
-  /// Every vertex not in the boundary loop is interior (a hole's vertices too: they get
-  /// the natural boundary condition).
+  /// The vertices of every boundary loop (outer and holes) are the handles; every
+  /// other vertex is interior.
   explicit PieceBiharmonicCoordinates(const PatternPiece& piece);
 
   int num_vertices() const { return static_cast<int>(weights_.rows()); }
   int num_boundary() const { return static_cast<int>(weights_.cols()); }
-  /// The boundary loop (piece vertex indices), i.e. the columns of W.
+  /// The boundary vertices (piece vertex indices, PatternPiece::boundary_vertices()),
+  /// i.e. the columns of W.
   const std::vector<int>& boundary() const { return boundary_; }
   /// W (n × n_b, dimensionless): rest = W · boundary positions. Boundary rows are unit
   /// rows; every row sums to 1.

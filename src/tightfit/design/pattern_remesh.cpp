@@ -237,9 +237,14 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
     if (seam.a.vertices.size() != seam.b.vertices.size() || seam.a.vertices.size() < 2)
       throw InputError("pattern", "seam \"" + seam.name + "\" has sides of unequal or too few vertices");
   }
+  // A pinned boundary on a hole's rim (its first vertex is not on the outer loop).
+  auto on_hole = [&](const PinnedBoundary& pin) {
+    const Loop& loop = loops[static_cast<size_t>(pin.piece)];
+    return !pin.vertices.empty() && loop.pos[static_cast<size_t>(pin.vertices.front())] < 0;
+  };
   for (const PinnedBoundary& pin : pattern.pinned) {
     const Loop& loop = loops[static_cast<size_t>(pin.piece)];
-    if (static_cast<int>(pin.vertices.size()) == loop.size() || pin.vertices.empty()) continue;
+    if (static_cast<int>(pin.vertices.size()) == loop.size() || pin.vertices.empty() || on_hole(pin)) continue;
     const PatternPiece& piece = pattern.pieces[static_cast<size_t>(pin.piece)];
     const SideRun run = side_run(loop, SeamSide{pin.piece, pin.vertices}, piece,
                                  "pinned boundary \"" + pin.name + "\"");
@@ -419,9 +424,28 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
 
     Points2 polygon(static_cast<Eigen::Index>(boundary.size()), 2);
     for (size_t i = 0; i < boundary.size(); ++i) polygon.row(static_cast<Eigen::Index>(i)) = boundary[i].transpose();
+    // Holes keep their vertices: they follow the outer loop, in the old order.
+    std::vector<Points2> hole_polygons;
+    out.holes.clear();
+    for (const std::vector<int>& hole : piece.holes) {
+      Points2 hole_polygon(static_cast<Eigen::Index>(hole.size()), 2);
+      std::vector<int> new_hole;
+      for (size_t i = 0; i < hole.size(); ++i) {
+        hole_polygon.row(static_cast<Eigen::Index>(i)) = piece.rest.row(hole[i]);
+        o2n[static_cast<size_t>(hole[i])] = static_cast<int>(src.size());
+        new_hole.push_back(static_cast<int>(src.size()));
+        Source so;
+        so.kind = Source::kOldVertex;
+        so.from = hole[i];
+        src.push_back(so);
+      }
+      hole_polygons.push_back(std::move(hole_polygon));
+      out.holes.push_back(std::move(new_hole));
+    }
+    const auto num_loop_vertices = static_cast<Eigen::Index>(src.size());
     PieceMesh mesh;
     try {
-      mesh = mesh_piece(polygon, h, smoothing_iterations);
+      mesh = mesh_piece(polygon, hole_polygons, h, smoothing_iterations);
     } catch (const std::invalid_argument& e) {
       throw InputError(piece_source(piece), std::string("the remeshed boundary cannot be meshed (") +
                                                 e.what() + ")");
@@ -436,7 +460,7 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
     for (int corner : piece.corners)
       if (corner >= 0 && corner < static_cast<int>(o2n.size()) && o2n[static_cast<size_t>(corner)] >= 0)
         out.corners.push_back(o2n[static_cast<size_t>(corner)]);
-    for (Eigen::Index v = polygon.rows(); v < out.rest.rows(); ++v) {
+    for (Eigen::Index v = num_loop_vertices; v < out.rest.rows(); ++v) {
       Source so;
       so.kind = Source::kRestPoint;
       so.q = out.rest.row(v).transpose();
@@ -473,7 +497,9 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
       const std::vector<int>& o2n = old_to_new[static_cast<size_t>(pin.piece)];
       const int nb = static_cast<int>(next.pieces[static_cast<size_t>(pin.piece)].boundary.size());
       out.vertices.clear();
-      if (static_cast<int>(pin.vertices.size()) == loops[static_cast<size_t>(pin.piece)].size()) {
+      if (on_hole(pin)) {
+        for (int v : pin.vertices) out.vertices.push_back(o2n[static_cast<size_t>(v)]);
+      } else if (static_cast<int>(pin.vertices.size()) == loops[static_cast<size_t>(pin.piece)].size()) {
         for (int i = 0; i < nb; ++i) out.vertices.push_back(i);
       } else {
         const SideRun run = side_run(loops[static_cast<size_t>(pin.piece)], SeamSide{pin.piece, pin.vertices},

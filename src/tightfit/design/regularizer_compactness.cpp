@@ -40,24 +40,25 @@ CompactnessRegularizer::CompactnessRegularizer(const Garment& garment, Compactne
   if (options_.pair_stride < 1)
     throw std::invalid_argument("compactness: pair stride must be >= 1");
   const Points2 rest = garment.rest_positions();
-  for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k) {
-    Loop loop;
-    const int o = garment.piece_offset[k];
-    for (int v : garment.pattern.pieces[k].boundary) loop.vertices.push_back(o + v);
-    const int n = static_cast<int>(loop.vertices.size());
-    if (n < 4) continue;
-    const LoopLengths l = loop_lengths(rest, loop.vertices);
-    const int s = options_.pair_stride;
-    for (int i = 0; i < n; i += s)
-      for (int j = i + s; j < n; j += s) {
-        const int forward = j - i, backward = n - forward;
-        const bool use_forward =
-            l.prefix[j] - l.prefix[i] <= l.prefix[n] - (l.prefix[j] - l.prefix[i]);
-        Pair p{i, j, use_forward ? i : j, use_forward ? forward : backward};
-        if (p.count >= 2) loop.pairs.push_back(p);
-      }
-    loops_.push_back(std::move(loop));
-  }
+  for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k)
+    for (const std::vector<int>& piece_loop : garment.pattern.pieces[k].loops()) {
+      Loop loop;
+      const int o = garment.piece_offset[k];
+      for (int v : piece_loop) loop.vertices.push_back(o + v);
+      const int n = static_cast<int>(loop.vertices.size());
+      if (n < 4) continue;
+      const LoopLengths l = loop_lengths(rest, loop.vertices);
+      const int s = options_.pair_stride;
+      for (int i = 0; i < n; i += s)
+        for (int j = i + s; j < n; j += s) {
+          const int forward = j - i, backward = n - forward;
+          const bool use_forward =
+              l.prefix[j] - l.prefix[i] <= l.prefix[n] - (l.prefix[j] - l.prefix[i]);
+          Pair p{i, j, use_forward ? i : j, use_forward ? forward : backward};
+          if (p.count >= 2) loop.pairs.push_back(p);
+        }
+      loops_.push_back(std::move(loop));
+    }
 }
 
 void CompactnessRegularizer::check(const DesignState& state) const {

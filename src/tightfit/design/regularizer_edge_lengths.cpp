@@ -77,13 +77,14 @@ EdgeLengthDifferenceTerm seam_length_regularizer(const Garment& garment) {
 EdgeLengthDifferenceTerm even_spacing_regularizer(const Garment& garment) {
   std::vector<EdgeLengthDifferenceTerm::EdgePair> pairs;
   for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k) {
-    const std::vector<int>& loop = garment.pattern.pieces[k].boundary;
     const int o = garment.piece_offset[k];
-    const std::size_t n = loop.size();
-    if (n < 3) continue;
-    for (std::size_t i = 0; i < n; ++i) {
-      const int prev = o + loop[(i + n - 1) % n], v = o + loop[i], next = o + loop[(i + 1) % n];
-      pairs.push_back({{prev, v}, {v, next}});
+    for (const std::vector<int>& loop : garment.pattern.pieces[k].loops()) {
+      const std::size_t n = loop.size();
+      if (n < 3) continue;
+      for (std::size_t i = 0; i < n; ++i) {
+        const int prev = o + loop[(i + n - 1) % n], v = o + loop[i], next = o + loop[(i + 1) % n];
+        pairs.push_back({{prev, v}, {v, next}});
+      }
     }
   }
   return EdgeLengthDifferenceTerm("boundary spacing", std::move(pairs),

@@ -20,14 +20,15 @@ BoundarySmoothnessRegularizer::BoundarySmoothnessRegularizer(const Garment& garm
     : num_pattern_(garment.num_pattern_vertices()) {
   for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k) {
     const PatternPiece& piece = garment.pattern.pieces[k];
-    const std::vector<int>& loop = piece.boundary;
     const int o = garment.piece_offset[k];
-    const std::size_t n = loop.size();
-    if (n < 3) continue;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (std::find(piece.corners.begin(), piece.corners.end(), loop[i]) != piece.corners.end())
-        continue;
-      triples_.push_back({o + loop[(i + n - 1) % n], o + loop[i], o + loop[(i + 1) % n]});
+    for (const std::vector<int>& loop : piece.loops()) {
+      const std::size_t n = loop.size();
+      if (n < 3) continue;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (std::find(piece.corners.begin(), piece.corners.end(), loop[i]) != piece.corners.end())
+          continue;
+        triples_.push_back({o + loop[(i + n - 1) % n], o + loop[i], o + loop[(i + 1) % n]});
+      }
     }
   }
 }

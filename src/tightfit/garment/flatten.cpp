@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -153,11 +154,40 @@ DistortionReport measure_distortion(const TriMesh& mesh, const Points2& uv) {
   return r;
 }
 
+namespace {
+
+std::string format_point(const Eigen::Ref<const Eigen::RowVector3d>& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.4g, %.4g, %.4g) m", p.x(), p.y(), p.z());
+  return text;
+}
+
+/// The boundary edges (i, j) of all loops, each with the interior on its left.
+std::vector<std::pair<int, int>> loop_edges(const std::vector<std::vector<int>>& loops) {
+  std::vector<std::pair<int, int>> edges;
+  for (const auto& loop : loops) {
+    const size_t n = loop.size();
+    for (size_t k = 0; k < n; ++k) edges.emplace_back(loop[k], loop[(k + 1) % n]);
+  }
+  return edges;
+}
+
+}  // namespace
+
 Flattening flatten_disc(const TriMesh& mesh, const std::vector<int>& boundary,
                         const FlattenOptions& options) {
+  return flatten_panel(mesh, {boundary}, options);
+}
+
+Flattening flatten_panel(const TriMesh& mesh, const std::vector<std::vector<int>>& loops,
+                         const FlattenOptions& options) {
   const int n = mesh.num_vertices();
   const int nf = mesh.num_faces();
-  if (boundary.size() < 3) throw std::invalid_argument("flatten_disc: boundary loop too short");
+  if (loops.empty() || loops[0].size() < 3) throw std::invalid_argument("flatten_panel: boundary loop too short");
+  for (const auto& loop : loops)
+    if (loop.size() < 3) throw std::invalid_argument("flatten_panel: hole loop too short");
+  const std::vector<int>& boundary = loops[0];
+  const std::vector<std::pair<int, int>> edges = loop_edges(loops);
   std::vector<std::array<int, 3>> faces(nf);
   std::vector<LocalTriangle> tris(nf);
   for (int f = 0; f < nf; ++f) {
@@ -173,9 +203,8 @@ Flattening flatten_disc(const TriMesh& mesh, const std::vector<int>& boundary,
       trip.emplace_back(it.row(), c, it.value());
       trip.emplace_back(n + it.row(), n + c, it.value());
     }
-  const int nb = static_cast<int>(boundary.size());
-  for (int k = 0; k < nb; ++k) {
-    const int i = boundary[k], j = boundary[(k + 1) % nb];
+  const int nb = static_cast<int>(edges.size());
+  for (const auto& [i, j] : edges) {
     // −½ uᵀ K v with K_ij = 1, K_ji = −1, written symmetrically as [[0, −K/2], [K/2, 0]].
     trip.emplace_back(i, n + j, -0.5);
     trip.emplace_back(j, n + i, 0.5);
@@ -222,7 +251,7 @@ Flattening flatten_disc(const TriMesh& mesh, const std::vector<int>& boundary,
     std::vector<double> boundary_length(nb);
     std::vector<Triplet> lt;
     for (int k = 0; k < nb; ++k) {
-      const int i = boundary[k], j = boundary[(k + 1) % nb];
+      const auto [i, j] = edges[k];
       boundary_length[k] = (mesh.vertices.row(i) - mesh.vertices.row(j)).norm();
       lt.emplace_back(i, i, w);
       lt.emplace_back(j, j, w);
@@ -263,7 +292,7 @@ Flattening flatten_disc(const TriMesh& mesh, const std::vector<int>& boundary,
       }
       std::vector<Vec2> target(nb);
       for (int k = 0; k < nb; ++k) {
-        const Vec2 du = out.uv.row(boundary[k]) - out.uv.row(boundary[(k + 1) % nb]);
+        const Vec2 du = out.uv.row(edges[k].first) - out.uv.row(edges[k].second);
         const double len = du.norm();
         target[k] = len > 0 ? Vec2(boundary_length[k] / len * du) : Vec2::Zero();
         energy += w * (du - target[k]).squaredNorm();
@@ -281,7 +310,7 @@ Flattening flatten_disc(const TriMesh& mesh, const std::vector<int>& boundary,
           if (id[b] >= 0) rhs.row(id[b]) -= r.transpose();
         }
       for (int k = 0; k < nb; ++k) {
-        const int a = boundary[k], b = boundary[(k + 1) % nb];
+        const auto [a, b] = edges[k];
         if (id[a] >= 0) rhs.row(id[a]) += w * target[k].transpose();
         if (id[b] >= 0) rhs.row(id[b]) -= w * target[k].transpose();
       }
@@ -305,25 +334,46 @@ Flattening flatten_disc(const TriMesh& mesh, const std::vector<int>& boundary,
 }
 
 std::string find_overlap(const TriMesh& mesh, const std::vector<int>& boundary, const Points2& uv) {
+  return find_overlap(mesh, std::vector<std::vector<int>>{boundary}, uv);
+}
+
+std::string find_overlap(const TriMesh& mesh, const std::vector<std::vector<int>>& loops, const Points2& uv) {
   for (int f = 0; f < mesh.num_faces(); ++f) {
     const Vec2 a = uv.row(mesh.faces(f, 0)), b = uv.row(mesh.faces(f, 1)), c = uv.row(mesh.faces(f, 2));
     if ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() <= 0.0)
-      return "a triangle is folded over";
+      return "a triangle is folded over near " + format_point(mesh.vertices.row(mesh.faces(f, 0)));
   }
-  const int n = static_cast<int>(boundary.size());
+  const std::vector<std::pair<int, int>> edges = loop_edges(loops);
+  const size_t n = edges.size();
   std::vector<Eigen::AlignedBox2d> box(n);
-  for (int i = 0; i < n; ++i) {
-    box[i].extend(uv.row(boundary[i]).transpose());
-    box[i].extend(uv.row(boundary[(i + 1) % n]).transpose());
+  for (size_t i = 0; i < n; ++i) {
+    box[i].extend(uv.row(edges[i].first).transpose());
+    box[i].extend(uv.row(edges[i].second).transpose());
   }
-  for (int i = 0; i < n; ++i)
-    for (int j = i + 2; j < n; ++j) {
-      if (i == 0 && j == n - 1) continue;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j) {
+      const auto [a, b] = edges[i];
+      const auto [c, d] = edges[j];
+      if (a == c || a == d || b == c || b == d) continue;  // neighbours along a loop
       if (!box[i].intersects(box[j])) continue;
-      if (segments_cross(uv.row(boundary[i]), uv.row(boundary[(i + 1) % n]), uv.row(boundary[j]),
-                         uv.row(boundary[(j + 1) % n])))
-        return "its boundary crosses itself";
+      if (segments_cross(uv.row(a), uv.row(b), uv.row(c), uv.row(d)))
+        return "its boundary crosses itself: the edges near " + format_point(mesh.vertices.row(a)) + " and " +
+               format_point(mesh.vertices.row(c)) + " cross";
     }
+  // Every hole must lie inside the outer loop (folded-free maps of an annulus can put
+  // the "outer" loop inside the hole instead: a band around the body, not an opening).
+  for (size_t h = 1; h < loops.size(); ++h) {
+    const Vec2 q = uv.row(loops[h][0]);
+    bool inside = false;
+    const auto& outer = loops[0];
+    for (size_t i = 0, j = outer.size() - 1; i < outer.size(); j = i++) {
+      const Vec2 pi = uv.row(outer[i]), pj = uv.row(outer[j]);
+      if ((pi.y() > q.y()) != (pj.y() > q.y()) &&
+          q.x() < (pj.x() - pi.x()) * (q.y() - pi.y()) / (pj.y() - pi.y()) + pi.x())
+        inside = !inside;
+    }
+    if (!inside) return "an opening lies outside its outer boundary (a band around the body?)";
+  }
   return "";
 }
 

@@ -58,8 +58,19 @@ struct Flattening {
 Flattening flatten_disc(const TriMesh& mesh, const std::vector<int>& boundary,
                         const FlattenOptions& options = {});
 
+/// Flattens a disc with holes (openings): `loops[0]` is the outer boundary loop, the
+/// others the holes' loops, each with the interior on its left as seen from the front
+/// of the faces. The LSCM area term and the ARAP boundary-length term run over every
+/// loop. `flatten_disc(mesh, b)` is `flatten_panel(mesh, {b})`.
+Flattening flatten_panel(const TriMesh& mesh, const std::vector<std::vector<int>>& loops,
+                         const FlattenOptions& options = {});
+
 /// Why a flattened disc overlaps itself, or an empty string if it does not: a
 /// triangle with non-positive area, or two boundary edges that cross.
 std::string find_overlap(const TriMesh& mesh, const std::vector<int>& boundary, const Points2& uv);
+
+/// The same for a panel with holes (loops as in flatten_panel): also two edges of
+/// different loops that cross, and a hole that lies outside the outer loop.
+std::string find_overlap(const TriMesh& mesh, const std::vector<std::vector<int>>& loops, const Points2& uv);
 
 }  // namespace tightfit

@@ -46,6 +46,9 @@ struct BuildInput {
   std::vector<std::string> panel_paths;  // JSON path per panel (or the mesh source)
   /// Region-plane flags per vertex (rules layouts); empty for mesh layouts.
   std::vector<std::vector<char>> on_region_plane;
+  /// Per vertex: on the rim of one of the spec's openings (rules layouts, all 0 without
+  /// openings); empty for mesh layouts, whose inner boundary loops are all openings.
+  std::vector<char> on_opening;
 };
 
 /// Compacts the surface to the faces with a panel.
@@ -71,12 +74,80 @@ void compact(BuildInput& in, Layout& out) {
     out.face_panel.push_back(in.face_panel[keep[i]]);
     out.body_face.push_back(in.body_face.empty() ? -1 : in.body_face[keep[i]]);
   }
-  for (auto& flags : in.on_region_plane) {
+  auto compact_flags = [&](std::vector<char>& flags) {
     std::vector<char> compacted(nv, 0);
     for (int v = 0; v < in.surface.num_vertices(); ++v)
       if (new_id[v] >= 0) compacted[new_id[v]] = flags[v];
     flags = std::move(compacted);
+  };
+  for (auto& flags : in.on_region_plane) compact_flags(flags);
+  if (!in.on_opening.empty()) compact_flags(in.on_opening);
+}
+
+double face_area(const TriMesh& m, int f) {
+  const Vec3 a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), c = m.vertices.row(m.faces(f, 2));
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
+/// Openings can cut a part of a panel off the rest (the mouth cavity behind a mouth
+/// opening, the inside of a nostril): per panel, every connected part but the largest
+/// that touches an opening's rim goes with the openings (its faces get panel −1), with
+/// a warning naming the opening, the part's area and where it is.
+void drop_parts_cut_off_by_openings(const CutMesh& cut, const LayoutSpec& spec, size_t first_opening,
+                                    std::vector<int>& face_panel, std::vector<std::string>& warnings) {
+  const TriMesh& m = cut.mesh;
+  const SurfaceTopology topo(m.faces, m.num_vertices());
+  const int nf = m.num_faces();
+  std::vector<int> part(nf, -1);
+  std::vector<double> part_area;
+  std::vector<int> part_panel, part_face;
+  for (int f = 0; f < nf; ++f) {
+    if (face_panel[f] < 0 || part[f] >= 0) continue;
+    const int id = static_cast<int>(part_area.size());
+    part_area.push_back(0.0);
+    part_panel.push_back(face_panel[f]);
+    part_face.push_back(f);
+    std::vector<int> stack{f};
+    part[f] = id;
+    while (!stack.empty()) {
+      const int g = stack.back();
+      stack.pop_back();
+      part_area[id] += face_area(m, g);
+      for (int i = 0; i < 3; ++i)
+        for (int h : topo.edge_all_faces(topo.face_edge(g, i)))
+          if (part[h] < 0 && face_panel[h] == face_panel[g]) {
+            part[h] = id;
+            stack.push_back(h);
+          }
+    }
   }
+  const int np = static_cast<int>(part_area.size());
+  std::vector<int> largest(spec.panels.size(), -1);
+  for (int k = 0; k < np; ++k) {
+    int& best = largest[static_cast<size_t>(part_panel[k])];
+    if (best < 0 || part_area[k] > part_area[best]) best = k;
+  }
+  std::vector<char> drop(np, 0);
+  for (int k = 0; k < np; ++k) {
+    if (largest[static_cast<size_t>(part_panel[k])] == k) continue;
+    // The openings whose rims this part touches.
+    std::vector<char> touches(spec.openings.size(), 0);
+    for (int f = 0; f < nf; ++f)
+      if (part[f] == k)
+        for (int c = 0; c < 3; ++c)
+          for (size_t o = 0; o < spec.openings.size(); ++o)
+            if (cut.on_plane[first_opening + o][m.faces(f, c)]) touches[o] = 1;
+    std::string names;
+    for (size_t o = 0; o < spec.openings.size(); ++o)
+      if (touches[o]) names += std::string(names.empty() ? "" : ", ") + "\"" + spec.openings[o].name + "\"";
+    if (names.empty()) continue;  // not made by an opening: the topology check names it
+    warnings.push_back(spec.source + ": opening " + names + " cuts a part of " + std::to_string(part_area[k]) +
+                       " m² near " + format_point(face_centroid(m, part_face[k])) + " off panel \"" +
+                       spec.panels[part_panel[k]].name + "\"; it is left out of the garment with the opening");
+    drop[k] = 1;
+  }
+  for (int f = 0; f < nf; ++f)
+    if (part[f] >= 0 && drop[part[f]]) face_panel[f] = -1;
 }
 
 /// Directed open boundary edges of the garment (following face orientation) and the
@@ -170,7 +241,9 @@ OpenEdges assign_pins(const Layout& layout, const SurfaceTopology& topo,
   return open;
 }
 
-void check_disc(const LayoutPanel& panel, const std::string& source, const std::string& path) {
+/// Checks that a panel is a disc, possibly with holes: connected, manifold, one or more
+/// boundary loops, no handles.
+void check_panel_topology(const LayoutPanel& panel, const std::string& source, const std::string& path) {
   const std::string what = "panel \"" + panel.name + "\" is not a disc: ";
   const int nf = panel.mesh.num_faces();
   const SurfaceTopology topo(panel.mesh.faces, panel.mesh.num_vertices());
@@ -209,13 +282,36 @@ void check_disc(const LayoutPanel& panel, const std::string& source, const std::
   const auto loops = topo.boundary_loops();
   if (loops.empty())
     throw InputError(source, path + ": " + what + "it is closed (it has no boundary)");
-  if (loops.size() > 1)
-    throw InputError(source, path + ": " + what + "it has " + std::to_string(loops.size()) +
-                                 " boundary loops (a hole or a band around the body; add a divider)");
   const int euler = topo.num_vertices() - topo.num_edges() + nf;
-  if (euler != 1)
+  if (euler != 2 - static_cast<int>(loops.size()))
     throw InputError(source, path + ": " + what + "it has handles (Euler characteristic " +
                                  std::to_string(euler) + ")");
+}
+
+/// The panel's outer boundary loop: the longest (3D) loop not entirely on openings'
+/// rims (`on_opening` per layout vertex; empty: any loop), else the longest loop.
+int outer_loop(const LayoutPanel& panel, const std::vector<std::vector<int>>& loops,
+               const std::vector<char>& on_opening) {
+  int best = -1, best_any = 0;
+  double best_length = -1.0, best_any_length = -1.0;
+  for (size_t l = 0; l < loops.size(); ++l) {
+    double length = 0.0;
+    bool all_on_opening = !on_opening.empty();
+    const size_t n = loops[l].size();
+    for (size_t i = 0; i < n; ++i) {
+      length += (panel.mesh.vertices.row(loops[l][i]) - panel.mesh.vertices.row(loops[l][(i + 1) % n])).norm();
+      if (!on_opening.empty() && !on_opening[panel.surface_vertex[loops[l][i]]]) all_on_opening = false;
+    }
+    if (length > best_any_length) {
+      best_any_length = length;
+      best_any = static_cast<int>(l);
+    }
+    if (!all_on_opening && length > best_length) {
+      best_length = length;
+      best = static_cast<int>(l);
+    }
+  }
+  return best >= 0 ? best : best_any;
 }
 
 Layout build_layout(BuildInput in, const LayoutSpec& spec) {
@@ -263,26 +359,57 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
     for (size_t i = 0; i < panel.surface_face.size(); ++i)
       for (int c = 0; c < 3; ++c)
         panel.mesh.faces(static_cast<Eigen::Index>(i), c) = local[surf.faces(panel.surface_face[i], c)];
-    check_disc(panel, spec.source, in.panel_paths[p]);
+    check_panel_topology(panel, spec.source, in.panel_paths[p]);
 
     // Label the boundary edges: (neighbour panel or −1, pin or −1).
     const SurfaceTopology ptopo(panel.mesh.faces, panel.mesh.num_vertices());
-    std::vector<int> loop = ptopo.boundary_loops()[0];
-    const int n = static_cast<int>(loop.size());
-    std::vector<std::pair<int, int>> label(n);
-    for (int i = 0; i < n; ++i) {
-      const int a = panel.surface_vertex[loop[i]], b = panel.surface_vertex[loop[(i + 1) % n]];
-      const int e = topo.find_edge(a, b);
-      int other = -1;
-      for (int g : topo.edge_all_faces(e))
-        if (layout.face_panel[g] != p) other = layout.face_panel[g];
-      if (other >= 0) {
-        label[i] = {other, -1};
-      } else {
-        auto it = open.pin.find({a, b});
-        label[i] = {-1, it == open.pin.end() ? -1 : it->second};
+    const std::vector<std::vector<int>> loops = ptopo.boundary_loops();
+    auto label_loop = [&](const std::vector<int>& loop) {
+      const int n = static_cast<int>(loop.size());
+      std::vector<std::pair<int, int>> label(n);
+      for (int i = 0; i < n; ++i) {
+        const int a = panel.surface_vertex[loop[i]], b = panel.surface_vertex[loop[(i + 1) % n]];
+        const int e = topo.find_edge(a, b);
+        int other = -1;
+        for (int g : topo.edge_all_faces(e))
+          if (layout.face_panel[g] != p) other = layout.face_panel[g];
+        if (other >= 0) {
+          label[i] = {other, -1};
+        } else {
+          auto it = open.pin.find({a, b});
+          label[i] = {-1, it == open.pin.end() ? -1 : it->second};
+        }
       }
+      return label;
+    };
+    const int outer = outer_loop(panel, loops, in.on_opening);
+    for (size_t l = 0; l < loops.size(); ++l) {
+      if (static_cast<int>(l) == outer) continue;
+      const Vec3 at = panel.mesh.vertices.row(loops[l][0]).transpose();
+      if (!in.on_opening.empty())
+        for (int v : loops[l])
+          if (!in.on_opening[panel.surface_vertex[v]])
+            throw InputError(spec.source, in.panel_paths[p] + ": panel \"" + panel.name + "\" is not a disc: it has " +
+                                              std::to_string(loops.size()) +
+                                              " boundary loops, one of them near " + format_point(at) +
+                                              " not made by an opening (a band around the body? add a divider)");
+      const auto label = label_loop(loops[l]);
+      for (const auto& [other, pin] : label)
+        if (other >= 0)
+          throw InputError(spec.source, in.panel_paths[p] + ": panel \"" + panel.name + "\" surrounds panel \"" +
+                                            in.panel_names[other] + "\" (near " + format_point(at) +
+                                            "); a seam along a piece's inner boundary is not supported: "
+                                            "cut the surrounding panel with a divider through the inner one");
+      for (const auto& entry : label)
+        if (entry.second != label[0].second)
+          throw InputError(spec.source, in.panel_paths[p] + ": the opening of panel \"" + panel.name + "\" near " +
+                                            format_point(at) +
+                                            " is pinned along part of its rim only; pin the whole rim or none");
+      panel.holes.push_back({loops[l], label[0].second});
     }
+    std::vector<int> loop = loops[outer];
+    const int n = static_cast<int>(loop.size());
+    std::vector<std::pair<int, int>> label = label_loop(loop);
     int start = -1;
     for (int i = 0; i < n && start < 0; ++i)
       if (label[i] != label[(i + n - 1) % n]) start = i;
@@ -412,9 +539,11 @@ Layout layout_from_rules(const TriMesh& body_surface, const LayoutSpec& spec) {
     throw std::invalid_argument("layout_from_rules: the spec is a mesh layout");
   std::vector<LayoutPlane> planes = spec.region;
   planes.insert(planes.end(), spec.dividers.begin(), spec.dividers.end());
-  CutMesh cut = cut_by_planes(body_surface, planes);
+  CutMesh cut = cut_by_planes_and_openings(body_surface, planes, spec.openings);
   const int nr = static_cast<int>(spec.region.size());
   const int nf = cut.mesh.num_faces();
+  const size_t first_opening = planes.size();
+  std::vector<int> opening_faces(spec.openings.size(), 0);
 
   BuildInput in;
   in.face_panel.assign(nf, -1);
@@ -424,6 +553,13 @@ Layout layout_from_rules(const TriMesh& body_surface, const LayoutSpec& spec) {
     for (int k = 0; k < nr; ++k) inside = inside && cut.side[k][f] > 0;
     if (!inside) continue;
     any_region = true;
+    bool in_opening = false;
+    for (size_t o = 0; o < spec.openings.size(); ++o)
+      if (cut.side[first_opening + o][f] < 0) {
+        ++opening_faces[o];
+        in_opening = true;
+      }
+    if (in_opening) continue;
     std::vector<int> matches;
     for (size_t p = 0; p < spec.panels.size(); ++p) {
       bool ok = true;
@@ -447,6 +583,16 @@ Layout layout_from_rules(const TriMesh& body_surface, const LayoutSpec& spec) {
   }
   if (!any_region)
     throw InputError(spec.source, spec.path + "/region: no part of the body surface is on the kept side of every region plane");
+  for (size_t o = 0; o < spec.openings.size(); ++o)
+    if (opening_faces[o] == 0)
+      throw InputError(spec.source, spec.openings[o].source_path + ": opening \"" + spec.openings[o].name +
+                                        "\" cuts nothing: no part of the garment's surface lies inside its ellipsoid");
+  std::vector<std::string> warnings;
+  if (!spec.openings.empty()) drop_parts_cut_off_by_openings(cut, spec, first_opening, in.face_panel, warnings);
+  in.on_opening.assign(static_cast<size_t>(cut.mesh.num_vertices()), 0);
+  for (size_t o = 0; o < spec.openings.size(); ++o)
+    for (int v = 0; v < cut.mesh.num_vertices(); ++v)
+      if (cut.on_plane[first_opening + o][v]) in.on_opening[v] = 1;
   in.surface = std::move(cut.mesh);
   in.body_face = std::move(cut.parent_face);
   for (const auto& rule : spec.panels) {
@@ -454,7 +600,9 @@ Layout layout_from_rules(const TriMesh& body_surface, const LayoutSpec& spec) {
     in.panel_paths.push_back(rule.source_path);
   }
   in.on_region_plane.assign(cut.on_plane.begin(), cut.on_plane.begin() + nr);
-  return build_layout(std::move(in), spec);
+  Layout layout = build_layout(std::move(in), spec);
+  layout.warnings = std::move(warnings);
+  return layout;
 }
 
 Layout layout_from_groups(const TriMesh& mesh, const std::vector<int>& face_group,

@@ -4,8 +4,9 @@
 /// and which open boundaries are pinned. Built from a LayoutSpec, either by cutting the
 /// body surface with the spec's planes or from an OBJ with one group per panel.
 ///
-/// Every panel is validated: connected, manifold, a topological disc (one boundary
-/// loop, Euler characteristic 1). Seams are maximal runs of panel boundary edges shared
+/// Every panel is validated: connected, manifold, a topological disc (Euler
+/// characteristic 1) or a disc with holes made by openings (one outer boundary loop
+/// plus one loop per hole, no handles). Seams are maximal runs of panel boundary edges shared
 /// with the same other panel; a seam that is a closed loop is rejected (split one of
 /// its panels so that the seam has two ends).
 #include <string>
@@ -28,7 +29,16 @@ struct BoundarySegment {
   int pin = -1;        ///< open boundaries: index into Layout::pin_names, or −1
 };
 
-/// One panel: a disc-shaped part of the layout surface with its own vertex numbering.
+/// An opening inside a panel (a hole; e.g. a mask's eye): an open boundary loop, never
+/// part of a seam.
+struct PanelHole {
+  /// The loop in panel vertex indices, interior of the panel on its left.
+  std::vector<int> loop;
+  int pin = -1;  ///< index into Layout::pin_names when the whole rim is pinned, or −1
+};
+
+/// One panel: a disc-shaped part of the layout surface (possibly with holes made by
+/// openings) with its own vertex numbering.
 struct LayoutPanel {
   std::string name;
   TriMesh mesh;                     ///< the panel (m); faces oriented like the body
@@ -38,6 +48,7 @@ struct LayoutPanel {
   /// (interior on the left); starts at a segment corner when there is one.
   std::vector<int> boundary;
   std::vector<BoundarySegment> segments;  ///< in loop order, covering the loop
+  std::vector<PanelHole> holes;           ///< openings inside the panel
 };
 
 /// A seam: panel a's segment and panel b's segment run along the same surface
@@ -61,6 +72,9 @@ struct Layout {
   std::vector<LayoutSeam> seams;
   std::vector<std::string> pin_names; ///< one per PinRule of the spec
   double seam_tolerance = 0.05;       ///< copied from the spec
+  /// What the builder changed that the user should know (e.g. surface an opening cut
+  /// off and left out), prefixed with the spec source.
+  std::vector<std::string> warnings;
 };
 
 /// Cuts `body_surface` (closed, outward-oriented; m) by the spec's region planes and

@@ -61,6 +61,24 @@ PanelRule parse_panel(JsonFields& f, const std::vector<LayoutPlane>& dividers) {
   return rule;
 }
 
+LayoutOpening parse_opening(JsonFields& f) {
+  LayoutOpening opening;
+  opening.source_path = f.path();
+  opening.name = f.string("name");
+  if (opening.name.empty()) f.fail("empty name", "name");
+  opening.center = f.vec3("center");
+  const bool sphere = f.has("radius"), ellipsoid = f.has("radii");
+  if (sphere == ellipsoid) f.fail("give exactly one of \"radius\" and \"radii\"");
+  if (sphere) {
+    opening.radii = Vec3::Constant(f.positive("radius"));
+  } else {
+    opening.radii = f.vec3("radii");
+    if (!(opening.radii.minCoeff() > 0)) f.fail("every semi-axis must be positive (m)", "radii");
+  }
+  f.finish();
+  return opening;
+}
+
 PinRule parse_pin(JsonFields& f, const LayoutSpec& spec) {
   PinRule pin;
   pin.source_path = f.path();
@@ -107,7 +125,7 @@ LayoutSpec parse_layout_spec(JsonFields& f, const std::string& base_dir) {
     std::filesystem::path p(mesh);
     if (p.is_relative() && !base_dir.empty()) p = std::filesystem::path(base_dir) / p;
     spec.mesh_file = p.string();
-    for (const char* key : {"region", "dividers", "panels"})
+    for (const char* key : {"region", "dividers", "panels", "openings"})
       if (f.has(key)) f.fail("not allowed together with \"mesh\"", key);
     spec.weld_tolerance = f.positive("weld_tolerance", spec.weld_tolerance, true);
   } else {
@@ -124,6 +142,12 @@ LayoutSpec parse_layout_spec(JsonFields& f, const std::string& base_dir) {
         pf.fail("duplicate panel name \"" + spec.panels.back().name + "\"", "name");
     }
     if (spec.panels.empty()) f.fail("at least one panel is needed", "panels");
+    std::set<std::string> opening_names;
+    for (auto& of : f.objects("openings")) {
+      spec.openings.push_back(parse_opening(of));
+      if (!opening_names.insert(spec.openings.back().name).second)
+        of.fail("duplicate opening name \"" + spec.openings.back().name + "\"", "name");
+    }
   }
   std::set<std::string> pin_names;
   for (auto& pf : f.objects("pinned")) {

@@ -57,6 +57,27 @@ struct LayoutPlane {
   double distance(const Vec3& x) const { return normal.dot(x - point); }
 };
 
+/// An ellipsoidal opening cut out of a rules layout: the surface where
+/// Σ_k ((x_k − center_k) / radii_k)² < 1 is removed.
+struct LayoutOpening {
+  std::string name;
+  Vec3 center = Vec3::Zero();  ///< m
+  Vec3 radii = Vec3::Ones();   ///< semi-axes along the body's x, y, z (m, > 0)
+  std::string source_path;     ///< JSON path, for error messages
+
+  /// A signed, length-like level function: (|D⁻¹(x − center)| − 1) · min(radii),
+  /// negative inside, zero on the ellipsoid, ≈ the distance (m) near it.
+  double level(const Vec3& x) const {
+    return ((x - center).cwiseQuotient(radii).norm() - 1.0) * radii.minCoeff();
+  }
+  /// Gradient of level() at x (x ≠ center).
+  Vec3 level_gradient(const Vec3& x) const {
+    const Vec3 y = (x - center).cwiseQuotient(radii);
+    const double r = y.norm();
+    return r > 0 ? Vec3(y.cwiseQuotient(radii) / r * radii.minCoeff()) : Vec3::Zero();
+  }
+};
+
 /// A panel of a rules layout: the region part on the given sides of some dividers.
 struct PanelRule {
   std::string name;
@@ -84,6 +105,7 @@ struct LayoutSpec {
   std::vector<LayoutPlane> region;
   std::vector<LayoutPlane> dividers;
   std::vector<PanelRule> panels;
+  std::vector<LayoutOpening> openings;   ///< rules layouts only
   std::string mesh_file;                 ///< OBJ layout (resolved path); empty for rules
   std::vector<PinRule> pins;
   double seam_tolerance = 0.05;          ///< relative seam side length difference

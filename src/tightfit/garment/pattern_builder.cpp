@@ -174,6 +174,39 @@ std::vector<BoundarySample> sample_segment(const LayoutPanel& panel, const Bound
   return out;
 }
 
+/// Samples at 3D arc-length fractions k/n, k = 0..n−1, of a closed loop starting at
+/// loop[0]; sample edge e runs from loop[e] to loop[(e + 1) % size].
+std::vector<BoundarySample> sample_closed_loop(const TriMesh& mesh, const std::vector<int>& loop, int n) {
+  const int m = static_cast<int>(loop.size());
+  std::vector<double> cum(1, 0.0);
+  for (int e = 0; e < m; ++e)
+    cum.push_back(cum.back() + (mesh.vertices.row(loop[(e + 1) % m]) - mesh.vertices.row(loop[e])).norm());
+  std::vector<BoundarySample> out;
+  int e = 0;
+  for (int k = 0; k < n; ++k) {
+    const double target = cum.back() * k / n;
+    while (e + 1 < m && cum[e + 1] <= target) ++e;
+    const double len = cum[e + 1] - cum[e];
+    out.push_back({e, len > 0 ? std::clamp((target - cum[e]) / len, 0.0, 1.0) : 0.0});
+  }
+  return out;
+}
+
+/// Length (m) of a closed loop of flattened vertices after the piece's linear map.
+double flat_loop_length(const std::vector<int>& loop, const Points2& flat, const Mat2& linear) {
+  double len = 0.0;
+  for (size_t e = 0; e < loop.size(); ++e)
+    len += (linear * (flat.row(loop[(e + 1) % loop.size()]) - flat.row(loop[e])).transpose()).norm();
+  return len;
+}
+
+/// All boundary loops of a panel: the outer one, then the holes.
+std::vector<std::vector<int>> panel_loops(const LayoutPanel& panel) {
+  std::vector<std::vector<int>> loops{panel.boundary};
+  for (const PanelHole& hole : panel.holes) loops.push_back(hole.loop);
+  return loops;
+}
+
 }  // namespace
 
 PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) {
@@ -186,8 +219,9 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
   // Flatten and check each panel.
   for (int p = 0; p < np; ++p) {
     const LayoutPanel& panel = layout.panels[p];
-    Flattening flat = flatten_disc(panel.mesh, panel.boundary, options.flatten);
-    const std::string why = find_overlap(panel.mesh, panel.boundary, flat.uv);
+    const std::vector<std::vector<int>> loops = panel_loops(panel);
+    Flattening flat = flatten_panel(panel.mesh, loops, options.flatten);
+    const std::string why = find_overlap(panel.mesh, loops, flat.uv);
     if (!why.empty())
       throw InputError(layout.source, "panel \"" + panel.name + "\" overlaps itself when flattened (" + why +
                                           "); split it with a divider into less curved panels");
@@ -296,26 +330,47 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     const SurfaceTopology topo(panel.mesh.faces, panel.mesh.num_vertices());
     std::vector<PanelPoint> boundary_location;
     std::vector<Vec2> boundary_points;
+    // A sample on the panel's boundary edge i → j at parameter t.
+    auto add_sample = [&](int i, int j, double t) {
+      const int f = topo.edge_faces(topo.find_edge(i, j))[0];
+      PanelPoint loc{f, Vec3::Zero()};
+      for (int c = 0; c < 3; ++c) {
+        if (panel.mesh.faces(f, c) == i) loc.weights[c] = 1.0 - t;
+        if (panel.mesh.faces(f, c) == j) loc.weights[c] = t;
+      }
+      boundary_location.push_back(loc);
+      const Vec2 q = (1.0 - t) * map.flat.row(i).transpose() + t * map.flat.row(j).transpose();
+      boundary_points.push_back(map.linear * q + map.offset);
+    };
+    auto polygon_of = [&](size_t from) {
+      Points2 polygon(static_cast<Eigen::Index>(boundary_points.size() - from), 2);
+      for (size_t i = from; i < boundary_points.size(); ++i)
+        polygon.row(static_cast<Eigen::Index>(i - from)) = boundary_points[i].transpose();
+      return polygon;
+    };
     for (size_t ri = 0; ri < runs[p].size(); ++ri) {
       run_start[p].push_back(static_cast<int>(boundary_points.size()));
-      for (const BoundarySample& b : sample_segment(panel, runs[p][ri], count[p][ri])) {
-        const int i = loop_vertex(panel, b.edge), j = loop_vertex(panel, b.edge + 1);
-        const int f = topo.edge_faces(topo.find_edge(i, j))[0];
-        PanelPoint loc{f, Vec3::Zero()};
-        for (int c = 0; c < 3; ++c) {
-          if (panel.mesh.faces(f, c) == i) loc.weights[c] = 1.0 - b.t;
-          if (panel.mesh.faces(f, c) == j) loc.weights[c] = b.t;
-        }
-        boundary_location.push_back(loc);
-        const Vec2 q = (1.0 - b.t) * map.flat.row(i).transpose() + b.t * map.flat.row(j).transpose();
-        boundary_points.push_back(map.linear * q + map.offset);
-      }
+      for (const BoundarySample& b : sample_segment(panel, runs[p][ri], count[p][ri]))
+        add_sample(loop_vertex(panel, b.edge), loop_vertex(panel, b.edge + 1), b.t);
     }
-    Points2 polygon(static_cast<Eigen::Index>(boundary_points.size()), 2);
-    for (size_t i = 0; i < boundary_points.size(); ++i) polygon.row(static_cast<Eigen::Index>(i)) = boundary_points[i].transpose();
+    const Points2 polygon = polygon_of(0);
+    // Openings: each hole loop resampled as one closed run at the edge length.
+    std::vector<Points2> hole_polygons;
+    std::vector<std::vector<int>> hole_vertices;
+    for (const PanelHole& hole : panel.holes) {
+      const size_t from = boundary_points.size();
+      const int n_hole = std::max(3, static_cast<int>(std::lround(flat_loop_length(hole.loop, map.flat, map.linear) / h)));
+      const int m = static_cast<int>(hole.loop.size());
+      for (const BoundarySample& b : sample_closed_loop(panel.mesh, hole.loop, n_hole))
+        add_sample(hole.loop[b.edge], hole.loop[(b.edge + 1) % m], b.t);
+      hole_polygons.push_back(polygon_of(from));
+      std::vector<int> vertices(static_cast<size_t>(n_hole));
+      for (int k = 0; k < n_hole; ++k) vertices[static_cast<size_t>(k)] = static_cast<int>(from) + k;
+      hole_vertices.push_back(std::move(vertices));
+    }
     PieceMesh mesh;
     try {
-      mesh = mesh_piece(polygon, h, options.smoothing_iterations);
+      mesh = mesh_piece(polygon, hole_polygons, h, options.smoothing_iterations);
     } catch (const std::invalid_argument& e) {
       throw InputError(layout.source, "piece \"" + panel.name + "\" cannot be meshed (" + e.what() +
                                           "); try a smaller edge_length");
@@ -324,8 +379,9 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     piece.name = panel.name;
     piece.rest = std::move(mesh.vertices);
     piece.triangles = std::move(mesh.triangles);
-    const int nb = static_cast<int>(polygon.rows());
-    for (int i = 0; i < nb; ++i) piece.boundary.push_back(i);
+    for (Eigen::Index i = 0; i < polygon.rows(); ++i) piece.boundary.push_back(static_cast<int>(i));
+    piece.holes = hole_vertices;
+    const auto nb = static_cast<Eigen::Index>(boundary_points.size());
     if (runs[p].size() > 1 || runs[p][0].seam >= 0) piece.corners = run_start[p];
     piece.grain = Vec2::UnitY();
     map.location = boundary_location;
@@ -364,6 +420,10 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
       if (layout.panels[p].segments.size() == 1) v.pop_back();  // whole loop: no repeat
       out.pattern.pinned.push_back({layout.pin_names[s.pin], p, std::move(v)});
     }
+  for (int p = 0; p < np; ++p)
+    for (size_t k = 0; k < layout.panels[p].holes.size(); ++k)
+      if (const int pin = layout.panels[p].holes[k].pin; pin >= 0)
+        out.pattern.pinned.push_back({layout.pin_names[pin], p, out.pattern.pieces[p].holes[k]});
   return out;
 }
 

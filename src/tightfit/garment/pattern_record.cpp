@@ -78,6 +78,27 @@ PatternPiece read_piece(JsonFields& f) {
   if (std::set<int>(piece.boundary.begin(), piece.boundary.end()).size() != piece.boundary.size())
     f.fail("the loop repeats a vertex", "boundary");
   piece.corners = read_indices(f, "corners", n);
+  const json& holes = f.raw("holes");
+  if (!holes.is_null()) {
+    if (!holes.is_array()) f.fail("expected an array of vertex loops", "holes");
+    std::set<int> used(piece.boundary.begin(), piece.boundary.end());
+    for (size_t h = 0; h < holes.size(); ++h) {
+      const std::string path = at(f.child_path("holes"), h);
+      if (!holes[h].is_array() || holes[h].size() < 3)
+        throw InputError(f.source(), path + ": expected a loop of at least 3 vertex indices");
+      std::vector<int> loop;
+      for (size_t i = 0; i < holes[h].size(); ++i) {
+        const json& v = holes[h][i];
+        if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() >= n)
+          throw InputError(f.source(), at(path, i) + ": expected a vertex index in [0, " + std::to_string(n) + ")");
+        if (!used.insert(v.get<int>()).second)
+          throw InputError(f.source(), at(path, i) + ": vertex " + std::to_string(v.get<int>()) +
+                                           " is already on a boundary loop");
+        loop.push_back(v.get<int>());
+      }
+      piece.holes.push_back(std::move(loop));
+    }
+  }
   piece.grain = f.vec2("grain");
   if (!piece.grain.allFinite() || piece.grain.norm() == 0.0)
     f.fail("expected a finite, non-zero direction", "grain");
@@ -107,6 +128,7 @@ json pattern_record_json(const Pattern& pattern) {
                       {"rest", rows_json(p.rest)},
                       {"triangles", rows_json(p.triangles)},
                       {"boundary", p.boundary},
+                      {"holes", p.holes},
                       {"corners", p.corners},
                       {"grain", json::array({p.grain.x(), p.grain.y()})}});
   json seams = json::array();
@@ -165,7 +187,7 @@ bool same_pattern_meshes(const Pattern& a, const Pattern& b) {
     const PatternPiece& p = a.pieces[k];
     const PatternPiece& q = b.pieces[k];
     if (p.name != q.name || p.rest.rows() != q.rest.rows() || p.triangles != q.triangles ||
-        p.boundary != q.boundary || p.corners != q.corners)
+        p.boundary != q.boundary || p.holes != q.holes || p.corners != q.corners)
       return false;
   }
   for (size_t s = 0; s < a.seams.size(); ++s) {

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace tightfit {
@@ -51,19 +52,36 @@ double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
   return (a + t * ab - q).norm();
 }
 
-/// Constrained Delaunay triangulation of the boundary and the interior points; the
-/// triangles inside the polygon, each rotated to start at its smallest index, sorted.
-std::vector<std::array<int, 3>> triangulate(const std::vector<Vec2>& boundary, const std::vector<Vec2>& interior) {
-  const int nb = static_cast<int>(boundary.size());
+/// The piece's boundary loops: the outer one first, then the holes, as one list of
+/// points with the loop of each point's successor.
+struct Loops {
+  std::vector<Vec2> points;
+  std::vector<int> next;  // per point: the next point along its loop
+
+  void add(const std::vector<Vec2>& loop) {
+    const int first = static_cast<int>(points.size()), n = static_cast<int>(loop.size());
+    for (int i = 0; i < n; ++i) {
+      points.push_back(loop[i]);
+      next.push_back(first + (i + 1) % n);
+    }
+  }
+  int size() const { return static_cast<int>(points.size()); }
+};
+
+/// Constrained Delaunay triangulation of the boundary loops and the interior points;
+/// the triangles inside the piece (inside the outer loop, outside every hole), each
+/// rotated to start at its smallest index, sorted.
+std::vector<std::array<int, 3>> triangulate(const Loops& loops, const std::vector<Vec2>& interior) {
+  const int nb = loops.size();
   Cdt cdt;
   std::vector<Cdt::Vertex_handle> handles(nb);
   for (int i = 0; i < nb; ++i) {
-    handles[i] = cdt.insert(K::Point_2(boundary[i].x(), boundary[i].y()));
+    handles[i] = cdt.insert(K::Point_2(loops.points[i].x(), loops.points[i].y()));
     if (handles[i]->info().id >= 0) throw std::invalid_argument("mesh_piece: two boundary vertices coincide");
     handles[i]->info().id = i;
   }
   try {
-    for (int i = 0; i < nb; ++i) cdt.insert_constraint(handles[i], handles[(i + 1) % nb]);
+    for (int i = 0; i < nb; ++i) cdt.insert_constraint(handles[i], handles[loops.next[i]]);
   } catch (const std::exception&) {
     throw std::invalid_argument("mesh_piece: the boundary crosses itself");
   }
@@ -115,16 +133,45 @@ std::vector<std::array<int, 3>> triangulate(const std::vector<Vec2>& boundary, c
 }  // namespace
 
 PieceMesh mesh_piece(const Points2& boundary_points, double h, int smoothing_iterations) {
-  const int nb = static_cast<int>(boundary_points.rows());
-  if (nb < 3) throw std::invalid_argument("mesh_piece: a boundary needs at least 3 vertices");
+  return mesh_piece(boundary_points, {}, h, smoothing_iterations);
+}
+
+PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>& hole_points, double h,
+                     int smoothing_iterations) {
+  const int n_outer = static_cast<int>(boundary_points.rows());
+  if (n_outer < 3) throw std::invalid_argument("mesh_piece: a boundary needs at least 3 vertices");
   if (!(h > 0)) throw std::invalid_argument("mesh_piece: edge length must be positive");
-  std::vector<Vec2> boundary(nb);
-  for (int i = 0; i < nb; ++i) boundary[i] = boundary_points.row(i).transpose();
-  if (polygon_area(boundary) <= 0) throw std::invalid_argument("mesh_piece: the boundary is not counter-clockwise");
+  auto to_vector = [](const Points2& p) {
+    std::vector<Vec2> v(static_cast<size_t>(p.rows()));
+    for (Eigen::Index i = 0; i < p.rows(); ++i) v[static_cast<size_t>(i)] = p.row(i).transpose();
+    return v;
+  };
+  const std::vector<Vec2> outer = to_vector(boundary_points);
+  if (polygon_area(outer) <= 0) throw std::invalid_argument("mesh_piece: the boundary is not counter-clockwise");
+  Loops loops;
+  loops.add(outer);
+  std::vector<std::vector<Vec2>> holes;
+  for (size_t k = 0; k < hole_points.size(); ++k) {
+    const std::string which = "mesh_piece: hole " + std::to_string(k + 1);
+    if (hole_points[k].rows() < 3) throw std::invalid_argument(which + " needs at least 3 vertices");
+    holes.push_back(to_vector(hole_points[k]));
+    if (polygon_area(holes.back()) >= 0) throw std::invalid_argument(which + " is not clockwise");
+    for (const Vec2& q : holes.back())
+      if (!inside_polygon(outer, q)) throw std::invalid_argument(which + " is not inside the outer boundary");
+    loops.add(holes.back());
+  }
+  const int nb = loops.size();
+  const std::vector<Vec2>& boundary = loops.points;
+  auto in_piece = [&](const Vec2& q) {
+    if (!inside_polygon(outer, q)) return false;
+    for (const auto& hole : holes)
+      if (inside_polygon(hole, q)) return false;
+    return true;
+  };
 
   // Lattice points inside, at least h/2 from the boundary.
   Vec2 lo = boundary[0], hi = boundary[0];
-  for (const Vec2& p : boundary) {
+  for (const Vec2& p : outer) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
@@ -134,14 +181,14 @@ PieceMesh mesh_piece(const Points2& boundary_points, double h, int smoothing_ite
     const double y = lo.y() + (row + 0.5) * dy;
     for (double x = lo.x() + (row % 2 == 0 ? 0.5 : 1.0) * h; x < hi.x(); x += h) {
       const Vec2 q(x, y);
-      if (!inside_polygon(boundary, q)) continue;
+      if (!in_piece(q)) continue;
       double d = std::numeric_limits<double>::infinity();
-      for (int i = 0; i < nb && d >= 0.5 * h; ++i) d = std::min(d, segment_distance(q, boundary[i], boundary[(i + 1) % nb]));
+      for (int i = 0; i < nb && d >= 0.5 * h; ++i) d = std::min(d, segment_distance(q, boundary[i], boundary[loops.next[i]]));
       if (d >= 0.5 * h) interior.push_back(q);
     }
   }
 
-  std::vector<std::array<int, 3>> tris = triangulate(boundary, interior);
+  std::vector<std::array<int, 3>> tris = triangulate(loops, interior);
   auto point = [&](int i) -> const Vec2& { return i < nb ? boundary[i] : interior[i - nb]; };
   for (int it = 0; it < smoothing_iterations && !interior.empty(); ++it) {
     // Optimal-Delaunay step: each interior vertex to Σ|T| c_T / Σ|T| over its triangles.
@@ -173,12 +220,12 @@ PieceMesh mesh_piece(const Points2& boundary_points, double h, int smoothing_ite
       }
       if (folds) interior[v] = old;
     }
-    tris = triangulate(boundary, interior);
+    tris = triangulate(loops, interior);
   }
 
   PieceMesh out;
   out.vertices.resize(nb + static_cast<Eigen::Index>(interior.size()), 2);
-  for (int i = 0; i < nb; ++i) out.vertices.row(i) = boundary_points.row(i);
+  for (int i = 0; i < nb; ++i) out.vertices.row(i) = boundary[i].transpose();
   for (size_t i = 0; i < interior.size(); ++i) out.vertices.row(nb + static_cast<Eigen::Index>(i)) = interior[i].transpose();
   out.triangles.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (size_t i = 0; i < tris.size(); ++i)

@@ -1,10 +1,13 @@
 #pragma once
 /// Triangle meshing of a flat pattern piece with a fixed boundary.
+#include <vector>
+
 #include "tightfit/common/types.hpp"
 
 namespace tightfit {
 
-/// A meshed piece: the given boundary vertices first (same order), then interior ones.
+/// A meshed piece: the given boundary vertices first (outer loop, then each hole, in the
+/// given order), then interior ones.
 struct PieceMesh {
   Points2 vertices;     ///< n×2 (m)
   Triangles triangles;  ///< counter-clockwise
@@ -20,6 +23,14 @@ struct PieceMesh {
 /// depends only on the input numbers. Throws std::invalid_argument for fewer than 3
 /// boundary vertices or a boundary that is not a simple counter-clockwise polygon.
 PieceMesh mesh_piece(const Points2& boundary, double edge_length, int smoothing_iterations = 10);
+
+/// The same for a piece with holes (openings): `holes` are simple clockwise polygons
+/// (k_i×2, m; the piece's interior on their left, like the outer loop's) inside
+/// `boundary`, neither crossing nor touching it or each other. Throws
+/// std::invalid_argument naming the hole that is too short, counter-clockwise or
+/// outside the outer boundary, and for loops that cross or touch.
+PieceMesh mesh_piece(const Points2& boundary, const std::vector<Points2>& holes, double edge_length,
+                     int smoothing_iterations = 10);
 
 /// Minimum interior angle (degrees) over the triangles; 0 for an empty mesh.
 double min_angle_deg(const Points2& vertices, const Triangles& triangles);

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 
 namespace tightfit {
@@ -41,11 +42,48 @@ Points3 to_points(const std::vector<Vec3>& x) {
   return p;
 }
 
-void cut_one(Work& w, const LayoutPlane& plane, int k, double eps, double snap_fraction) {
+/// A cutting surface as a level set: value(x) = 0 on it, ≈ the signed distance (m) near
+/// it, positive on its "+" side.
+struct Cutter {
+  std::function<double(const Vec3&)> value;
+  std::function<Vec3(const Vec3&)> gradient;
+  bool planar = false;  ///< value is exactly affine (a plane)
+};
+
+Cutter plane_cutter(const LayoutPlane& plane) {
+  return {[plane](const Vec3& x) { return plane.distance(x); }, [plane](const Vec3&) { return plane.normal; },
+          true};
+}
+
+Cutter opening_cutter(const LayoutOpening& opening) {
+  return {[opening](const Vec3& x) { return opening.level(x); },
+          [opening](const Vec3& x) { return opening.level_gradient(x); }, false};
+}
+
+/// The point of edge a→b where the cutter's value is zero, starting from the linear
+/// interpolation of the end values (exact for planes, Newton along the edge otherwise).
+Vec3 edge_crossing(const Cutter& cut, const Vec3& a, const Vec3& b, double da, double db) {
+  double t = da / (da - db);
+  if (cut.planar) {
+    const Vec3 p = a + t * (b - a);
+    return p - cut.value(p) * cut.gradient(p);  // exactly on the plane up to rounding
+  }
+  for (int it = 0; it < 20; ++it) {
+    const Vec3 p = a + t * (b - a);
+    const double f = cut.value(p), slope = cut.gradient(p).dot(b - a);
+    if (slope == 0.0) break;
+    const double step = f / slope;
+    t = std::clamp(t - step, 0.0, 1.0);
+    if (std::abs(step) < 1e-14) break;
+  }
+  return a + t * (b - a);
+}
+
+void cut_one(Work& w, const Cutter& cut, int k, double eps, double snap_fraction) {
   const int nv = static_cast<int>(w.x.size());
   std::vector<double> d(nv);
   for (int v = 0; v < nv; ++v) {
-    d[v] = plane.distance(w.x[v]);
+    d[v] = cut.value(w.x[v]);
     if (std::abs(d[v]) <= eps) {
       d[v] = 0.0;
       w.on_plane[k][v] = 1;
@@ -66,10 +104,18 @@ void cut_one(Work& w, const LayoutPlane& plane, int k, double eps, double snap_f
     for (int v = 0; v < nv; ++v) {
       if (!snap[v]) continue;
       const Vec3 n = normals.row(v).transpose();
-      const Vec3 dir = plane.normal - plane.normal.dot(n) * n;
-      const double along = plane.normal.dot(dir);
-      if (along < 0.25) continue;  // plane nearly tangent to the surface here
-      w.x[v] -= (d[v] / along) * dir;
+      const Vec3 g = cut.gradient(w.x[v]);
+      const Vec3 dir = g - g.dot(n) * n;
+      const double along = g.dot(dir);
+      if (!(along >= 0.25 * g.squaredNorm())) continue;  // cut nearly tangent to the surface here
+      // Along the tangent direction onto the cut (one step for a plane, Newton otherwise).
+      Vec3 x = w.x[v];
+      for (int it = 0; it < (cut.planar ? 1 : 10); ++it) {
+        const double slope = cut.gradient(x).dot(dir);
+        if (!(slope > 0)) break;
+        x -= (cut.value(x) / slope) * dir;
+      }
+      w.x[v] = x;
       d[v] = 0.0;
       w.on_plane[k][v] = 1;
     }
@@ -80,9 +126,7 @@ void cut_one(Work& w, const LayoutPlane& plane, int k, double eps, double snap_f
     const auto key = std::minmax(a, b);
     auto it = split.find(key);
     if (it != split.end()) return it->second;
-    const double t = d[a] / (d[a] - d[b]);
-    Vec3 p = w.x[a] + t * (w.x[b] - w.x[a]);
-    p -= plane.distance(p) * plane.normal;  // exactly on the plane up to rounding
+    const Vec3 p = edge_crossing(cut, w.x[a], w.x[b], d[a], d[b]);
     const int id = static_cast<int>(w.x.size());
     w.x.push_back(p);
     for (size_t j = 0; j < w.on_plane.size(); ++j)
@@ -143,6 +187,14 @@ void cut_one(Work& w, const LayoutPlane& plane, int k, double eps, double snap_f
 
 CutMesh cut_by_planes(const TriMesh& mesh, const std::vector<LayoutPlane>& planes,
                       double snap_fraction) {
+  return cut_by_planes_and_openings(mesh, planes, {}, snap_fraction);
+}
+
+CutMesh cut_by_planes_and_openings(const TriMesh& mesh, const std::vector<LayoutPlane>& planes,
+                                   const std::vector<LayoutOpening>& openings, double snap_fraction) {
+  std::vector<Cutter> cutters;
+  for (const auto& plane : planes) cutters.push_back(plane_cutter(plane));
+  for (const auto& opening : openings) cutters.push_back(opening_cutter(opening));
   Work w;
   const int nv = mesh.num_vertices();
   w.x.resize(nv);
@@ -153,13 +205,13 @@ CutMesh cut_by_planes(const TriMesh& mesh, const std::vector<LayoutPlane>& plane
     w.faces[f] = {mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)};
     w.parent[f] = f;
   }
-  w.on_plane.assign(planes.size(), std::vector<char>(nv, 0));
+  w.on_plane.assign(cutters.size(), std::vector<char>(nv, 0));
   double diag = 0.0;
   if (nv > 0)
     diag = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
   const double eps = 1e-10 * std::max(diag, 1e-3);
-  for (size_t k = 0; k < planes.size(); ++k)
-    cut_one(w, planes[k], static_cast<int>(k), eps, snap_fraction);
+  for (size_t k = 0; k < cutters.size(); ++k)
+    cut_one(w, cutters[k], static_cast<int>(k), eps, snap_fraction);
 
   CutMesh out;
   out.mesh.vertices = to_points(w.x);
@@ -168,12 +220,12 @@ CutMesh cut_by_planes(const TriMesh& mesh, const std::vector<LayoutPlane>& plane
     for (int i = 0; i < 3; ++i) out.mesh.faces(static_cast<Eigen::Index>(f), i) = w.faces[f][i];
   out.parent_face = std::move(w.parent);
   out.on_plane = std::move(w.on_plane);
-  out.side.assign(planes.size(), std::vector<signed char>(w.faces.size(), 1));
-  for (size_t k = 0; k < planes.size(); ++k)
+  out.side.assign(cutters.size(), std::vector<signed char>(w.faces.size(), 1));
+  for (size_t k = 0; k < cutters.size(); ++k)
     for (size_t f = 0; f < w.faces.size(); ++f) {
       double s = 0.0;
       for (int i = 0; i < 3; ++i)
-        if (!out.on_plane[k][w.faces[f][i]]) s += planes[k].distance(w.x[w.faces[f][i]]);
+        if (!out.on_plane[k][w.faces[f][i]]) s += cutters[k].value(w.x[w.faces[f][i]]);
       out.side[k][f] = s < 0.0 ? -1 : 1;
     }
   return out;

@@ -1,5 +1,5 @@
 #pragma once
-/// Cutting a triangle surface by planes so that every plane crossing becomes a polyline
+/// Cutting a triangle surface by planes (and ellipsoids) so that every crossing becomes a polyline
 /// of mesh edges: new vertices are inserted exactly on the planes and the crossed
 /// triangles are split. Used to cut garment panels out of the body surface.
 #include <vector>
@@ -27,5 +27,11 @@ struct CutMesh {
 /// placed on an earlier plane, and only when the plane is not nearly tangent there).
 CutMesh cut_by_planes(const TriMesh& mesh, const std::vector<LayoutPlane>& planes,
                       double snap_fraction = 0.1);
+
+/// The same, then by each opening's ellipsoid: `on_plane` and `side` have the planes'
+/// entries first, then one per opening (side −1: inside the opening). New vertices of
+/// an opening lie on its ellipsoid to round-off (Newton along the crossed edge).
+CutMesh cut_by_planes_and_openings(const TriMesh& mesh, const std::vector<LayoutPlane>& planes,
+                                   const std::vector<LayoutOpening>& openings, double snap_fraction = 0.1);
 
 }  // namespace tightfit

@@ -59,7 +59,7 @@ void validate_pattern_mapping(const FitView& view, const std::string& source) {
         (piece.triangles.minCoeff() < 0 || piece.triangles.maxCoeff() >= n)) {
       throw InputError(source, name + " has a triangle index outside its vertices");
     }
-    for (const int v : piece.boundary) {
+    for (const int v : piece.boundary_vertices()) {
       if (v < 0 || v >= n)
         throw InputError(source, name + " has a boundary index outside its vertices");
     }

@@ -157,6 +157,10 @@ std::vector<PieceDrawing> draw_pattern_pieces(const Pattern& pattern,
                        : "Seam allowance " + format_mm(options.seam_allowance * kMmPerM) +
                              " mm included";
     for (int v : piece.boundary) d.sew_line.push_back(rest_mm(piece, v));
+    for (const std::vector<int>& hole : piece.holes) {
+      d.holes.emplace_back();
+      for (int v : hole) d.holes.back().push_back(rest_mm(piece, v));
+    }
     d.allowance.assign(piece.boundary.size(), options.seam_allowance * kMmPerM);
     indices.emplace_back(piece);
   }

@@ -32,6 +32,9 @@ struct PieceDrawing {
   std::vector<double> allowance;
   /// mm, counter-clockwise, outward offset of the sew line by the allowances.
   Polygon2 cut_line;
+  /// mm, clockwise: the openings (rest vertices holes[h][k]); cut on their sew line,
+  /// without allowance (finished with binding, as the trade finishes mask openings).
+  std::vector<Polygon2> holes;
   std::vector<Notch> notches;
   /// mm, grain line through the centroid; the arrow points at `grain_end`.
   Vec2 grain_start = Vec2::Zero();

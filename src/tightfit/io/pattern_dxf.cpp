@@ -149,6 +149,7 @@ void write_block(DxfWriter& dxf, const PieceDrawing& piece, const std::string& n
   dxf.point(10, Vec2::Zero());
   dxf.pair(3, name);
   dxf.closed_polyline("1", piece.cut_line);
+  for (const Polygon2& hole : piece.holes) dxf.closed_polyline("1", hole);
   dxf.closed_polyline("14", piece.sew_line);
   for (const Notch& n : piece.notches) dxf.line("4", n.sew, n.cut);
   dxf.line("7", piece.grain_start, piece.grain_end);

@@ -24,6 +24,12 @@ json polygon(const Polygon2& polygon) {
   return out;
 }
 
+json openings_mm(const PieceDrawing& drawing) {
+  json out = json::array();
+  for (const Polygon2& hole : drawing.holes) out.push_back(polygon(hole));
+  return out;
+}
+
 json side_json(const Pattern& pattern, int piece, const std::vector<int>& vertices) {
   return {{"piece", piece},
           {"piece_name", pattern.pieces[static_cast<size_t>(piece)].name},
@@ -53,10 +59,12 @@ json piece_json(const PatternPiece& piece, const PieceDrawing& drawing) {
           {"rest", rest},
           {"triangles", triangles},
           {"boundary", piece.boundary},
+          {"holes", piece.holes},
           {"corners", piece.corners},
           {"grain", point(piece.grain)},
           {"sew_line_mm", polygon(drawing.sew_line)},
           {"cut_line_mm", polygon(drawing.cut_line)},
+          {"openings_mm", openings_mm(drawing)},
           {"allowance_mm", drawing.allowance},
           {"grain_line_mm", json::array({point(drawing.grain_start), point(drawing.grain_end)})},
           {"notches_mm", notches}};
@@ -118,10 +126,23 @@ PatternPiece read_piece(JsonFields& f) {
     }
   }
   piece.boundary = read_indices(f, "boundary");
+  const json& holes = f.raw("holes");
+  if (!holes.is_null()) {
+    if (!holes.is_array()) f.fail("expected an array of vertex loops", "holes");
+    for (const json& loop : holes) {
+      if (!loop.is_array()) f.fail("expected an array of vertex loops (arrays of integers)", "holes");
+      std::vector<int> vertices;
+      for (const json& v : loop) {
+        if (!v.is_number_integer()) f.fail("expected an array of vertex loops (arrays of integers)", "holes");
+        vertices.push_back(v.get<int>());
+      }
+      piece.holes.push_back(std::move(vertices));
+    }
+  }
   piece.corners = read_indices(f, "corners");
   piece.grain = f.vec2("grain");
   for (const char* derived :
-       {"sew_line_mm", "cut_line_mm", "allowance_mm", "grain_line_mm", "notches_mm"}) {
+       {"sew_line_mm", "cut_line_mm", "openings_mm", "allowance_mm", "grain_line_mm", "notches_mm"}) {
     f.raw(derived);
   }
   f.finish();

@@ -65,6 +65,10 @@ void draw_layout(cairo_t* cr, const std::vector<PieceDrawing>& pieces, const Pat
     cairo_set_line_width(cr, 0.4);
     polygon_path(cr, layout, p, piece.cut_line);
     cairo_stroke(cr);
+    for (const Polygon2& hole : piece.holes) {
+      polygon_path(cr, layout, p, hole);
+      cairo_stroke(cr);
+    }
     const double dash[] = {3.0, 1.5};
     cairo_set_dash(cr, dash, 2, 0.0);
     cairo_set_source_rgb(cr, 0.1, 0.31, 0.82);

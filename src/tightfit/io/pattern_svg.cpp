@@ -36,6 +36,8 @@ void write_piece(std::ostream& out, const PieceDrawing& piece, const PatternLayo
                  size_t p, const std::string& id, const PatternExportOptions& options) {
   out << "<g id=\"" << id << "\">\n<title>" << xml_escape(piece.name) << "</title>\n";
   out << "<path class=\"cut\" d=\"" << path_data(layout, p, piece.cut_line) << "\"/>\n";
+  for (const Polygon2& hole : piece.holes)
+    out << "<path class=\"cut opening\" d=\"" << path_data(layout, p, hole) << "\"/>\n";
   out << "<path class=\"sew\" d=\"" << path_data(layout, p, piece.sew_line) << "\"/>\n";
   out << "<g class=\"notches\">\n";
   for (const Notch& n : piece.notches) {

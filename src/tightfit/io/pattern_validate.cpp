@@ -49,6 +49,22 @@ void validate_piece(const Pattern& pattern, int p, const std::string& source,
     area2 += a.x() * b.y() - a.y() * b.x();
   }
   if (!(area2 > 0.0)) fail("boundary loop is not counter-clockwise (signed area <= 0)");
+  for (size_t h = 0; h < piece.holes.size(); ++h) {
+    const std::vector<int>& hole = piece.holes[h];
+    const std::string which = "hole " + std::to_string(h) + " ";
+    if (hole.size() < 3) fail(which + "has fewer than 3 vertices");
+    double hole_area2 = 0.0;
+    for (size_t i = 0; i < hole.size(); ++i) {
+      const int v = hole[i];
+      if (v < 0 || v >= n)
+        fail(which + "vertex index " + std::to_string(v) + " out of range [0, " + std::to_string(n) + ")");
+      if (!on_boundary.insert(v).second) fail(which + "repeats vertex " + std::to_string(v) + " of a boundary loop");
+      const Vec2 a = piece.rest.row(v).transpose();
+      const Vec2 b = piece.rest.row(hole[(i + 1) % hole.size()]).transpose();
+      hole_area2 += a.x() * b.y() - a.y() * b.x();
+    }
+    if (!(hole_area2 < 0.0)) fail(which + "is not clockwise (signed area >= 0)");
+  }
   for (int c : piece.corners) {
     if (!on_boundary.count(c)) fail("corner " + std::to_string(c) + " is not a boundary vertex");
   }
@@ -65,10 +81,18 @@ void validate_polyline(const Pattern& pattern, int p, const std::vector<int>& ve
   }
   const PatternPiece& piece = pattern.pieces[static_cast<size_t>(p)];
   const auto n = static_cast<int>(piece.rest.rows());
-  const auto m = static_cast<int>(piece.boundary.size());
-  std::unordered_map<int, int> position;
-  for (int i = 0; i < m; ++i) position[piece.boundary[static_cast<size_t>(i)]] = i;
+  // Position of every boundary vertex in its loop (outer loop or a hole).
+  const std::vector<std::vector<int>> loops = piece.loops();
+  std::unordered_map<int, std::pair<int, int>> loop_position;
+  for (size_t l = 0; l < loops.size(); ++l)
+    for (size_t i = 0; i < loops[l].size(); ++i)
+      loop_position[loops[l][i]] = {static_cast<int>(l), static_cast<int>(i)};
   if (vertices.size() < 2) fail("fewer than 2 vertices");
+  const auto first = loop_position.find(vertices.front());
+  const int loop = first == loop_position.end() ? 0 : first->second.first;
+  const auto m = static_cast<int>(loops[static_cast<size_t>(loop)].size());
+  std::unordered_map<int, int> position;
+  for (int i = 0; i < m; ++i) position[loops[static_cast<size_t>(loop)][static_cast<size_t>(i)]] = i;
   if (static_cast<int>(vertices.size()) > m + 1) fail("longer than the boundary loop");
   int direction = 0;
   for (size_t i = 0; i < vertices.size(); ++i) {

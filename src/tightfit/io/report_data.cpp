@@ -101,6 +101,7 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
                       {"triangles", u32(flat_ints(piece.triangles))},
                       {"faces", u32(faces)},
                       {"boundary", piece.boundary},
+                      {"holes", piece.holes},
                       {"grain", {piece.grain.x(), piece.grain.y()}}});
     // The piece's seam sides (with the seam's name) and pinned boundaries.
     nlohmann::json edges = nlohmann::json::array();

@@ -37,6 +37,7 @@ std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
       break;
     case GarmentKind::kLayout:
       scene->build = build_garment(scene->body.surface, *scene->surface, g.layout, g.pattern);
+      for (const std::string& w : scene->build->layout.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
       scene->garment = scene->build->garment;
       break;
   }
