@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -105,6 +107,17 @@ TEST_F(OpeningsCli, ARemeshedRunKeepsTheOpeningInEveryOutput) {
   ASSERT_EQ(front["openings_mm"].size(), 1u);
   EXPECT_EQ(front["openings_mm"][0].size(), front["holes"][0].size());
   EXPECT_TRUE(pieces["pieces"][1]["holes"].empty());
+  // The remesher resampled the rim evenly (its points moved as design parameters).
+  double shortest = 1e9, longest = 0.0;
+  const auto& rim = front["holes"][0];
+  for (size_t i = 0; i < rim.size(); ++i) {
+    const auto& a = front["rest"][rim[i].get<size_t>()];
+    const auto& b = front["rest"][rim[(i + 1) % rim.size()].get<size_t>()];
+    const double d = std::hypot(a[0].get<double>() - b[0].get<double>(), a[1].get<double>() - b[1].get<double>());
+    shortest = std::min(shortest, d);
+    longest = std::max(longest, d);
+  }
+  EXPECT_LT(longest, 2.0 * shortest);
   std::ifstream svg_file(out / "pattern.svg");
   const std::string svg((std::istreambuf_iterator<char>(svg_file)), std::istreambuf_iterator<char>());
   EXPECT_NE(svg.find("class=\"cut opening\""), std::string::npos);

@@ -424,19 +424,34 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
 
     Points2 polygon(static_cast<Eigen::Index>(boundary.size()), 2);
     for (size_t i = 0; i < boundary.size(); ++i) polygon.row(static_cast<Eigen::Index>(i)) = boundary[i].transpose();
-    // Holes keep their vertices: they follow the outer loop, in the old order.
+    // Holes: each rim resampled at the edge length by even 2D arc length, starting at its
+    // old first vertex; they follow the outer loop in the old order.
     std::vector<Points2> hole_polygons;
     out.holes.clear();
     for (const std::vector<int>& hole : piece.holes) {
-      Points2 hole_polygon(static_cast<Eigen::Index>(hole.size()), 2);
+      const int m = static_cast<int>(hole.size());
+      std::vector<double> cum(1, 0.0);
+      for (int e = 0; e < m; ++e)
+        cum.push_back(cum.back() + (piece.rest.row(hole[static_cast<size_t>((e + 1) % m)]) -
+                                    piece.rest.row(hole[static_cast<size_t>(e)])).norm());
+      const int n = std::max(3, static_cast<int>(std::lround(cum.back() / h)));
+      Points2 hole_polygon(n, 2);
       std::vector<int> new_hole;
-      for (size_t i = 0; i < hole.size(); ++i) {
-        hole_polygon.row(static_cast<Eigen::Index>(i)) = piece.rest.row(hole[i]);
-        o2n[static_cast<size_t>(hole[i])] = static_cast<int>(src.size());
-        new_hole.push_back(static_cast<int>(src.size()));
+      for (int k = 0; k < n; ++k) {
+        const auto [e, t] = locate_arc(cum, cum.back() * k / n);
+        const int from = hole[static_cast<size_t>(e % m)], to = hole[static_cast<size_t>((e + 1) % m)];
         Source so;
-        so.kind = Source::kOldVertex;
-        so.from = hole[i];
+        so.from = from;
+        if (t == 0.0) {
+          so.kind = Source::kOldVertex;
+          o2n[static_cast<size_t>(from)] = static_cast<int>(src.size());
+        } else {
+          so.kind = Source::kEdge;
+          so.to = to;
+          so.t = t;
+        }
+        hole_polygon.row(k) = (1.0 - t) * piece.rest.row(from) + t * piece.rest.row(to);
+        new_hole.push_back(static_cast<int>(src.size()));
         src.push_back(so);
       }
       hole_polygons.push_back(std::move(hole_polygon));
@@ -498,7 +513,11 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
       const int nb = static_cast<int>(next.pieces[static_cast<size_t>(pin.piece)].boundary.size());
       out.vertices.clear();
       if (on_hole(pin)) {
-        for (int v : pin.vertices) out.vertices.push_back(o2n[static_cast<size_t>(v)]);
+        const PatternPiece& old_piece = pattern.pieces[static_cast<size_t>(pin.piece)];
+        for (size_t h = 0; h < old_piece.holes.size(); ++h)
+          if (std::find(old_piece.holes[h].begin(), old_piece.holes[h].end(), pin.vertices.front()) !=
+              old_piece.holes[h].end())
+            out.vertices = next.pieces[static_cast<size_t>(pin.piece)].holes[h];
       } else if (static_cast<int>(pin.vertices.size()) == loops[static_cast<size_t>(pin.piece)].size()) {
         for (int i = 0; i < nb; ++i) out.vertices.push_back(i);
       } else {

@@ -16,8 +16,9 @@
 ///     they weld to one 3D point. A seam is resampled when either of its pieces is
 ///     remeshed, so a piece sewn to a remeshed one is remeshed too (only its seam with
 ///     the remeshed piece is resampled; its other units keep their vertices).
-///     Break-point vertices are old vertices and stay exactly where they were. Holes
-///     (openings) keep their old vertices and order.
+///     Break-point vertices are old vertices and stay exactly where they were. The rim of
+///     a hole (opening) is resampled at `edge_length` by even 2D arc length from its
+///     old first vertex.
 ///  2. Interior: the new boundary polygon is meshed in 2D by mesh_piece at
 ///     `edge_length` (garment/piece_mesher.hpp, as the layout builder does).
 ///  3. Embedding transfer (EmbeddingTransfer): each new vertex's 3D point is
