@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 namespace tightfit {
 namespace {
@@ -27,6 +28,9 @@ struct Work {
   std::vector<std::array<int, 3>> faces;
   std::vector<int> parent;
   std::vector<std::vector<char>> on_plane;
+  /// Per cut: the bone region's field value per vertex (linear along every edge); empty
+  /// for planes.
+  std::vector<std::vector<double>> field;
 
   bool locked(int v) const {
     for (const auto& flags : on_plane)
@@ -41,37 +45,63 @@ Points3 to_points(const std::vector<Vec3>& x) {
   return p;
 }
 
+/// Cuts along plane k, or along the ½ iso-line of bone region k's field (eps: the
+/// tolerance of "on the cut", m for planes, dimensionless for fields).
 void cut_one(Work& w, const LayoutPlane& plane, int k, double eps, double snap_fraction) {
   const int nv = static_cast<int>(w.x.size());
+  const bool is_field = plane.is_bone_region();
+  std::vector<double>* field = is_field ? &w.field[k] : nullptr;
   std::vector<double> d(nv);
   for (int v = 0; v < nv; ++v) {
-    d[v] = plane.distance(w.x[v]);
+    d[v] = is_field ? (*field)[v] : plane.distance(w.x[v]);
     if (std::abs(d[v]) <= eps) {
       d[v] = 0.0;
       w.on_plane[k][v] = 1;
     }
   }
+  if (is_field)
+    for (int v = 0; v < nv; ++v)
+      if (w.on_plane[k][v]) (*field)[v] = 0.0;
   // Snap vertices that would leave a sliver next to a new vertex.
   if (snap_fraction > 0.0) {
-    const Points3 normals = vertex_normals(to_points(w.x), w.faces);
-    std::vector<char> snap(nv, 0);
+    // Per vertex: its nearest crossing along its edges (fraction of the edge, other end).
+    std::vector<std::pair<double, int>> nearest(nv, {snap_fraction, -1});
     for (const auto& f : w.faces)
       for (int i = 0; i < 3; ++i) {
         const int a = f[i], b = f[(i + 1) % 3];
         if (d[a] * d[b] >= 0.0) continue;
         const double t = d[a] / (d[a] - d[b]);
-        if (t < snap_fraction && !w.locked(a)) snap[a] = 1;
-        if (t > 1.0 - snap_fraction && !w.locked(b)) snap[b] = 1;
+        if (t < nearest[a].first && !w.locked(a)) nearest[a] = {t, b};
+        if (1.0 - t < nearest[b].first && !w.locked(b)) nearest[b] = {1.0 - t, a};
       }
-    for (int v = 0; v < nv; ++v) {
-      if (!snap[v]) continue;
-      const Vec3 n = normals.row(v).transpose();
-      const Vec3 dir = plane.normal - plane.normal.dot(n) * n;
-      const double along = plane.normal.dot(dir);
-      if (along < 0.25) continue;  // plane nearly tangent to the surface here
-      w.x[v] -= (d[v] / along) * dir;
-      d[v] = 0.0;
-      w.on_plane[k][v] = 1;
+    if (is_field) {
+      // The vertex moves along that edge onto the iso-line and every field with it
+      // (fields are linear along edges), so that cuts whose iso-lines coincide there (a
+      // bone region and a divider of the same bones' edge) stay together.
+      const std::vector<Vec3> x0 = w.x;
+      const std::vector<std::vector<double>> f0 = w.field;
+      for (int v = 0; v < nv; ++v) {
+        const auto [t, u] = nearest[v];
+        if (u < 0) continue;
+        w.x[v] = x0[v] + t * (x0[u] - x0[v]);
+        for (size_t j = 0; j < w.field.size(); ++j)
+          if (!w.field[j].empty()) w.field[j][v] = f0[j][v] + t * (f0[j][u] - f0[j][v]);
+        (*field)[v] = 0.0;
+        d[v] = 0.0;
+        w.on_plane[k][v] = 1;
+      }
+    } else {
+      const Points3 normals = vertex_normals(to_points(w.x), w.faces);
+      for (int v = 0; v < nv; ++v) {
+        if (nearest[v].second < 0) continue;
+        const Vec3 n = normals.row(v).transpose();
+        const Vec3 dir = plane.normal - plane.normal.dot(n) * n;
+        const double along = plane.normal.dot(dir);
+        if (along < 0.25) continue;  // plane nearly tangent to the surface here
+        w.x[v] -= (d[v] / along) * dir;
+        d[v] = 0.0;
+        w.on_plane[k][v] = 1;
+      }
     }
   }
   // One new vertex per crossed edge.
@@ -82,11 +112,14 @@ void cut_one(Work& w, const LayoutPlane& plane, int k, double eps, double snap_f
     if (it != split.end()) return it->second;
     const double t = d[a] / (d[a] - d[b]);
     Vec3 p = w.x[a] + t * (w.x[b] - w.x[a]);
-    p -= plane.distance(p) * plane.normal;  // exactly on the plane up to rounding
+    if (!is_field) p -= plane.distance(p) * plane.normal;  // exactly on the plane up to rounding
     const int id = static_cast<int>(w.x.size());
     w.x.push_back(p);
     for (size_t j = 0; j < w.on_plane.size(); ++j)
       w.on_plane[j].push_back(static_cast<int>(j) == k || (w.on_plane[j][a] && w.on_plane[j][b]));
+    for (auto& values : w.field)  // fields are linear along the edge
+      if (!values.empty()) values.push_back(values[a] + t * (values[b] - values[a]));
+    if (is_field) field->back() = 0.0;
     d.push_back(0.0);
     split.emplace(key, id);
     return id;
@@ -154,12 +187,24 @@ CutMesh cut_by_planes(const TriMesh& mesh, const std::vector<LayoutPlane>& plane
     w.parent[f] = f;
   }
   w.on_plane.assign(planes.size(), std::vector<char>(nv, 0));
+  w.field.resize(planes.size());
+  for (size_t k = 0; k < planes.size(); ++k) {
+    const LayoutPlane& plane = planes[k];
+    if (plane.anchor || plane.along_bone)
+      throw std::invalid_argument("cut_by_planes: plane \"" + plane.name +
+                                  "\" is anchored on the skeleton and not resolved (layout_anchors.hpp)");
+    if (!plane.is_bone_region()) continue;
+    if (plane.field.size() != static_cast<size_t>(nv))
+      throw std::invalid_argument("cut_by_planes: bone region \"" + plane.name +
+                                  "\" is not resolved on this mesh (layout_anchors.hpp)");
+    w.field[k] = plane.field;
+  }
   double diag = 0.0;
   if (nv > 0)
     diag = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
   const double eps = 1e-10 * std::max(diag, 1e-3);
   for (size_t k = 0; k < planes.size(); ++k)
-    cut_one(w, planes[k], static_cast<int>(k), eps, snap_fraction);
+    cut_one(w, planes[k], static_cast<int>(k), planes[k].is_bone_region() ? 1e-12 : eps, snap_fraction);
 
   CutMesh out;
   out.mesh.vertices = to_points(w.x);
@@ -172,8 +217,10 @@ CutMesh cut_by_planes(const TriMesh& mesh, const std::vector<LayoutPlane>& plane
   for (size_t k = 0; k < planes.size(); ++k)
     for (size_t f = 0; f < w.faces.size(); ++f) {
       double s = 0.0;
-      for (int i = 0; i < 3; ++i)
-        if (!out.on_plane[k][w.faces[f][i]]) s += planes[k].distance(w.x[w.faces[f][i]]);
+      for (int i = 0; i < 3; ++i) {
+        const int v = w.faces[f][i];
+        if (!out.on_plane[k][v]) s += w.field[k].empty() ? planes[k].distance(w.x[v]) : w.field[k][v];
+      }
       out.side[k][f] = s < 0.0 ? -1 : 1;
     }
   return out;
