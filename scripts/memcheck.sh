@@ -32,7 +32,7 @@ runs=(
   "tightfit_solve_tests:*-$slow:RigidCylinderSleeveSliding.*:RigidCurvedBody.EllipticCylinder*"
   "tightfit_objectives_tests:*-$slow:PressureRegions.BoneRegions*:SlidingObjective.PosesPull*:SlidingObjective.AdjointGradient*:AllPosesTerm.*:PinnedTractionRegularizer.*"
   "tightfit_design_tests:*-$slow:AdjointSolve.*:AdjointPipelineSoftBody.*:PatternOptimizer.RecoversTheShapeOfAnotherPattern:*PatternOptimizerResume*soft*"
-  "tightfit_io_tests:*-$slow:SceneSpec.EveryExampleValidatesAgainstTheSchema:LayoutSceneSimulation.*:PressureRegionStatistics.*:ScenePoses.*"
+  "tightfit_io_tests:*-$slow:SceneSpec.EveryExampleValidatesAgainstTheSchema:LayoutSceneSimulation.*:PressureRegionStatistics.*:ScenePoses.*:SceneLayoutFileLoad.*"
 )
 
 logs="$build/memcheck"
