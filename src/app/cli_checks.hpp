@@ -13,10 +13,6 @@ CLI::Validator positive_number();
 /// A number >= 0.
 CLI::Validator non_negative_number();
 
-/// The candidate closest to `word` by edit distance, when close enough to be a typo
-/// (at most 2 edits, and fewer than half the word's length); empty otherwise.
-std::string nearest_word(const std::string& word, const std::vector<std::string>& candidates);
-
 /// The message for a command-line error `e` of `root` with the arguments `args`: CLI11's
 /// message, plus "did you mean …?" for a mistyped command or option.
 std::string parse_error_message(const CLI::App& root, const CLI::ParseError& e,

@@ -42,9 +42,10 @@ void move_layout_to_limit(Layout& layout, const LimitSurface& limit, const Limit
 }  // namespace
 
 GarmentBuild build_garment(const TriMesh& control, const LimitSurface& limit, const LayoutSpec& spec,
-                           const PatternOptions& options) {
+                           const PatternOptions& options, const LayoutRig& rig) {
   GarmentBuild out;
-  out.layout = spec.is_mesh_layout() ? layout_from_obj(spec) : layout_from_rules(control, spec);
+  const LayoutSpec absolute = resolve_layout_anchors(spec, control, rig);
+  out.layout = absolute.is_mesh_layout() ? layout_from_obj(absolute) : layout_from_rules(control, absolute);
   const LimitProjector projector(limit, control.vertices);
   if (options.flatten_limit_surface) move_layout_to_limit(out.layout, limit, projector, control);
 

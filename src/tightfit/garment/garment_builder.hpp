@@ -2,8 +2,9 @@
 /// The garment layer's entry point: body surface + layout spec + pattern options →
 /// a Garment (pattern pieces, welded garment vertices, embedding on the limit surface).
 ///
-/// Steps: build the layout (layout.hpp: cut the body surface by the spec's planes, or
-/// read the OBJ panels), optionally move its vertices onto the limit surface, flatten
+/// Steps: make the spec's planes absolute on this body (layout_anchors.hpp: anchors on
+/// the skeleton, bone regions), build the layout (layout.hpp: cut the body surface by the
+/// spec's planes, or read the OBJ panels), optionally move its vertices onto the limit surface, flatten
 /// and mesh the pieces (pattern_builder.hpp), weld the seam vertices (garment.hpp), and
 /// embed every garment vertex: its point on the 3D panel (barycentric in the flattened
 /// panel triangle that contains it) projected onto the Loop limit surface
@@ -14,6 +15,7 @@
 #include "tightfit/body/body.hpp"
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/garment/layout.hpp"
+#include "tightfit/garment/layout_anchors.hpp"
 #include "tightfit/garment/layout_spec.hpp"
 #include "tightfit/garment/pattern_builder.hpp"
 #include "tightfit/garment/pattern_options.hpp"
@@ -45,15 +47,16 @@ struct GarmentBuild {
 };
 
 /// Builds the garment on a body whose surface (control mesh) is `control` and whose
-/// limit surface is `limit` (built from `control`). Throws InputError for invalid
-/// layouts (see layout.hpp, pattern_builder.hpp).
+/// limit surface is `limit` (built from `control`); `rig` is the body's skeleton and skin
+/// weights, needed when the spec is anchored on them. Throws InputError for invalid
+/// layouts (see layout_anchors.hpp, layout.hpp, pattern_builder.hpp).
 GarmentBuild build_garment(const TriMesh& control, const LimitSurface& limit, const LayoutSpec& spec,
-                           const PatternOptions& options);
+                           const PatternOptions& options, const LayoutRig& rig = {});
 
 /// The same on a body: its surface is the control mesh of `limit`.
 inline GarmentBuild build_garment(const Body& body, const LimitSurface& limit, const LayoutSpec& spec,
-                                  const PatternOptions& options) {
-  return build_garment(body.surface, limit, spec, options);
+                                  const PatternOptions& options, const LayoutRig& rig = {}) {
+  return build_garment(body.surface, limit, spec, options, rig);
 }
 
 }  // namespace tightfit

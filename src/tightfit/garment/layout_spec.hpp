@@ -20,7 +20,30 @@
 ///   the normal points to, "-name": the other) of each listed divider; dividers it does
 ///   not list do not split it. Every face of the region must lie in exactly one panel.
 /// * Every plane cuts the body surface with new vertices exactly on it, so panel
-///   boundaries are clean polylines. Planes must cross the surface, not lie in it.
+///   boundaries are clean polylines. Planes must cross the surface, not lie in it: a
+///   plane that misses the body is an input error naming it (layout_anchors.hpp).
+///
+/// Anchored on the skeleton (layouts that transfer between the bodies of one rig;
+/// resolved on each body by garment/layout_anchors.hpp, with the scene's `"rig"`):
+/// ```json
+/// {"name": "knee", "point": {"bone": "lowerleg01.L", "at": 0.5}, "normal": "along_bone"}
+/// {"name": "waist", "point": {"bone": "spine05", "at": 0}, "normal": "down"}
+/// {"name": "side", "point": {"bone": "upperarm02.L", "at": 0.5},
+///  "normal": {"along_bone": "lowerarm01.L", "reversed": true}}
+/// {"name": "left_arm", "bones": ["upperarm01.L", "upperarm02.L", "lowerarm01.L"]}
+/// ```
+/// * `point`: [x, y, z] (m), or `{"bone": NAME, "at": t}`: head + t (tail − head) of
+///   the bone, 0 ≤ t ≤ 1.
+/// * `normal`: [x, y, z]; a body axis `"left"` (+x), `"right"`, `"up"` (+y), `"down"`,
+///   `"front"` (+z), `"back"`; `"along_bone"` / `"-along_bone"`: head → tail of the
+///   point's bone (or tail → head); `{"along_bone": NAME, "reversed": false}`: of another
+///   bone.
+/// * `bones` instead of `point` and `normal` (region planes and dividers): a bone region,
+///   cut along the ½ iso-line of the bones' summed, normalized skin weight carried to the
+///   body surface by position (body/skin_transfer.hpp); its "+" side is the surface the
+///   bones dominate (summed weight ≥ ½), e.g. panel sides ["+left_thigh", "+front"].
+///   As a region plane it keeps that surface, and `"on_plane"` pins its iso-line.
+/// * Pins' inline planes (`"on_plane": {...}`) may be anchored; they are not bone regions.
 ///
 /// Mesh (panels drawn by hand, e.g. in Blender): `{"mesh": "layout.obj", "pinned": [...]}`,
 /// an OBJ lying on the body with one group (`g`/`o`) per panel; the path is relative to
@@ -35,6 +58,7 @@
 ///   given).
 /// * `seam_tolerance`: the largest accepted relative length difference of the two sides
 ///   of a seam after flattening, before scale-down (default 0.05 = 5 %).
+/// * `description`: free text, ignored.
 #include <limits>
 #include <optional>
 #include <string>
@@ -46,14 +70,39 @@
 
 namespace tightfit {
 
-/// An oriented plane: points x with normal·(x − point) > 0 are on its "+" side.
+/// A point on a bone of the body's skeleton: head + at (tail − head).
+struct BoneAnchor {
+  std::string bone;
+  double at = 0.0;  ///< fraction from the head (0) to the tail (1)
+};
+
+/// A direction along a bone of the body's skeleton: sign (tail − head) / |tail − head|.
+struct BoneDirection {
+  std::string bone;
+  double sign = 1.0;  ///< +1 or −1
+};
+
+/// An oriented plane: points x with normal·(x − point) > 0 are on its "+" side. Or a
+/// bone region (`bones` not empty): its "+" side is where the bones' summed skin weight
+/// is ≥ ½. Anchors and bone regions are resolved on a body by
+/// garment/layout_anchors.hpp before cutting.
 struct LayoutPlane {
   std::string name;
   Vec3 point = Vec3::Zero();   ///< a point on the plane (m)
   Vec3 normal = Vec3::UnitY(); ///< unit normal
   std::string source_path;     ///< JSON path, for error messages
+  std::optional<BoneAnchor> anchor;         ///< unresolved: `point` comes from the skeleton
+  std::optional<BoneDirection> along_bone;  ///< unresolved: `normal` comes from the skeleton
+  std::vector<std::string> bones;           ///< a bone region instead of a plane
+  /// A resolved bone region: per vertex of the body surface it was resolved on, the
+  /// bones' summed skin weight minus ½ (dimensionless; > 0 on the "+" side).
+  std::vector<double> field;
 
-  /// Signed distance (m) of x from the plane, positive on the "+" side.
+  bool is_bone_region() const { return !bones.empty(); }
+  /// Whether resolving needs the skeleton or skin weights: an anchor, a bone direction
+  /// or a bone region not yet resolved.
+  bool needs_rig() const { return anchor || along_bone || (is_bone_region() && field.empty()); }
+  /// Signed distance (m) of x from the plane, positive on the "+" side (planes only).
   double distance(const Vec3& x) const { return normal.dot(x - point); }
 };
 
@@ -113,6 +162,9 @@ struct LayoutSpec {
   double weld_tolerance = 1e-6;          ///< m, coincident OBJ vertices are welded
 
   bool is_mesh_layout() const { return !mesh_file.empty(); }
+  /// JSON path of the first plane that needs the skeleton or skin weights (see
+  /// LayoutPlane::needs_rig), empty when none does.
+  std::string first_rig_use() const;
 };
 
 /// Parses a layout spec object. `base_dir` resolves a relative "mesh" path.

@@ -35,11 +35,18 @@ std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
     case GarmentKind::kCover:
       scene->garment = make_cover(*scene->surface, control, g.cover_scale);
       break;
-    case GarmentKind::kLayout:
-      scene->build = build_garment(scene->body.surface, *scene->surface, g.layout, g.pattern);
+    case GarmentKind::kLayout: {
+      LayoutRig rig;
+      if (const SceneRig* scene_rig = scene->spec.rig.get()) {
+        rig.skeleton = &scene_rig->skeleton;
+        rig.weights = &scene_rig->weights;
+        rig.source = scene_rig->source;
+      }
+      scene->build = build_garment(scene->body.surface, *scene->surface, g.layout, g.pattern, rig);
       for (const std::string& w : scene->build->layout.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
       scene->garment = scene->build->garment;
       break;
+    }
   }
   scene->stage_seconds.emplace_back("garment", seconds_since(t0));
   return scene;

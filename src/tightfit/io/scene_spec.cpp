@@ -45,7 +45,17 @@ GarmentSpec parse_garment(JsonFields& f, const std::filesystem::path& base_dir) 
     c->finish();
     ++kinds;
   }
-  if (auto l = f.object("layout")) {
+  if (f.has("layout") && f.raw("layout").is_string()) {
+    // A layout file of its own, e.g. one layout anchored on the skeleton for every body.
+    const std::string name = f.raw("layout").get<std::string>();
+    if (name.empty()) f.fail("must name a file", "layout");
+    std::filesystem::path file(name);
+    if (file.is_relative()) file = base_dir / file;
+    if (!std::filesystem::is_regular_file(file)) f.fail("no such file: " + file.string(), "layout");
+    g.kind = GarmentKind::kLayout;
+    g.layout = read_layout_spec(file.string());
+    ++kinds;
+  } else if (auto l = f.object("layout")) {
     g.kind = GarmentKind::kLayout;
     g.layout = parse_layout_spec(*l, base_dir.string());
     ++kinds;
@@ -122,6 +132,13 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   if (auto f = root.object("rig")) s.rig = parse_scene_rig(*f, base_dir);
   if (root.has("poses")) s.poses = parse_scene_poses(root.raw("poses"), file, "/poses", s.rig.get(), base_dir);
   if (s.rig) s.pressure_rig = std::shared_ptr<const SkinWeights>(s.rig, &s.rig->weights);
+  if (s.garment.kind == GarmentKind::kLayout && !s.rig) {
+    const std::string use = s.garment.layout.first_rig_use();
+    if (!use.empty())
+      throw InputError(s.garment.layout.source,
+                       use + ": anchored on the skeleton or its skin weights, but the scene has no "
+                             "\"rig\" (\"rig\": {\"mesh\", \"weights\", \"joints\"})");
+  }
   if (auto f = root.object("pressure")) {
     s.pressure_operator = f->choice("shape_operator", {"mid_edge", "limit_surface"}, "mid_edge") ==
                                   "mid_edge"

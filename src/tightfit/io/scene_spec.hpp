@@ -7,8 +7,10 @@
 ///   {
 ///     "body": { ...body spec, see body/body_spec.hpp... },
 ///     "garment": {"sleeve": {...}} | {"cover": {"scale": 0.9}}
-///              | {"layout": {...garment/layout_spec.hpp...},
+///              | {"layout": {...garment/layout_spec.hpp...} | "layout.json",
 ///                 "pattern": {...garment/pattern_options.hpp...}},
+///       a layout anchored on the skeleton (bones instead of points) takes the skeleton
+///       and skin weights of the scene's "rig";
 ///     "fabric": {"youngs_modulus": 5.4e6, "poisson_ratio": 0.33, "thickness": 1e-4,
 ///                "regime_smoothing": 1e-3, "relaxation": 0},
 ///       relaxation r in [0, 1): the share of its tension a knit loses with wear; every
