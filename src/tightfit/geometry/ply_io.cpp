@@ -335,6 +335,9 @@ PlyData read_ply(const std::filesystem::path& path) {
         const double count = body.read(p.count_type);
         if (count < 0 || count != std::floor(count))
           body.fail("bad list length " + text::format_double(count) + " in " + body.where());
+        if (count > static_cast<double>(data.size()))  // every entry takes at least one byte
+          body.fail("list length " + text::format_double(count) + " in " + body.where() +
+                    " is longer than the file");
         const bool keep = (&el == face_el && k == index_list);
         for (int c = 0; c < static_cast<int>(count); ++c) {
           const double value = body.read(p.type);
