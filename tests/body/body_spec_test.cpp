@@ -78,7 +78,7 @@ TEST(BodySpec, ErrorsNameTheFileAndJsonPath) {
   EXPECT_EQ(error_of(json::parse(R"({"generator":"sphere","radius":0.1,"min_dihedral_deg":30})")),
             "spec.json: /min_dihedral_deg: expected an angle in [0, 18] degrees");
   EXPECT_EQ(error_of(json::parse(R"({"mesh":"x.obj","crop":[{"point":[0,0,0],"normal":[0,0,0]}]})")),
-            "spec.json: /crop/0/normal: expected a non-zero vector");
+            "spec.json: /crop/0/normal: the normal must not be zero");
   EXPECT_EQ(error_of(json::parse(R"({"mesh":"x.obj","crop":[{"point":[0,0],"normal":[0,1,0]}]})")),
             "spec.json: /crop/0/point: expected an array of 3 numbers");
   EXPECT_EQ(error_of(json::parse(R"({"generator":"sphere","radius":0.1,"core":{"soft_tissue":-1}})")),

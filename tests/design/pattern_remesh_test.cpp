@@ -64,6 +64,29 @@ Vec3 position(const GarmentSimulation& sim, const SurfacePoint& s) {
   return sim.surface().position(s, sim.body_positions().topRows(sim.surface().num_control_vertices()));
 }
 
+TEST(PieceQuality, AnglesAtSharpCornersOfTheOutlineDoNotCountOthersDo) {
+  // A 20° spike split in two at its apex: the apex angles (10°) are bounded by the
+  // outline, not by the mesh; the other angles are 80° and 90°.
+  PatternPiece spike;
+  const double t = std::tan(10.0 * std::numbers::pi / 180.0);
+  spike.rest.resize(4, 2);
+  spike.rest << 0, 0, 1, -t, 1, 0, 1, t;
+  spike.triangles.resize(2, 3);
+  spike.triangles << 0, 1, 2, 0, 2, 3;
+  spike.boundary = {0, 1, 2, 3};
+  EXPECT_NEAR(piece_quality(spike).min_angle_deg, 80.0, 1e-9);
+
+  // A square whose centre vertex sits near its bottom edge: thin triangles at the
+  // square's 90° corners count.
+  PatternPiece square;
+  square.rest.resize(5, 2);
+  square.rest << 0, 0, 1, 0, 1, 1, 0, 1, 0.5, 0.02;
+  square.triangles.resize(4, 3);
+  square.triangles << 0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4;
+  square.boundary = {0, 1, 2, 3};
+  EXPECT_NEAR(piece_quality(square).min_angle_deg, std::atan2(0.02, 0.5) * 180.0 / std::numbers::pi, 1e-9);
+}
+
 TEST(EmbeddingTransfer, IsExactAtOldVerticesAndOnTheSurfaceElsewhere) {
   auto scene = make_sleeve_scene();
   GarmentSimulation& sim = *scene->sim;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <set>
 
 #include "garment/garment_test_meshes.hpp"
@@ -178,6 +179,56 @@ TEST(LayoutAnchors, UnknownBonesMissingSkeletonsAndPlanesMissingTheBodyAreErrors
   text["dividers"][0]["point"] = nlohmann::json::parse("[0.2, 0, 0]");
   const std::string beside = anchor_error([&] { resolve_layout_anchors(anchored_spec(text.dump()), body, rig); });
   EXPECT_NE(beside.find("layout.json: /dividers/0: divider \"side\" misses the body"), std::string::npos) << beside;
+}
+
+TEST(LayoutAnchors, ANormalAcrossTwoBonesIsTheNormalOfTheirPlane) {
+  const auto skeleton = leg_skeleton();
+  const TriMesh body = test::closed_cylinder(0.05, 0.4, 32, 17);
+  const LayoutRig rig{&skeleton, nullptr, "legs.joints.json"};
+  auto text = nlohmann::json::parse(kAnchoredSleeve);
+  // shin (−y) × toe (+x) = +z.
+  text["dividers"][0]["normal"] = nlohmann::json::parse(R"({"across_bones": ["shin", "toe"]})");
+  EXPECT_LT((resolve_layout_anchors(anchored_spec(text.dump()), body, rig).dividers[0].normal - Vec3::UnitZ()).norm(), 1e-15);
+  text["dividers"][0]["normal"]["reversed"] = true;
+  EXPECT_LT((resolve_layout_anchors(anchored_spec(text.dump()), body, rig).dividers[0].normal + Vec3::UnitZ()).norm(), 1e-15);
+  text["dividers"][0]["normal"] = nlohmann::json::parse(R"({"across_bones": ["thigh", "shin"]})");
+  EXPECT_EQ(anchor_error([&] { resolve_layout_anchors(anchored_spec(text.dump()), body, rig); }),
+            "layout.json: /dividers/0/normal: bones \"thigh\" and \"shin\" are parallel: they span no plane");
+  text["dividers"][0]["normal"] = nlohmann::json::parse(R"({"across_bones": ["shin"]})");
+  EXPECT_EQ(anchor_error([&] { anchored_spec(text.dump()); }),
+            "layout.json: /dividers/0/normal/across_bones: expected two bone names");
+}
+
+TEST(LayoutAnchors, ALocalPlaneCutsOnlyAlongItsLoopNearestItsPoint) {
+  // Two closed cylinders side by side that the plane y = 0.1 crosses both: the local
+  // region plane, whose point is on the first, cuts only the first.
+  const TriMesh one = test::closed_cylinder(0.05, 0.4, 32, 17);
+  TriMesh two;
+  two.vertices.resize(2 * one.num_vertices(), 3);
+  two.vertices << one.vertices, one.vertices.rowwise() + Eigen::RowVector3d(0.3, 0.0, 0.0);
+  two.faces.resize(2 * one.num_faces(), 3);
+  two.faces << one.faces, one.faces.array() + one.num_vertices();
+  const std::string text = R"({
+    "region": [{"name": "cuff", "point": [0, 0.1, 0], "normal": "up", "local": true}],
+    "dividers": [{"name": "side", "point": [0.15, 0, 0], "normal": "left"},
+                 {"name": "front", "point": [0, 0, 0], "normal": "front"},
+                 {"name": "middle", "point": [0, 0.2, 0], "normal": "up"}],
+    "panels": [{"name": "a_front", "sides": ["-side", "+front"]}, {"name": "a_back", "sides": ["-side", "-front"]},
+               {"name": "b_front_top", "sides": ["+side", "+front", "+middle"]},
+               {"name": "b_back_top", "sides": ["+side", "-front", "+middle"]},
+               {"name": "b_front_bottom", "sides": ["+side", "+front", "-middle"]},
+               {"name": "b_back_bottom", "sides": ["+side", "-front", "-middle"]}]
+  })";
+  const LayoutSpec spec = resolve_layout_anchors(anchored_spec(text), two, LayoutRig{});
+  ASSERT_EQ(spec.region[0].field.size(), static_cast<size_t>(two.num_vertices()));
+  const Layout layout = layout_from_rules(two, spec);
+  double lowest_a = 1.0, lowest_b = 1.0;
+  for (const auto& panel : layout.panels)
+    for (int v : panel.surface_vertex)
+      (panel.name[0] == 'a' ? lowest_a : lowest_b) =
+          std::min(panel.name[0] == 'a' ? lowest_a : lowest_b, layout.surface.vertices(v, 1));
+  EXPECT_NEAR(lowest_a, 0.1, 1e-12);  // cut at the plane
+  EXPECT_LT(lowest_b, 1e-12);         // the other cylinder, whole down to its bottom cap
 }
 
 /// Skin weights on the test cylinder: "upper" rises linearly from 0 at y = 0.1125 m to
@@ -354,6 +405,41 @@ TEST_F(LayoutAnchorTransfer, OneLayoutFileLaysOutEveryBodyOfTheRigAtItsOwnJoints
   EXPECT_GT(cuff_heights[1], cuff_heights[0] + 0.005);
   EXPECT_LT(cuff_heights[2], cuff_heights[0] - 0.01);
   EXPECT_EQ(cuff_heights[3], cuff_heights[0]);
+}
+
+TEST_F(LayoutAnchorTransfer, TheTwelvePieceWetsuitLaysOutOnEveryFullBodyWithLocalCuffs) {
+  const LayoutSpec spec = read_layout_spec(std::string(TIGHTFIT_SOURCE_DIR) + "/examples/layouts/wetsuit_12.json");
+  for (size_t b = 0; b < 3; ++b) {  // the full bodies
+    const RigBody& body = (*bodies_)[b];
+    SCOPED_TRACE(body.name);
+    const LayoutSpec absolute = resolve_layout_anchors(spec, body.surface, {&body.skeleton, &body.weights, body.name});
+    const Layout layout = layout_from_rules(body.surface, absolute);
+    ASSERT_EQ(layout.panels.size(), 12u);
+    EXPECT_EQ(layout.pin_names, (std::vector<std::string>{"neckline", "cuff_L", "cuff_R", "ankle_L", "ankle_R"}));
+    // Each cuff lies on its own plane around its own wrist or ankle; none is empty.
+    const std::vector<std::pair<std::string, double>> cuffs = {
+        {"neck01", 0.5}, {"lowerarm02.L", 0.7}, {"lowerarm02.R", 0.7}, {"lowerleg02.L", 0.7}, {"lowerleg02.R", 0.7}};
+    for (int pin = 0; pin < 5; ++pin) {
+      const LayoutPlane& plane = absolute.region[static_cast<size_t>(pin)];
+      const BoneSegment& bone = body.skeleton.at(cuffs[static_cast<size_t>(pin)].first);
+      const Vec3 anchor = bone.head + cuffs[static_cast<size_t>(pin)].second * (bone.tail - bone.head);
+      const std::vector<int> ring = pinned_vertices(layout, pin);
+      ASSERT_FALSE(ring.empty()) << layout.pin_names[static_cast<size_t>(pin)];
+      for (int v : ring) {
+        const Vec3 x = layout.surface.vertices.row(v).transpose();
+        EXPECT_LT(std::abs(plane.normal.dot(x - anchor)), 1e-9);
+        EXPECT_LT((x - anchor).norm(), 0.12);  // around this limb, not another one
+      }
+    }
+    // The wrist planes pass behind the feet in the A-pose; being local, they leave the
+    // legs whole down to the ankle cuffs.
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const auto& panel : layout.panels)
+      if (panel.name.rfind("leg_", 0) == 0)
+        for (int v : panel.surface_vertex) lowest = std::min(lowest, layout.surface.vertices(v, 1));
+    const BoneSegment& shin = body.skeleton.at("lowerleg02.L");
+    EXPECT_LT(lowest, (shin.head + 0.7 * (shin.tail - shin.head)).y() + 0.03);
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "tightfit/body/loop_limit.hpp"
 #include "tightfit/body/scan_import.hpp"
 #include "tightfit/body/skeleton.hpp"
+#include "tightfit/body/skeleton_anchor.hpp"
 #include "tightfit/common/stopwatch.hpp"
 #include "tightfit/body/surface_distance.hpp"
 #include "tightfit/common/error.hpp"
@@ -55,7 +56,8 @@ void parse_sphere(JsonFields& f, BodySpec& spec) {
   spec.edge_length = s.edge_length;
 }
 
-void parse_mesh(JsonFields& f, BodySpec& spec, const std::filesystem::path& base_dir) {
+void parse_mesh(JsonFields& f, BodySpec& spec, const std::filesystem::path& base_dir,
+                const SkeletonRef& rig) {
   MeshImport& m = spec.mesh;
   const std::string file = f.string("mesh");
   if (file.empty()) f.fail("expected a file name", "mesh");
@@ -66,10 +68,31 @@ void parse_mesh(JsonFields& f, BodySpec& spec, const std::filesystem::path& base
     const std::string units = f.choice("units", {"m", "cm", "mm"});
     m.units = metres_per_unit(units, f.source());
   }
+  std::map<std::string, BoneSegment> own_skeleton;
+  SkeletonRef skeleton = rig;
+  if (f.has("skeleton")) {
+    const std::filesystem::path joints = base_dir / f.string("skeleton");
+    own_skeleton = read_skeleton(joints);
+    skeleton = {&own_skeleton, joints.string()};
+  }
   for (JsonFields& plane : f.objects("crop")) {
     CropPlane p;
-    p.point = plane.vec3("point");
-    p.normal = nonzero_vec3(plane, "normal", Vec3::Zero());
+    std::optional<BoneAnchor> anchor;
+    std::optional<BoneDirection> along_bone;
+    parse_anchored_point(plane, "point", p.point, anchor);
+    parse_anchored_direction(plane, "normal", anchor, p.normal, along_bone);
+    p.local = plane.boolean("local", false);
+    if ((anchor || along_bone) && skeleton.bones == nullptr)
+      plane.fail("anchored on the skeleton, but there is none: give the body a \"skeleton\" "
+                 "(a joints file) or the scene a \"rig\"");
+    if (anchor)
+      p.point = anchor_point(find_anchor_bone(*skeleton.bones, anchor->bone, plane.source(),
+                                              plane.child_path("point") + "/bone", skeleton.source),
+                             anchor->at);
+    if (along_bone) {
+      const std::string path = plane.child_path("normal");
+      p.normal = resolve_bone_direction(*along_bone, *skeleton.bones, plane.source(), path, skeleton.source);
+    }
     plane.finish();
     m.crop.push_back(p);
   }
@@ -134,7 +157,7 @@ void parse_core(JsonFields& f, BodySpec& spec, const std::filesystem::path& base
   c.finish();
 }
 
-BodySpec parse_fields(JsonFields& f, const std::filesystem::path& base_dir) {
+BodySpec parse_fields(JsonFields& f, const std::filesystem::path& base_dir, const SkeletonRef& rig) {
   BodySpec spec;
   spec.source_file = f.source();
   spec.json_path = f.path();
@@ -147,7 +170,7 @@ BodySpec parse_fields(JsonFields& f, const std::filesystem::path& base_dir) {
     else parse_sphere(f, spec);
   } else {
     spec.source = BodySource::Mesh;
-    parse_mesh(f, spec, base_dir);
+    parse_mesh(f, spec, base_dir, rig);
   }
   const VolumeOptions defaults = default_volume_options(spec.edge_length);
   spec.volume = defaults;
@@ -235,13 +258,15 @@ TriMesh prepare_mesh(const BodySpec& spec, BuildReport* report) {
 }  // namespace
 
 BodySpec parse_body_spec(const nlohmann::json& j, const std::string& json_path,
-                         const std::filesystem::path& base_dir, const std::string& source_file) {
+                         const std::filesystem::path& base_dir, const std::string& source_file,
+                         const SkeletonRef& rig) {
   JsonFields fields(j, source_file, json_path);
-  return parse_fields(fields, base_dir);
+  return parse_fields(fields, base_dir, rig);
 }
 
-BodySpec parse_body_spec(JsonFields& fields, const std::filesystem::path& base_dir) {
-  return parse_fields(fields, base_dir);
+BodySpec parse_body_spec(JsonFields& fields, const std::filesystem::path& base_dir,
+                         const SkeletonRef& rig) {
+  return parse_fields(fields, base_dir, rig);
 }
 
 Body build_body(const BodySpec& spec, BuildReport* report) {

@@ -13,6 +13,11 @@
 ///   {"mesh": "data/bodies/mh_legs_male.obj",   // relative to the spec's folder
 ///    "scale": 1.0,                    // multiplies the file's coordinates (mm → m: 0.001)
 ///    "crop": [{"point": [0, 0.5, 0], "normal": [0, 1, 0]}],  // keep where the normal points
+///    // or anchored on the skeleton (body/skeleton_anchor.hpp), and "local": only the
+///    // part beyond the cut loop nearest the point goes (a hand, not the leg behind):
+///    //  {"point": {"bone": "hand.L", "at": 0}, "normal": "-along_bone", "local": true}
+///    "skeleton": "data/rig/mh_male_regular.joints.json",  // for anchored crops; in a
+///                                     // scene the "rig"'s joints are the default
 ///    "edge_length": 0.015,            // remeshing target; default 0.015
 ///    "remesh": true, "remesh_iterations": 5,
 ///    "sharp_angle_deg": 60,           // closed crease loops (cap rims) kept while remeshing
@@ -35,6 +40,7 @@
 /// Unknown keys, wrong types and out-of-range values are InputErrors naming the file and
 /// the JSON path (common/json_fields.hpp).
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -43,12 +49,19 @@
 #include "tightfit/body/body.hpp"
 #include "tightfit/body/body_builder.hpp"
 #include "tightfit/body/generators.hpp"
+#include "tightfit/body/skeleton.hpp"
 #include "tightfit/body/surface_remeshing.hpp"
 #include "tightfit/common/json_fields.hpp"
 
 namespace tightfit {
 
 enum class BodySource { Cylinder, Sphere, Mesh };
+
+/// A skeleton by bone name (body/skeleton.hpp) and the file it came from, for messages.
+struct SkeletonRef {
+  const std::map<std::string, BoneSegment>* bones = nullptr;
+  std::string source;
+};
 
 /// A body imported from a surface mesh file.
 struct MeshImport {
@@ -80,11 +93,14 @@ struct BodySpec {
 /// a spec file, "/body" in a scene), `base_dir` the folder relative paths are resolved
 /// against, `source_file` the file named in errors. A skeleton file named in "core" is
 /// read here so that unknown bone names are reported with their JSON path.
+/// `rig` is the skeleton that crops anchored on bones are placed on when the body names
+/// no "skeleton" of its own (a scene passes its "rig"'s joints).
 BodySpec parse_body_spec(const nlohmann::json& j, const std::string& json_path,
                          const std::filesystem::path& base_dir,
-                         const std::string& source_file = "");
+                         const std::string& source_file = "", const SkeletonRef& rig = {});
 /// Same, reading from an object reader of a larger document (calls `fields.finish()`).
-BodySpec parse_body_spec(JsonFields& fields, const std::filesystem::path& base_dir);
+BodySpec parse_body_spec(JsonFields& fields, const std::filesystem::path& base_dir,
+                         const SkeletonRef& rig = {});
 
 /// Builds the body: generate, or read + scale + validate + crop + remesh (+ limit fit);
 /// then tetrahedralize and pin the core. Stages and timings go to `report`. Errors from

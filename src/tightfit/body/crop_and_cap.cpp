@@ -8,6 +8,7 @@
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 
 #include "tightfit/body/cgal_surface_mesh.hpp"
+#include "tightfit/body/local_crop.hpp"
 #include "tightfit/common/error.hpp"
 
 namespace tightfit {
@@ -22,6 +23,10 @@ TriMesh crop_and_cap(const TriMesh& surface, const std::vector<CropPlane>& plane
   Mesh mesh = to_cgal(surface, "crop");
   for (size_t i = 0; i < planes.size(); ++i) {
     const std::string source = "crop plane " + std::to_string(i);
+    if (planes[i].local) {
+      mesh = to_cgal(crop_beyond_nearest_loop(from_cgal(mesh), planes[i], source), source);
+      continue;
+    }
     const Vec3& n = planes[i].normal;
     if (!(n.norm() > 0.0) || !n.allFinite() || !planes[i].point.allFinite())
       throw InputError(source, "the normal must be a non-zero finite vector");

@@ -1,9 +1,9 @@
 #include "tightfit/design/pattern_remesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <array>
 #include <set>
 #include <stdexcept>
 
@@ -97,6 +97,23 @@ PieceQuality piece_quality(const PatternPiece& piece) {
   PieceQuality q;
   q.min_angle_deg = 180.0;
   q.min_area = std::numeric_limits<double>::infinity();
+  // Angles at a sharp corner of the outline (interior angle below 60°) are bounded by the
+  // corner, not by the mesh: no remeshing raises them, so they do not count.
+  const Eigen::Index nv = piece.rest.rows();
+  std::vector<double> corner_angle(static_cast<size_t>(nv), 0.0);
+  std::vector<std::array<double, 3>> angles(static_cast<size_t>(piece.triangles.rows()));
+  for (Eigen::Index t = 0; t < piece.triangles.rows(); ++t) {
+    const Vec2 p[3] = {piece.rest.row(piece.triangles(t, 0)), piece.rest.row(piece.triangles(t, 1)),
+                       piece.rest.row(piece.triangles(t, 2))};
+    for (int c = 0; c < 3; ++c) {
+      angles[static_cast<size_t>(t)][static_cast<size_t>(c)] =
+          angle_between_deg(p[(c + 1) % 3] - p[c], p[(c + 2) % 3] - p[c]);
+      corner_angle[static_cast<size_t>(piece.triangles(t, c))] += angles[static_cast<size_t>(t)][static_cast<size_t>(c)];
+    }
+  }
+  std::vector<char> sharp_corner(static_cast<size_t>(nv), 0);
+  for (int v : piece.boundary_vertices())
+    sharp_corner[static_cast<size_t>(v)] = corner_angle[static_cast<size_t>(v)] < 60.0 ? 1 : 0;
   for (Eigen::Index t = 0; t < piece.triangles.rows(); ++t) {
     const Vec2 p[3] = {piece.rest.row(piece.triangles(t, 0)), piece.rest.row(piece.triangles(t, 1)),
                        piece.rest.row(piece.triangles(t, 2))};
@@ -106,11 +123,9 @@ PieceQuality piece_quality(const PatternPiece& piece) {
       q.min_angle_deg = 0.0;
       continue;
     }
-    for (int c = 0; c < 3; ++c) {
-      const Vec2 a = p[(c + 1) % 3] - p[c], b = p[(c + 2) % 3] - p[c];
-      const double angle = angle_between_deg(a, b);
-      q.min_angle_deg = std::min(q.min_angle_deg, angle);
-    }
+    for (int c = 0; c < 3; ++c)
+      if (!sharp_corner[static_cast<size_t>(piece.triangles(t, c))])
+        q.min_angle_deg = std::min(q.min_angle_deg, angles[static_cast<size_t>(t)][static_cast<size_t>(c)]);
   }
   if (piece.triangles.rows() == 0) q.min_area = 0.0;
   return q;

@@ -57,7 +57,10 @@ struct PatternRemeshOptions {
 
 /// Shape quality of one piece's rest mesh.
 struct PieceQuality {
-  double min_angle_deg = 0.0;  ///< smallest interior angle (degrees; 0 when inverted)
+  /// Smallest interior angle (degrees; 0 when inverted), leaving out the angles at sharp
+  /// corners of the outline (boundary vertices whose triangles' angles sum below 60°):
+  /// the corner bounds them and no remeshing can raise them.
+  double min_angle_deg = 0.0;
   double min_area = 0.0;       ///< smallest signed area (m²; <= 0: an inverted triangle)
 };
 

@@ -163,6 +163,25 @@ std::string format_point(const Eigen::Ref<const Eigen::RowVector3d>& p) {
 }
 
 /// The boundary edges (i, j) of all loops, each with the interior on its left.
+double signed_area2(const std::array<int, 3>& f, const Points2& uv) {
+  const Vec2 a = uv.row(f[0]), b = uv.row(f[1]), c = uv.row(f[2]);
+  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+}
+
+/// Twice the total signed area of the map.
+double total_signed_area(const std::vector<std::array<int, 3>>& faces, const Points2& uv) {
+  double sum = 0.0;
+  for (const auto& f : faces) sum += signed_area2(f, uv);
+  return sum;
+}
+
+/// Triangles whose orientation in the map is not `orientation` (±1).
+int count_folds(const std::vector<std::array<int, 3>>& faces, const Points2& uv, double orientation) {
+  int folds = 0;
+  for (const auto& f : faces) folds += orientation * signed_area2(f, uv) <= 0.0 ? 1 : 0;
+  return folds;
+}
+
 std::vector<std::pair<int, int>> loop_edges(const std::vector<std::vector<int>>& loops) {
   std::vector<std::pair<int, int>> edges;
   for (const auto& loop : loops) {
@@ -272,6 +291,8 @@ Flattening flatten_panel(const TriMesh& mesh, const std::vector<std::vector<int>
       throw SolverError("flattening: the ARAP system is not positive definite (degenerate triangles?)");
     std::vector<Mat2> R(nf);
     double previous = std::numeric_limits<double>::infinity();
+    const double orientation = total_signed_area(faces, out.uv) < 0.0 ? -1.0 : 1.0;
+    int folds_before = count_folds(faces, out.uv, orientation);
     for (int it = 0; it < options.max_iterations; ++it) {
       // Local step: the rotation closest to each triangle's map (2×2 polar decomposition).
       double energy = 0.0;
@@ -317,18 +338,22 @@ Flattening flatten_panel(const TriMesh& mesh, const std::vector<std::vector<int>
       for (SparseMatrix::InnerIterator e(A, p0); e; ++e)
         if (id[e.row()] >= 0) rhs.row(id[e.row()]) -= e.value() * out.uv.row(p0);
       const MatX u = chol.solve_columns(rhs);
+      const Points2 before = out.uv;
       for (int i = 0; i < n; ++i)
         if (id[i] >= 0) out.uv.row(i) = u.row(id[i]);
+      // The boundary-length pull can fold tiny triangles at sharp corners of strongly
+      // curved panels: keep the last iterate that folds no more than the one before.
+      const int folds = count_folds(faces, out.uv, orientation);
+      if (folds > folds_before) {
+        out.uv = before;
+        break;
+      }
+      folds_before = folds;
       out.iterations = it + 1;
     }
   }
   // Orientation: the maps preserve it; guard against a mirrored result anyway.
-  double signed_area = 0.0;
-  for (int f = 0; f < nf; ++f) {
-    const Vec2 a = out.uv.row(faces[f][0]), b = out.uv.row(faces[f][1]), c = out.uv.row(faces[f][2]);
-    signed_area += (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-  }
-  if (signed_area < 0) out.uv.col(0) = -out.uv.col(0);
+  if (total_signed_area(faces, out.uv) < 0) out.uv.col(0) = -out.uv.col(0);
   out.report = measure_distortion(mesh, out.uv);
   return out;
 }

@@ -318,6 +318,7 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
   Layout layout;
   layout.source = spec.source;
   layout.seam_tolerance = spec.seam_tolerance;
+  layout.area_tolerance = spec.area_tolerance;
   layout.pin_names.clear();
   for (const auto& p : spec.pins) layout.pin_names.push_back(p.name);
   compact(in, layout);

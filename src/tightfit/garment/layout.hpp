@@ -72,6 +72,7 @@ struct Layout {
   std::vector<LayoutSeam> seams;
   std::vector<std::string> pin_names; ///< one per PinRule of the spec
   double seam_tolerance = 0.05;       ///< copied from the spec
+  double area_tolerance = 0.5;        ///< copied from the spec
   /// What the builder changed that the user should know (e.g. surface an opening cut
   /// off and left out), prefixed with the spec source.
   std::vector<std::string> warnings;

@@ -11,6 +11,7 @@
 #include "tightfit/body/skin_transfer.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/nearest_word.hpp"
+#include "tightfit/geometry/plane_loops.hpp"
 
 namespace tightfit {
 namespace {
@@ -47,23 +48,20 @@ class Resolver {
   void resolve(LayoutPlane& plane, const std::string& what) {
     if (plane.anchor) {
       const BoneSegment& bone = find_bone(plane.anchor->bone, plane.source_path + "/point/bone");
-      plane.point = bone.head + plane.anchor->at * (bone.tail - bone.head);
+      plane.point = anchor_point(bone, plane.anchor->at);
       plane.anchor.reset();
     }
     if (plane.along_bone) {
       const std::string path = plane.source_path + "/normal";
-      const BoneSegment& bone = find_bone(plane.along_bone->bone, path);
-      const Vec3 d = bone.tail - bone.head;
-      if (!(d.norm() > 1e-9))
-        fail(path, "bone \"" + bone.name + "\" has zero length: it gives no direction");
-      plane.normal = plane.along_bone->sign * d.normalized();
+      find_bone(plane.along_bone->bone, path);  // a rig must be given
+      plane.normal = resolve_bone_direction(*plane.along_bone, *rig_.skeleton, spec_.source, path, rig_.source);
       plane.along_bone.reset();
     }
-    if (plane.is_bone_region()) {
+    if (plane.is_field()) {
       if (plane.field.empty()) {
-        plane.field = bone_field(plane);
+        plane.field = plane.local ? local_field(plane) : bone_field(plane);
       } else if (plane.field.size() != static_cast<std::size_t>(body_.num_vertices())) {
-        throw std::invalid_argument("resolve_layout_anchors: bone region \"" + plane.name +
+        throw std::invalid_argument("resolve_layout_anchors: plane \"" + plane.name +
                                     "\" was resolved on another body");
       }
     }
@@ -79,11 +77,7 @@ class Resolver {
     if (rig_.skeleton == nullptr)
       fail(path, "bone \"" + name + "\": the layout is anchored on the skeleton, but no skeleton "
                  "is given (the scene's \"rig\": {\"mesh\", \"weights\", \"joints\"})");
-    const auto it = rig_.skeleton->find(name);
-    if (it == rig_.skeleton->end())
-      fail(path, "unknown bone \"" + name + "\" (not in the skeleton of " + rig_.source + ")" +
-                     suggestion(name, *rig_.skeleton));
-    return it->second;
+    return find_anchor_bone(*rig_.skeleton, name, spec_.source, path, rig_.source);
   }
 
   std::vector<double> bone_field(const LayoutPlane& plane) {
@@ -103,10 +97,27 @@ class Resolver {
     return field;
   }
 
+  /// The signed distance to the plane beyond its loop nearest to its point, its
+  /// absolute value elsewhere.
+  std::vector<double> local_field(const LayoutPlane& plane) const {
+    std::vector<double> distance(static_cast<std::size_t>(body_.num_vertices()));
+    for (int v = 0; v < body_.num_vertices(); ++v)
+      distance[static_cast<std::size_t>(v)] = plane.distance(body_.vertices.row(v).transpose());
+    BeyondLoop loop;
+    try {
+      loop = beyond_nearest_loop(body_, distance, plane.point, "");
+    } catch (const InputError& e) {
+      fail(plane.source_path, "local plane \"" + plane.name + "\": " + e.what());
+    }
+    for (std::size_t v = 0; v < distance.size(); ++v)
+      distance[v] = loop.beyond[v] ? -std::abs(distance[v]) : std::abs(distance[v]);
+    return distance;
+  }
+
   void check_crosses(const LayoutPlane& plane, const std::string& what) const {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (int v = 0; v < body_.num_vertices(); ++v) {
-      const double d = plane.is_bone_region() ? plane.field[static_cast<std::size_t>(v)]
+      const double d = plane.is_field() ? plane.field[static_cast<std::size_t>(v)]
                                               : plane.distance(body_.vertices.row(v).transpose());
       lo = std::min(lo, d);
       hi = std::max(hi, d);

@@ -8,14 +8,6 @@
 namespace tightfit {
 namespace {
 
-/// The body frame's axes by name (x to the body's left, y up, z forward).
-const std::map<std::string, Vec3>& body_axes() {
-  static const std::map<std::string, Vec3> axes = {
-      {"left", Vec3::UnitX()}, {"right", -Vec3::UnitX()}, {"up", Vec3::UnitY()},
-      {"down", -Vec3::UnitY()}, {"front", Vec3::UnitZ()}, {"back", -Vec3::UnitZ()}};
-  return axes;
-}
-
 /// "bones": [NAME, ...] of a bone region.
 std::vector<std::string> parse_bone_list(JsonFields& f) {
   const nlohmann::json& bones = f.raw("bones");
@@ -32,57 +24,6 @@ std::vector<std::string> parse_bone_list(JsonFields& f) {
   return out;
 }
 
-void parse_point(JsonFields& f, LayoutPlane& plane) {
-  const nlohmann::json& point = f.raw("point");
-  if (point.is_object()) {
-    JsonFields af(point, f.source(), f.child_path("point"));
-    BoneAnchor anchor;
-    anchor.bone = af.string("bone");
-    if (anchor.bone.empty()) af.fail("expected a bone name", "bone");
-    anchor.at = af.number("at");
-    if (!(anchor.at >= 0.0 && anchor.at <= 1.0))
-      af.fail("must lie in [0, 1] (a fraction of the bone from its head to its tail)", "at");
-    af.finish();
-    plane.anchor = anchor;
-  } else if (point.is_array() || point.is_null()) {
-    plane.point = f.vec3("point");
-  } else {
-    f.fail("expected [x, y, z] (m) or a bone anchor {\"bone\": NAME, \"at\": fraction}", "point");
-  }
-}
-
-void parse_normal(JsonFields& f, LayoutPlane& plane) {
-  const nlohmann::json& normal = f.raw("normal");
-  if (normal.is_string()) {
-    const std::string word = normal.get<std::string>();
-    if (word == "along_bone" || word == "-along_bone") {
-      if (!plane.anchor)
-        f.fail("\"" + word + "\" needs a bone anchor as \"point\" (or name the bone: "
-               "{\"along_bone\": NAME})", "normal");
-      plane.along_bone = BoneDirection{plane.anchor->bone, word[0] == '-' ? -1.0 : 1.0};
-    } else if (const auto it = body_axes().find(word); it != body_axes().end()) {
-      plane.normal = it->second;
-    } else {
-      f.fail("expected [x, y, z], a body axis (left, right, up, down, front, back), "
-             "\"along_bone\" or \"-along_bone\", got \"" + word + "\"", "normal");
-    }
-  } else if (normal.is_object()) {
-    JsonFields nf(normal, f.source(), f.child_path("normal"));
-    BoneDirection direction;
-    direction.bone = nf.string("along_bone");
-    if (direction.bone.empty()) nf.fail("expected a bone name", "along_bone");
-    direction.sign = nf.boolean("reversed", false) ? -1.0 : 1.0;
-    nf.finish();
-    plane.along_bone = direction;
-  } else if (normal.is_array() || normal.is_null()) {
-    const Vec3 n = f.vec3("normal");
-    if (n.norm() < 1e-12) f.fail("the normal must not be zero", "normal");
-    plane.normal = n.normalized();
-  } else {
-    f.fail("expected [x, y, z], a body axis, \"along_bone\" or {\"along_bone\": NAME}", "normal");
-  }
-}
-
 /// A plane of "region" or "dividers" (`named`, bone regions allowed) or a pin's plane.
 LayoutPlane parse_plane(JsonFields& f, bool named) {
   LayoutPlane plane;
@@ -96,8 +37,9 @@ LayoutPlane parse_plane(JsonFields& f, bool named) {
       if (f.has(key)) f.fail("not allowed in a bone region (it is cut where the bones' skin weight is 1/2)", key);
     plane.bones = parse_bone_list(f);
   } else {
-    parse_point(f, plane);
-    parse_normal(f, plane);
+    parse_anchored_point(f, "point", plane.point, plane.anchor);
+    parse_anchored_direction(f, "normal", plane.anchor, plane.normal, plane.along_bone);
+    if (named) plane.local = f.boolean("local", false);
   }
   f.finish();
   return plane;
@@ -242,6 +184,7 @@ LayoutSpec parse_layout_spec(JsonFields& f, const std::string& base_dir) {
       pf.fail("duplicate pin name \"" + spec.pins.back().name + "\"", "name");
   }
   spec.seam_tolerance = f.positive("seam_tolerance", spec.seam_tolerance);
+  spec.area_tolerance = f.positive("area_tolerance", spec.area_tolerance);
   spec.plane_tolerance = f.positive("plane_tolerance", spec.plane_tolerance);
   f.finish();
   return spec;

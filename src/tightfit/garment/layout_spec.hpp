@@ -44,6 +44,9 @@
 ///   bones dominate (summed weight ≥ ½), e.g. panel sides ["+left_thigh", "+front"].
 ///   As a region plane it keeps that surface, and `"on_plane"` pins its iso-line.
 /// * Pins' inline planes (`"on_plane": {...}`) may be anchored; they are not bone regions.
+/// * `"local": true` on a region plane or divider: only the plane's cut loop nearest to
+///   its point counts (a cuff around the wrist, not the legs behind the same plane); the
+///   surface beyond that loop is its "−" side, everything else its "+" side.
 ///
 /// Mesh (panels drawn by hand, e.g. in Blender): `{"mesh": "layout.obj", "pinned": [...]}`,
 /// an OBJ lying on the body with one group (`g`/`o`) per panel; the path is relative to
@@ -56,6 +59,9 @@
 ///   every open boundary edge within `plane_tolerance` of that plane; `"nearest": [x,y,z]`
 ///   pins the whole open boundary loop nearest to the point (within `max_distance` m if
 ///   given).
+/// * `area_tolerance`: the largest accepted relative difference between a panel's
+///   flattened and 3D areas (default 0.5 = 50 %; a hemisphere flattens with about 32 %):
+///   beyond it the panel is too curved to be one piece.
 /// * `seam_tolerance`: the largest accepted relative length difference of the two sides
 ///   of a seam after flattening, before scale-down (default 0.05 = 5 %).
 /// * `description`: free text, ignored.
@@ -65,22 +71,11 @@
 #include <utility>
 #include <vector>
 
+#include "tightfit/body/skeleton_anchor.hpp"
 #include "tightfit/common/json_fields.hpp"
 #include "tightfit/common/types.hpp"
 
 namespace tightfit {
-
-/// A point on a bone of the body's skeleton: head + at (tail − head).
-struct BoneAnchor {
-  std::string bone;
-  double at = 0.0;  ///< fraction from the head (0) to the tail (1)
-};
-
-/// A direction along a bone of the body's skeleton: sign (tail − head) / |tail − head|.
-struct BoneDirection {
-  std::string bone;
-  double sign = 1.0;  ///< +1 or −1
-};
 
 /// An oriented plane: points x with normal·(x − point) > 0 are on its "+" side. Or a
 /// bone region (`bones` not empty): its "+" side is where the bones' summed skin weight
@@ -94,11 +89,19 @@ struct LayoutPlane {
   std::optional<BoneAnchor> anchor;         ///< unresolved: `point` comes from the skeleton
   std::optional<BoneDirection> along_bone;  ///< unresolved: `normal` comes from the skeleton
   std::vector<std::string> bones;           ///< a bone region instead of a plane
-  /// A resolved bone region: per vertex of the body surface it was resolved on, the
-  /// bones' summed skin weight minus ½ (dimensionless; > 0 on the "+" side).
+  /// A local plane: only its cut loop nearest to `point` counts, and its "−" side is
+  /// the surface beyond that loop (a sleeve's cuff at the wrist, which must not cut the
+  /// legs that lie behind the same plane in an A-pose).
+  bool local = false;
+  /// A resolved bone region or local plane: per vertex of the body surface it was
+  /// resolved on, the bones' summed skin weight minus ½ (dimensionless), or the signed
+  /// distance to the plane (m) beyond the loop and its absolute value elsewhere; > 0 on
+  /// the "+" side, linear along the edges the cut crosses.
   std::vector<double> field;
 
   bool is_bone_region() const { return !bones.empty(); }
+  /// Whether the plane is cut along a per-vertex field (bone regions, local planes).
+  bool is_field() const { return is_bone_region() || local; }
   /// Whether resolving needs the skeleton or skin weights: an anchor, a bone direction
   /// or a bone region not yet resolved.
   bool needs_rig() const { return anchor || along_bone || (is_bone_region() && field.empty()); }
@@ -158,6 +161,7 @@ struct LayoutSpec {
   std::string mesh_file;                 ///< OBJ layout (resolved path); empty for rules
   std::vector<PinRule> pins;
   double seam_tolerance = 0.05;          ///< relative seam side length difference
+  double area_tolerance = 0.5;           ///< relative flattened area difference of a panel
   double plane_tolerance = 1e-4;         ///< m, for "on_plane" with an inline plane
   double weld_tolerance = 1e-6;          ///< m, coincident OBJ vertices are welded
 

@@ -225,6 +225,11 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     if (!why.empty())
       throw InputError(layout.source, "panel \"" + panel.name + "\" overlaps itself when flattened (" + why +
                                           "); split it with a divider into less curved panels");
+    if (flat.report.area_error > layout.area_tolerance)
+      throw InputError(layout.source, "panel \"" + panel.name + "\" is too curved to flatten: its flat area differs from "
+                                      "its area on the body by " + percent(flat.report.area_error) +
+                                      " (area_tolerance " + percent(layout.area_tolerance) +
+                                      "); split it with a divider into less curved panels");
     PieceMap& map = out.maps[p];
     map.panel = p;
     map.flat = std::move(flat.uv);

@@ -53,12 +53,12 @@ struct Cutter {
   std::function<double(const Vec3&)> value;
   std::function<Vec3(const Vec3&)> gradient;
   bool planar = false;      ///< value is exactly affine (a plane)
-  bool bone_region = false;  ///< values from the field, linear along every edge
+  bool from_field = false;  ///< values from the field (bone regions, local planes), linear along every edge
 };
 
 Cutter plane_cutter(const LayoutPlane& plane) {
   Cutter c{[plane](const Vec3& x) { return plane.distance(x); }, [plane](const Vec3&) { return plane.normal; },
-           true, plane.is_bone_region()};
+           true, plane.is_field()};
   return c;
 }
 
@@ -89,7 +89,7 @@ double edge_crossing(const Cutter& cut, const Vec3& a, const Vec3& b, double da,
 /// fields).
 void cut_one(Work& w, const Cutter& cut, int k, double eps, double snap_fraction) {
   const int nv = static_cast<int>(w.x.size());
-  const bool is_field = cut.bone_region;
+  const bool is_field = cut.from_field;
   std::vector<double>* field = is_field ? &w.field[k] : nullptr;
   std::vector<double> d(nv);
   for (int v = 0; v < nv; ++v) {
@@ -248,9 +248,9 @@ CutMesh cut_by_planes_and_openings(const TriMesh& mesh, const std::vector<Layout
     if (plane.anchor || plane.along_bone)
       throw std::invalid_argument("cut_by_planes: plane \"" + plane.name +
                                   "\" is anchored on the skeleton and not resolved (layout_anchors.hpp)");
-    if (!plane.is_bone_region()) continue;
+    if (!plane.is_field()) continue;
     if (plane.field.size() != static_cast<size_t>(nv))
-      throw std::invalid_argument("cut_by_planes: bone region \"" + plane.name +
+      throw std::invalid_argument("cut_by_planes: bone region or local plane \"" + plane.name +
                                   "\" is not resolved on this mesh (layout_anchors.hpp)");
     w.field[k] = plane.field;
   }
@@ -259,7 +259,7 @@ CutMesh cut_by_planes_and_openings(const TriMesh& mesh, const std::vector<Layout
     diag = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
   const double eps = 1e-10 * std::max(diag, 1e-3);
   for (size_t k = 0; k < cutters.size(); ++k)
-    cut_one(w, cutters[k], static_cast<int>(k), cutters[k].bone_region ? 1e-12 : eps, snap_fraction);
+    cut_one(w, cutters[k], static_cast<int>(k), cutters[k].from_field ? 1e-12 : eps, snap_fraction);
 
   CutMesh out;
   out.mesh.vertices = to_points(w.x);

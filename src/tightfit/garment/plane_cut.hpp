@@ -2,7 +2,7 @@
 /// Cutting a triangle surface by planes (and ellipsoids) so that every crossing becomes a polyline
 /// of mesh edges: new vertices are inserted exactly on the planes and the crossed
 /// triangles are split. Used to cut garment panels out of the body surface. A bone
-/// region (LayoutPlane::is_bone_region, resolved by layout_anchors.hpp) is cut the same
+/// region or a local plane (LayoutPlane::is_field, resolved by layout_anchors.hpp) is cut the same
 /// way along the zero iso-line of its per-vertex field, taken as linear along every edge
 /// (new vertices where the linear interpolant is zero, their field values interpolated
 /// for the later cuts).

@@ -120,8 +120,10 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   JsonFields root(document, file, "");
   root.string("$schema", std::string());
   root.string("description", std::string());
+  if (auto f = root.object("rig")) s.rig = parse_scene_rig(*f, base_dir);
   auto body = root.object("body", true);
-  s.body = parse_body_spec(*body, base_dir);
+  s.body = parse_body_spec(*body, base_dir,
+                           s.rig ? SkeletonRef{&s.rig->skeleton, s.rig->source} : SkeletonRef{});
   auto garment = root.object("garment", true);
   s.garment = parse_garment(*garment, base_dir);
   if (auto f = root.object("fabric")) parse_fabric(*f, s.materials.fabric);
@@ -129,7 +131,6 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   if (auto f = root.object("body_material"))
     parse_body_material(*f, s.materials.body, s.materials.rigid_body);
   if (auto f = root.object("solver")) parse_solver(*f, s.newton, s.limit);
-  if (auto f = root.object("rig")) s.rig = parse_scene_rig(*f, base_dir);
   if (root.has("poses")) s.poses = parse_scene_poses(root.raw("poses"), file, "/poses", s.rig.get(), base_dir);
   if (s.rig) s.pressure_rig = std::shared_ptr<const SkinWeights>(s.rig, &s.rig->weights);
   if (s.garment.kind == GarmentKind::kLayout && !s.rig) {
