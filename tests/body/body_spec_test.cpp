@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "tightfit/body/skeleton.hpp"
 #include "tightfit/common/error.hpp"
 
 namespace tightfit {
@@ -35,6 +36,41 @@ TEST(BodySpec, CylinderWithDefaults) {
   ASSERT_TRUE(s.volume.core.soft_tissue.has_value());
   EXPECT_EQ(*s.volume.core.soft_tissue, 0.015);
   EXPECT_TRUE(s.volume.core.bones.empty());
+}
+
+TEST(BodySpec, CropsAnchoredOnTheSkeletonAreResolvedOnTheBodysOwnOrTheRigsJoints) {
+  const std::string crop =
+      R"("crop": [{"point": {"bone": "lowerarm02.L", "at": 0.85}, "normal": "-along_bone", "local": true}])";
+  const json own = json::parse(R"({"mesh": "data/bodies/mh_male_regular.obj",
+                                   "skeleton": "data/rig/mh_male_regular.joints.json", )" + crop + "}");
+  const BodySpec s = parse_body_spec(own, "/body", TIGHTFIT_SOURCE_DIR, "scene.json");
+  const std::map<std::string, BoneSegment> regular =
+      read_skeleton(std::string(TIGHTFIT_SOURCE_DIR) + "/data/rig/mh_male_regular.joints.json");
+  const BoneSegment& forearm = regular.at("lowerarm02.L");
+  ASSERT_EQ(s.mesh.crop.size(), 1u);
+  EXPECT_LT((s.mesh.crop[0].point - (forearm.head + 0.85 * (forearm.tail - forearm.head))).norm(), 1e-15);
+  EXPECT_LT((s.mesh.crop[0].normal + (forearm.tail - forearm.head).normalized()).norm(), 1e-15);
+  EXPECT_TRUE(s.mesh.crop[0].local);
+
+  // Without a skeleton of its own the body takes the one it is given (a scene's rig):
+  // the child's forearm is elsewhere.
+  const json bare = json::parse(R"({"mesh": "data/bodies/mh_child.obj", )" + crop + "}");
+  const std::map<std::string, BoneSegment> child =
+      read_skeleton(std::string(TIGHTFIT_SOURCE_DIR) + "/data/rig/mh_child.joints.json");
+  const BodySpec c = parse_body_spec(bare, "/body", TIGHTFIT_SOURCE_DIR, "scene.json", {&child, "child.joints.json"});
+  const BoneSegment& child_forearm = child.at("lowerarm02.L");
+  EXPECT_LT((c.mesh.crop[0].point - (child_forearm.head + 0.85 * (child_forearm.tail - child_forearm.head))).norm(),
+            1e-15);
+
+  EXPECT_EQ(error_of(bare, "/body"),
+            "spec.json: /body/crop/0: anchored on the skeleton, but there is none: give the body a \"skeleton\" "
+            "(a joints file) or the scene a \"rig\"");
+  json typo = own;
+  typo["crop"][0]["point"]["bone"] = "lowerarm02.l";
+  EXPECT_EQ(error_of(typo, "/body"),
+            "spec.json: /body/crop/0/point/bone: unknown bone \"lowerarm02.l\" (not in the skeleton of " +
+                (std::filesystem::path(TIGHTFIT_SOURCE_DIR) / "data/rig/mh_male_regular.joints.json").string() +
+                "); did you mean \"lowerarm02.L\"?");
 }
 
 TEST(BodySpec, MeshWithCropAndBones) {

@@ -209,16 +209,30 @@ PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>&
           star[tris[t][k] - nb].push_back(static_cast<int>(t));
         }
     }
+    // A move is kept when it folds nothing and does not lower the smallest angle of the
+    // vertex's triangles (near a concave stretch of boundary the circumcentres lie
+    // outside, and the step would push the vertex onto the boundary).
+    auto star_min_angle = [&](const std::vector<int>& triangles) {
+      double smallest = M_PI;
+      for (int t : triangles)
+        for (int k = 0; k < 3; ++k) {
+          const Vec2 u = point(tris[t][(k + 1) % 3]) - point(tris[t][k]);
+          const Vec2 w = point(tris[t][(k + 2) % 3]) - point(tris[t][k]);
+          smallest = std::min(smallest, std::atan2(std::abs(cross2(u, w)), u.dot(w)));
+        }
+      return smallest;
+    };
     for (size_t v = 0; v < interior.size(); ++v) {
       if (weight[v] <= 0) continue;
       const Vec2 old = interior[v];
+      const double angle_before = star_min_angle(star[v]);
       interior[v] = sum[v] / weight[v];
       bool folds = false;
       for (int t : star[v]) {
         const Vec2 a = point(tris[t][0]), b = point(tris[t][1]), c = point(tris[t][2]);
         if (cross2(b - a, c - a) <= 1e-3 * h * h) folds = true;
       }
-      if (folds) interior[v] = old;
+      if (folds || star_min_angle(star[v]) < angle_before) interior[v] = old;
     }
     tris = triangulate(loops, interior);
   }
