@@ -8,6 +8,7 @@
 
 #include "garment/garment_test_meshes.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
 #include "tightfit/garment/flatten.hpp"
 #include "tightfit/garment/garment_builder.hpp"
 #include "tightfit/garment/layout.hpp"
@@ -56,13 +57,7 @@ double signed_area(const Points2& x, const std::vector<int>& loop) {
 }
 
 bool inside(const Points2& x, const std::vector<int>& loop, const Vec2& q) {
-  bool in = false;
-  for (size_t i = 0, j = loop.size() - 1; i < loop.size(); j = i++) {
-    const Vec2 a = x.row(loop[i]), b = x.row(loop[j]);
-    if ((a.y() > q.y()) != (b.y() > q.y()) && q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
+  return inside_polygon(loop.size(), [&](size_t i) -> Vec2 { return x.row(loop[i]); }, q);
 }
 
 TEST(Openings, ParseWithRadiusOrRadiiAndRejectBadOnes) {

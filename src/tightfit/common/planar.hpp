@@ -1,7 +1,9 @@
 #pragma once
 /// Planar (2D) vector helpers shared by the pattern code of every layer: the cross
-/// product, signed triangle areas and the angle between two directions.
+/// product, signed triangle areas, the angle between two directions and the
+/// point-in-polygon test.
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 
 #include "tightfit/common/types.hpp"
@@ -19,6 +21,20 @@ inline double signed_area(const Vec2& a, const Vec2& b, const Vec2& c) {
 /// Angle between the directions a and b, in degrees in [0, 180] (0 when either is zero).
 inline double angle_between_deg(const Vec2& a, const Vec2& b) {
   return std::atan2(std::abs(cross2(a, b)), a.dot(b)) * 180.0 / std::numbers::pi;
+}
+
+/// Whether `q` lies inside the closed polygon whose k-th corner is `corner(k)`,
+/// k = 0 … n−1 (even-odd rule: a ray from q crosses its edges an odd number of times).
+template <class Corner>
+bool inside_polygon(std::size_t n, const Corner& corner, const Vec2& q) {
+  bool in = false;
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2 pi = corner(i), pj = corner(j);
+    if ((pi.y() > q.y()) != (pj.y() > q.y()) &&
+        q.x() < (pj.x() - pi.x()) * (q.y() - pi.y()) / (pj.y() - pi.y()) + pi.x())
+      in = !in;
+  }
+  return in;
 }
 
 }  // namespace tightfit

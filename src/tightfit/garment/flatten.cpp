@@ -11,6 +11,7 @@
 #include <string>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
 #include "tightfit/common/sparse_cholesky.hpp"
 
 namespace tightfit {
@@ -388,16 +389,9 @@ std::string find_overlap(const TriMesh& mesh, const std::vector<std::vector<int>
   // Every hole must lie inside the outer loop (folded-free maps of an annulus can put
   // the "outer" loop inside the hole instead: a band around the body, not an opening).
   for (size_t h = 1; h < loops.size(); ++h) {
-    const Vec2 q = uv.row(loops[h][0]);
-    bool inside = false;
     const auto& outer = loops[0];
-    for (size_t i = 0, j = outer.size() - 1; i < outer.size(); j = i++) {
-      const Vec2 pi = uv.row(outer[i]), pj = uv.row(outer[j]);
-      if ((pi.y() > q.y()) != (pj.y() > q.y()) &&
-          q.x() < (pj.x() - pi.x()) * (q.y() - pi.y()) / (pj.y() - pi.y()) + pi.x())
-        inside = !inside;
-    }
-    if (!inside) return "an opening lies outside its outer boundary (a band around the body?)";
+    const auto corner = [&](size_t i) -> Vec2 { return uv.row(outer[i]); };
+    if (!inside_polygon(outer.size(), corner, uv.row(loops[h][0]))) return "an opening lies outside its outer boundary (a band around the body?)";
   }
   return "";
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "tightfit/common/error.hpp"
 #include "tightfit/garment/piece_mesher.hpp"
 #include "tightfit/garment/triangle_geometry.hpp"
 #include "tightfit/subdiv/limit_projector.hpp"
@@ -49,7 +50,19 @@ GarmentBuild build_garment(const TriMesh& control, const LimitSurface& limit, co
   const LimitProjector projector(limit, control.vertices);
   if (options.flatten_limit_surface) move_layout_to_limit(out.layout, limit, projector, control);
 
-  PatternBuild build = build_pattern(out.layout, options);
+  PatternBuild build;
+  try {
+    build = build_pattern(out.layout, options);
+  } catch (const InputError& e) {
+    // The layout's warnings (e.g. parts cut off by openings) often explain the failure:
+    // they go with it rather than being lost.
+    if (out.layout.warnings.empty()) throw;
+    std::string message = e.what();
+    if (const std::string prefix = e.source() + ": "; !e.source().empty() && message.rfind(prefix, 0) == 0)
+      message = message.substr(prefix.size());
+    for (const std::string& w : out.layout.warnings) message += "\n  after the warning: " + w;
+    throw InputError(e.source(), message);
+  }
   out.maps = std::move(build.maps);
   out.seams = std::move(build.seams);
   for (size_t k = 0; k < build.pattern.pieces.size(); ++k) {

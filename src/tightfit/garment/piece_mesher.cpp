@@ -36,14 +36,8 @@ double polygon_area(const std::vector<Vec2>& p) {
   return 0.5 * a;
 }
 
-bool inside_polygon(const std::vector<Vec2>& p, const Vec2& q) {
-  bool in = false;
-  for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
-    if ((p[i].y() > q.y()) != (p[j].y() > q.y()) &&
-        q.x() < (p[j].x() - p[i].x()) * (q.y() - p[i].y()) / (p[j].y() - p[i].y()) + p[i].x())
-      in = !in;
-  }
-  return in;
+bool inside_loop(const std::vector<Vec2>& p, const Vec2& q) {
+  return inside_polygon(p.size(), [&p](size_t i) { return p[i]; }, q);
 }
 
 double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
@@ -157,15 +151,15 @@ PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>&
     holes.push_back(to_vector(hole_points[k]));
     if (polygon_area(holes.back()) >= 0) throw std::invalid_argument(which + " is not clockwise");
     for (const Vec2& q : holes.back())
-      if (!inside_polygon(outer, q)) throw std::invalid_argument(which + " is not inside the outer boundary");
+      if (!inside_loop(outer, q)) throw std::invalid_argument(which + " is not inside the outer boundary");
     loops.add(holes.back());
   }
   const int nb = loops.size();
   const std::vector<Vec2>& boundary = loops.points;
   auto in_piece = [&](const Vec2& q) {
-    if (!inside_polygon(outer, q)) return false;
+    if (!inside_loop(outer, q)) return false;
     for (const auto& hole : holes)
-      if (inside_polygon(hole, q)) return false;
+      if (inside_loop(hole, q)) return false;
     return true;
   };
 

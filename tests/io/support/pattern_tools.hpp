@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "support/shell_command.hpp"
+#include "tightfit/common/planar.hpp"
 #include "tightfit/common/types.hpp"
 
 namespace tightfit::test {
@@ -156,16 +157,7 @@ inline double polygon_distance(const Vec2& q, const std::vector<Vec2>& polygon) 
 
 /// Whether `q` lies inside the closed polygon (crossing number).
 inline bool inside_polygon(const Vec2& q, const std::vector<Vec2>& polygon) {
-  bool inside = false;
-  for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vec2& a = polygon[i];
-    const Vec2& b = polygon[j];
-    if ((a.y() > q.y()) != (b.y() > q.y()) &&
-        q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      inside = !inside;
-    }
-  }
-  return inside;
+  return tightfit::inside_polygon(polygon.size(), [&](size_t i) { return polygon[i]; }, q);
 }
 
 /// Whether two non-adjacent edges of the closed polygon cross or touch.
