@@ -73,6 +73,21 @@ TEST(BodySpec, CropsAnchoredOnTheSkeletonAreResolvedOnTheBodysOwnOrTheRigsJoints
                 "); did you mean \"lowerarm02.L\"?");
 }
 
+TEST(BodySpec, SizesInMillimetresAndEdgesTooShortToMeshAreErrorsBeforeMeshing) {
+  EXPECT_EQ(error_of(json::parse(R"({"generator": "cylinder", "radius": 50, "length": 0.3})"), "/body"),
+            "spec.json: /body/radius: a radius of 50 m is larger than any body part: lengths are in metres "
+            "(50 mm is 0.05)");
+  EXPECT_EQ(error_of(json::parse(R"({"generator": "cylinder", "radius": 0.05, "length": 300})"), "/body"),
+            "spec.json: /body/length: a length of 300 m is longer than any body: lengths are in metres "
+            "(300 mm is 0.3)");
+  const std::string tiny =
+      error_of(json::parse(R"({"generator": "sphere", "radius": 0.1, "edge_length": 0.00005})"), "/body");
+  EXPECT_NE(tiny.find("spec.json: /body/edge_length: an edge length of 5e-05 m would mesh the sphere's surface "
+                      "(0.126 m²) into about 1.16e+08 triangles, more than 2e+06"),
+            std::string::npos) << tiny;
+  EXPECT_EQ(error_of(json::parse(R"({"generator": "sphere", "radius": 0.1, "edge_length": 0.0005})"), "/body"), "");
+}
+
 TEST(BodySpec, MeshWithCropAndBones) {
   const json j = json::parse(R"({
     "mesh": "data/bodies/mh_legs_male.obj", "edge_length": 0.02, "scale": 1.0,

@@ -162,6 +162,22 @@ TEST(BuildGarment, SleeveOnTheGeneratedCapsule) {
   }
 }
 
+TEST(BuildGarment, APatternEdgeTooShortToMeshIsAnErrorBeforeMeshing) {
+  SphereParams params;
+  params.radius = 0.1;
+  const TriMesh body = sphere_surface(params);
+  const LimitSurface limit(body);
+  PatternOptions options;
+  options.edge_length = 1e-5;  // 0.01 mm: "0.01" meant in mm
+  try {
+    build_garment(body, limit, spec_from(kSphereCover, "cover.json"), options);
+    ADD_FAILURE() << "no error for a 0.01 mm pattern edge";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cover.json: pattern: an edge length of 1e-05 m would mesh the pattern pieces"),
+              std::string::npos) << e.what();
+  }
+}
+
 TEST(BuildGarment, ThreePieceCoverOnSphere) {
   SphereParams params;
   params.radius = 0.1;

@@ -47,6 +47,13 @@ std::string error_of(const std::string& text) {
 
 const char* kGood = R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {"scale": 0.9}}})";
 
+TEST(SceneSpec, ASleeveEdgeTooShortToMeshIsAnErrorBeforeMeshing) {
+  const std::string e = error_of(R"({"body": {"generator": "cylinder", "radius": 0.05, "length": 0.3},
+                                    "garment": {"sleeve": {"edge_length": 0.00001}}})");
+  EXPECT_NE(e.find("bad.json: /garment/sleeve/edge_length: an edge length of 1e-05 m would mesh the sleeve"),
+            std::string::npos) << e;
+}
+
 TEST(SceneSpec, ReadsMaterialsAndDefaults) {
   auto j = nlohmann::json::parse(kGood);
   j["fabric"] = {{"youngs_modulus", 30e6}, {"thickness", 2e-4}};

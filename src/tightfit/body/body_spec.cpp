@@ -1,12 +1,15 @@
 #include "tightfit/body/body_spec.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <stdexcept>
 
 #include "tightfit/body/loop_limit.hpp"
 #include "tightfit/body/scan_import.hpp"
 #include "tightfit/body/skeleton.hpp"
 #include "tightfit/body/skeleton_anchor.hpp"
+#include "tightfit/common/mesh_budget.hpp"
 #include "tightfit/common/stopwatch.hpp"
 #include "tightfit/body/surface_distance.hpp"
 #include "tightfit/common/error.hpp"
@@ -30,6 +33,23 @@ Vec3 nonzero_vec3(JsonFields& f, const std::string& key, const Vec3& fallback) {
   return v;
 }
 
+std::string format_length(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", x);
+  return text;
+}
+
+/// A generated body larger than any body part: the lengths were given in millimetres.
+void check_body_size(JsonFields& f, double radius, double length) {
+  constexpr double kLargestRadius = 2.0, kLargestLength = 5.0;  // m
+  if (radius > kLargestRadius)
+    f.fail("a radius of " + format_length(radius) + " m is larger than any body part: lengths are in metres "
+           "(50 mm is 0.05)", "radius");
+  if (length > kLargestLength)
+    f.fail("a length of " + format_length(length) + " m is longer than any body: lengths are in metres "
+           "(300 mm is 0.3)", "length");
+}
+
 void parse_cylinder(JsonFields& f, BodySpec& spec) {
   CylinderParams& c = spec.cylinder;
   c.radius = f.positive("radius");
@@ -44,6 +64,10 @@ void parse_cylinder(JsonFields& f, BodySpec& spec) {
   c.edge_length = f.positive("edge_length", default_generator_edge_length(c.radius));
   if (c.edge_length > c.radius) f.fail("the edge length must not exceed the radius", "edge_length");
   spec.edge_length = c.edge_length;
+  check_body_size(f, c.radius, c.length);
+  const double area = 2.0 * std::numbers::pi * c.radius * c.length + 4.0 * std::numbers::pi * c.radius * c.radius;
+  if (const std::string problem = mesh_budget_problem(area, c.edge_length, "cylinder's surface"); !problem.empty())
+    f.fail(problem, "edge_length");
 }
 
 void parse_sphere(JsonFields& f, BodySpec& spec) {
@@ -54,6 +78,10 @@ void parse_sphere(JsonFields& f, BodySpec& spec) {
   s.edge_length = f.positive("edge_length", default_generator_edge_length(s.radius));
   if (s.edge_length > s.radius) f.fail("the edge length must not exceed the radius", "edge_length");
   spec.edge_length = s.edge_length;
+  check_body_size(f, s.radius, 0.0);
+  const double area = 4.0 * std::numbers::pi * s.radius * s.radius;
+  if (const std::string problem = mesh_budget_problem(area, s.edge_length, "sphere's surface"); !problem.empty())
+    f.fail(problem, "edge_length");
 }
 
 void parse_mesh(JsonFields& f, BodySpec& spec, const std::filesystem::path& base_dir,
@@ -238,6 +266,8 @@ TriMesh prepare_mesh(const BodySpec& spec, BuildReport* report) {
   }
   const TriMesh target = surface;
   if (m.remesh) {
+    check_mesh_budget(surface_area(surface), m.remesh_options.edge_length, "body surface",
+                      spec_location(spec, "/edge_length"));
     RemeshResult remeshed;
     try {
       remeshed = remesh_isotropic(surface, m.remesh_options);

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/mesh_budget.hpp"
 #include "tightfit/common/planar.hpp"
 #include "tightfit/garment/piece_mesher.hpp"
 #include "tightfit/garment/triangle_geometry.hpp"
@@ -236,6 +237,10 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     map.distortion = flat.report;
     map.arap_iterations = flat.iterations;
   }
+
+  double flat_area = 0.0;
+  for (const PieceMap& map : out.maps) flat_area += map.distortion.area_2d;
+  check_mesh_budget(flat_area, h, "pattern pieces", layout.source + ": pattern");
 
   // Seam sides after flattening, before scaling.
   for (const LayoutSeam& seam : layout.seams) {

@@ -1,8 +1,10 @@
 #include "tightfit/io/scene_spec.hpp"
 
 #include <memory>
+#include <numbers>
 
 #include "tightfit/common/json_fields.hpp"
+#include "tightfit/common/mesh_budget.hpp"
 
 namespace tightfit {
 namespace {
@@ -26,6 +28,9 @@ SleeveParams parse_sleeve(JsonFields& f) {
   p.twist = f.number("twist", p.twist);
   p.pin_first_ring = f.boolean("pin_first_ring", p.pin_first_ring);
   p.pin_last_ring = f.boolean("pin_last_ring", p.pin_last_ring);
+  const double rest_area = 2.0 * std::numbers::pi * p.radius * p.hoop_scale * (p.axial_end - p.axial_begin) * p.axial_scale;
+  if (const std::string problem = mesh_budget_problem(rest_area, p.edge_length, "sleeve"); !problem.empty())
+    f.fail(problem, "edge_length");
   f.finish();
   return p;
 }
