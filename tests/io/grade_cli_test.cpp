@@ -168,6 +168,15 @@ TEST_F(GradeCli, ThreeBodiesThroughGnuParallelWithTwoJobsThenGathered) {
   for (const char* piece : {"thigh_front/small", "thigh_front/large", "lower_leg_back/medium"})
     EXPECT_NE(dxf.find(piece), std::string::npos) << piece;
 
+  // The nest aligned at the start of a seam; an unknown seam is bad input.
+  const test::CliRun seam = test::run_cli(grade_args(out) + " --gather --nest-seam thigh_front/thigh_back");
+  EXPECT_EQ(seam.exit_code, 0) << seam.output;
+  EXPECT_NE(test::read_text(out / "grade.html").find("the start of seam thigh_front/thigh_back"), std::string::npos);
+  const test::CliRun no_seam = test::run_cli(grade_args(out) + " --gather --nest-seam hem");
+  EXPECT_EQ(no_seam.exit_code, 2);
+  EXPECT_NE(no_seam.output.find("--nest-seam: no seam \"hem\" in the pattern of small"), std::string::npos)
+      << no_seam.output;
+
   // --resume-failed runs nothing again: every job succeeded.
   const test::CommandResult again = test::run_command(command);
   EXPECT_EQ(again.exit_code, 0) << again.output;

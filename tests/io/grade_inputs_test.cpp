@@ -5,8 +5,10 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
 
+#include "support/sphere_mesh.hpp"
 #include "support/test_pieces.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/io/grade_bodies.hpp"
@@ -14,6 +16,8 @@
 #include "tightfit/io/pattern_drawing.hpp"
 #include "tightfit/io/pattern_layout.hpp"
 #include "tightfit/io/pattern_nest.hpp"
+#include "tightfit/io/scene_spec.hpp"
+#include "tightfit/io/skeleton_fit.hpp"
 
 namespace tightfit {
 namespace grade_inputs_test {
@@ -173,6 +177,47 @@ TEST_F(GradeInputs, TheNestTurnsGrainsUpAlignsCentroidsAndPlacesEachPieceOnce) {
   EXPECT_GT((layout.offsets[0] - layout.offsets[1]).norm(), 100.0);
   const std::string error = input_error([&] { make_nest({{"S", &small}}, "side"); });
   EXPECT_EQ(error, "--nest-seam: no seam \"side\" in the pattern of S");
+}
+
+
+TEST_F(GradeInputs, JointsOutsideTheBodyAreAnErrorNamingTheFarthestAndTheFaceRigIsLeftOut) {
+  const TriMesh ball = test::sphere_mesh(0.1, Vec3::Zero(), 0.02);
+  std::map<std::string, BoneSegment> skeleton;
+  skeleton["spine"] = {"spine", "", Vec3(0, -0.05, 0), Vec3(0, 0.05, 0)};
+  skeleton["head"] = {"head", "spine", Vec3(0, 0.05, 0), Vec3(0, 0.2, 0)};      // crown 10 cm out
+  skeleton["eye.L"] = {"eye.L", "head", Vec3(0.02, 0.15, 0.05), Vec3(0.02, 0.15, 0.2)};
+  skeleton["toe"] = {"toe", "spine", Vec3(0, -0.05, 0), Vec3(0, -0.105, 0)};    // 5 mm out: on the skin
+  EXPECT_NO_THROW(check_joints_inside(ball, skeleton, "s.joints.json", "ball.obj"));
+  skeleton["arm"] = {"arm", "spine", Vec3(0.05, 0, 0), Vec3(0.15, 0, 0)};       // 5 cm out
+  skeleton["hand"] = {"hand", "arm", Vec3(0.15, 0, 0), Vec3(0.25, 0, 0)};      // 5 and 15 cm out
+  const std::string error = input_error([&] { check_joints_inside(ball, skeleton, "s.joints.json", "ball.obj"); });
+  EXPECT_EQ(error.rfind("s.joints.json: the tail of bone \"hand\" (0.250, 0.000, 0.000) m lies 150 mm outside "
+                        "the body ball.obj (3 joints lie more than 10 mm outside it)", 0), 0u) << error;
+}
+
+TEST_F(GradeInputs, TheGradingExamplesMatchTheirSchemasAndEveryBodysSceneParses) {
+  const fs::path source(TIGHTFIT_SOURCE_DIR);
+  const fs::path bodies_file = source / "examples/grading/bodies_full.json";
+  const fs::path design_file = source / "examples/grading/left_leg.json";
+  auto validates = [&](const fs::path& schema, const fs::path& file) {
+    const std::string cmd = "/usr/bin/python3 -c \"import json,sys,jsonschema; "
+                            "jsonschema.validate(json.load(open(sys.argv[2])), json.load(open(sys.argv[1])))\" '" +
+                            schema.string() + "' '" + file.string() + "'";
+    return std::system(cmd.c_str()) == 0;
+  };
+  EXPECT_TRUE(validates(source / "schema/bodies.schema.json", bodies_file));
+  EXPECT_TRUE(validates(source / "schema/scene.schema.json", design_file));
+  const std::vector<GradeBody> bodies = read_grade_bodies(bodies_file);
+  ASSERT_EQ(bodies.size(), 4u);
+  const GradeDesign design = read_grade_design(design_file);
+  const fs::path folder = dir_ / "out/bodies" / bodies[3].name;
+  fs::create_directories(folder);
+  const nlohmann::json scene = grade_body_scene(design, bodies[3], folder);
+  std::ofstream(folder / "scene.json") << scene.dump(2);
+  EXPECT_TRUE(validates(source / "schema/scene.schema.json", folder / "scene.json"));
+  const SceneSpec spec = read_scene(folder / "scene.json");
+  EXPECT_EQ(fs::weakly_canonical(spec.body.mesh.path), fs::weakly_canonical(source / "data/bodies/mh_child.obj"));
+  ASSERT_TRUE(spec.rig);
 }
 
 }  // namespace grade_inputs_test

@@ -73,6 +73,10 @@ BodyOutcome grade_body(const GradeDesign& design, const GradeBody& body, const f
   const auto t_start = SteadyClock::now();
   const fs::path folder = grade_body_folder(dir, body.name);
   std::error_code ec;
+  // Never empty a folder of the user's (DIR given with --force may hold one).
+  if (fs::exists(folder, ec) && !is_tightfit_folder(folder))
+    throw InputError(folder.string(), "is not empty and was not written by tightfit grade: "
+                                      "refusing to grade body " + body.name + " into it");
   fs::create_directories(folder, ec);
   if (ec) throw InputError(folder.string(), "cannot create the body's folder: " + ec.message());
   const FolderLock lock(folder);
