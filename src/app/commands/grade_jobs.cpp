@@ -33,7 +33,7 @@ pid_t spawn_body(const std::vector<std::string>& args, const std::string& name, 
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   // A process group of its own: Ctrl-C reaches this process only, which passes one
   // SIGTERM on (a second signal would end a body before it writes its checkpoint).

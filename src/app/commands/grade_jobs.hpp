@@ -15,7 +15,7 @@ struct BodyProcess {
 };
 
 /// Runs `/proc/self/exe ARGS --body NAME` for every name of `names`, at most `jobs` at
-/// a time, each with its stdout and stderr in `log_dir`/NAME.log. Prints a line when a
+/// a time, each with its stdout and stderr appended to `log_dir`/NAME.log. Prints a line when a
 /// body ends. Ctrl-C / SIGTERM: the running bodies get SIGTERM (they finish their
 /// iteration and write their checkpoint), no new one starts, and Interrupted is thrown
 /// once they have ended. Returns the bodies' exit codes, in the order of `names`.
