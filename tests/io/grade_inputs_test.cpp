@@ -120,6 +120,11 @@ TEST_F(GradeInputs, ADesignWithoutOptimizeBodyMeshOrRigIsRefused) {
             std::string::npos);
   EXPECT_NE(error(R"({"body": {"generator": "cylinder"}, "optimize": {}, "rig": {}})").find("/body"),
             std::string::npos);
+  // Without a body, each body is its mesh with the default settings.
+  write("d.json", R"({"optimize": {}, "rig": {"mesh": "b", "weights": "w", "joints": "j"}})");
+  const GradeDesign bare = read_grade_design(f);
+  const nlohmann::json scene = grade_body_scene(bare, {"x", dir_ / "x.obj", dir_ / "x.json", dir_ / "x.obj"}, dir_);
+  EXPECT_EQ(scene["body"], (nlohmann::json{{"mesh", "x.obj"}}));
   EXPECT_NE(error(R"({"body": {"mesh": "b.obj"}, "optimize": {}})").find("\"rig\""), std::string::npos);
   EXPECT_NE(error(R"({"body": {"mesh": "b.obj"}, "optimize": {}, "rig": {"mesh": "b", "weights": "w"}})")
                 .find("/rig/joints"),

@@ -158,8 +158,8 @@ const CommandRegistration kGrade{"grade", [](CLI::App& root) {
       "of bodies not graded.");
   auto o = std::make_shared<GradeOptions>();
   cmd->add_option("design", o->design,
-                  "Design scene: a scene with \"optimize\", a body \"mesh\" and a \"rig\" "
-                  "{\"mesh\", \"weights\", \"joints\"}")
+                  "Design scene: a scene with \"optimize\" and a \"rig\" {\"mesh\", \"weights\", "
+                  "\"joints\"}, with a body \"mesh\" (replaced by each body's) or without \"body\"")
       ->required();
   cmd->add_option("bodies", o->bodies,
                   "Bodies file: {\"bodies\": [{\"name\", \"mesh\", \"joints\", \"rig_mesh\"}]} "

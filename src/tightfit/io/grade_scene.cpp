@@ -83,11 +83,11 @@ GradeDesign read_grade_design(const fs::path& file) {
   if (!d.contains("optimize") || !d["optimize"].is_object())
     throw InputError(source, "a design needs an \"optimize\" section: grading optimizes the "
                              "design on every body");
-  if (!d.contains("body") || !d["body"].is_object() || !d["body"].contains("mesh") ||
-      !d["body"]["mesh"].is_string())
-    throw InputError(source, "/body: a design needs a body \"mesh\" (each body of the bodies file "
-                             "replaces it; its other settings — edge length, crop, core — apply "
-                             "to every body)");
+  if (d.contains("body") && (!d["body"].is_object() || !d["body"].contains("mesh") ||
+                             !d["body"]["mesh"].is_string()))
+    throw InputError(source, "/body: a design's body must be a \"mesh\" (each body of the bodies "
+                             "file replaces it; its other settings — edge length, crop, core — "
+                             "apply to every body), or leave \"body\" out");
   if (!d.contains("rig") || !d["rig"].is_object())
     throw InputError(source, "a design needs a \"rig\" {\"mesh\", \"weights\", \"joints\"}: "
                              "each body brings its own joints (and rig mesh)");
@@ -101,6 +101,7 @@ nlohmann::json grade_body_scene(const GradeDesign& design, const GradeBody& body
                                 const fs::path& scene_dir) {
   nlohmann::json scene = design.document;
   rebase_paths(scene, design.file.parent_path(), scene_dir);
+  if (!scene.contains("body")) scene["body"] = nlohmann::json::object();
   scene["body"]["mesh"] = scene_path(body.mesh, scene_dir);
   scene["rig"]["joints"] = scene_path(body.joints, scene_dir);
   scene["rig"]["mesh"] = scene_path(body.rig_mesh, scene_dir);

@@ -19,9 +19,10 @@ struct GradeDesign {
   nlohmann::json document;
 };
 
-/// Reads the design scene: a JSON object with an "optimize" section, a "body" with a
-/// "mesh" (the body every body of the population replaces) and a "rig" with "mesh",
-/// "weights" and "joints". InputError naming the file and what is missing.
+/// Reads the design scene: a JSON object with an "optimize" section, a "rig" with
+/// "mesh", "weights" and "joints", and either no "body" (each body is then its mesh with
+/// the default settings) or a "body" with a "mesh" (replaced by each body's; its other
+/// settings apply to every body). InputError naming the file and what is wrong.
 GradeDesign read_grade_design(const std::filesystem::path& file);
 
 /// The keys whose string values are file paths in a scene (body mesh, core skeleton,
@@ -29,7 +30,7 @@ GradeDesign read_grade_design(const std::filesystem::path& file);
 bool is_scene_path_key(const std::string& key);
 
 /// The scene of `design` on `body`, to be written as a file in folder `scene_dir`:
-/// /body/mesh is the body's mesh, /rig/joints its joints, /rig/mesh its rig mesh (and
+/// /body/mesh is the body's mesh (/body is made when the design has none), /rig/joints its joints, /rig/mesh its rig mesh (and
 /// /pressure/rig/mesh when the design has a pressure rig); every other relative path
 /// (is_scene_path_key) is rewritten relative to `scene_dir` so that it names the same
 /// file as in the design. Paths are written relative to `scene_dir` when both lie under
