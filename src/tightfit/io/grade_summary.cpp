@@ -97,10 +97,10 @@ GradeSummary gather_grade(const std::vector<GradeBody>& bodies, const fs::path& 
   summary.not_done = failed + not_run;
 
   nlohmann::json seams = nlohmann::json::array();
-  std::vector<std::string> names;  // seam names in the first done body's order
+  std::vector<std::string> names;  // seam names in the first done body's pattern order
   for (const GradedBody& body : summary.bodies)
     if (body.status == "done" && names.empty())
-      for (const auto& [name, lengths] : body.entry["seams_mm"].items()) names.push_back(name);
+      for (const Seam& seam : body.pattern->seams) names.push_back(seam.name);
   for (const std::string& name : names) {
     nlohmann::json lengths = nlohmann::json::object(), changes = nlohmann::json::object();
     std::optional<double> previous;

@@ -13,10 +13,10 @@
 ///     "max"}, area-weighted), "pressure_spread", "lift_off_share",
 ///     "pieces": [{"name", "pressure_mmhg"}],
 ///     "seams_mm": {SEAM: {"a", "b", "mismatch"}}}],
-///   "seams": [{"name", "length_mm": {BODY: mean of the two sides},
+///   "seams": [{"name", "length_mm": {BODY: mean of the two sides},   (pattern order)
 ///              "change_mm": {BODY: change from the graded body listed before it}}]}
 /// "running": a status file says the body started and has not ended (killed, or still
-/// running); "not_run": no status file.
+/// running); "not_run": no status file. counts/not_run counts both.
 #include <filesystem>
 #include <optional>
 #include <string>
