@@ -247,6 +247,46 @@ TEST_F(GradeCli, AGradedBodyIsSkippedAKilledOneResumesAndTheSameInputsGiveTheSam
   }
 }
 
+TEST_F(GradeCli, SigtermToALocalRunStopsItsBodiesAtACheckpointAndTheNextRunResumesThem) {
+  write_bodies(nlohmann::json::array({scaled_legs("small", 0.92), scaled_legs("large", 1.08)}));
+  const fs::path out = dir_ / "graded";
+  const std::string args = grade_args(out) + " --jobs 2 --max-iterations 8";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string command = "exec " + std::string(TIGHTFIT_CLI) + " --threads 2 " + args + " > /dev/null 2>&1";
+    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  auto started = [&] {
+    return fs::exists(out / "bodies/small/checkpoint.json") && fs::exists(out / "bodies/large/checkpoint.json");
+  };
+  while (!started() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+  // Each body finished its iteration, wrote its checkpoint and stayed "running".
+  for (const char* name : {"small", "large"}) {
+    EXPECT_EQ(read_json(out / "bodies" / name / "grade_body.json")["status"], "running") << name;
+    EXPECT_NE(test::read_text(out / "logs" / (std::string(name) + ".log")).find("interrupted by SIGTERM"),
+              std::string::npos)
+        << name;
+  }
+  const test::CliRun resumed = test::run_cli("--threads 2 " + args);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  for (const char* name : {"small", "large"}) {
+    EXPECT_NE(test::read_text(out / "logs" / (std::string(name) + ".log")).find("resuming from its checkpoint"),
+              std::string::npos)
+        << name;
+    EXPECT_EQ(read_json(out / "bodies" / name / "result.json")["optimization"]["iterations"], 8) << name;
+  }
+  EXPECT_EQ(read_json(out / "grade.json")["counts"]["done"], 2);
+}
+
 TEST_F(GradeCli, FailingBodiesAreRecordedAndTheOthersAreGraded) {
   nlohmann::json alien = scaled_legs("alien", 1.0);
   // Another body's skeleton, twice too large: its joints lie outside this body.
