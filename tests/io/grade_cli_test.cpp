@@ -65,16 +65,21 @@ class GradeCli : public ::testing::Test {
     fs::create_directories(dir_);
     const fs::path data(TIGHTFIT_DATA_DIR), source(TIGHTFIT_SOURCE_DIR);
     const nlohmann::json design = {
-        {"body", {{"mesh", (data / "bodies/mh_legs_male.obj").string()}, {"edge_length", 0.04},
-                  {"core", {{"soft_tissue", 0.015}}}}},
-        {"garment", {{"layout", (source / "examples/layouts/left_leg_anchored.json").string()},
-                     {"pattern", {{"edge_length", 0.045}, {"scale", {0.95, 0.85}}, {"grain", {0, 1, 0}}}}}},
-        {"rig", {{"mesh", (data / "bodies/mh_male_regular.obj").string()},
-                 {"weights", (data / "rig/default_weights.mhw").string()},
-                 {"joints", (data / "rig/mh_male_regular.joints.json").string()}}},
-        {"optimize", {{"objectives", {{"stretch", {{"weight", 1}, {"min", 1.05}, {"max", 1.15}}}}},
-                      {"max_iterations", 2},
-                      {"checkpoint_every", 1}}}};
+        {"body",
+         {{"mesh", (data / "bodies/mh_legs_male.obj").string()},
+          {"edge_length", 0.04},
+          {"core", {{"soft_tissue", 0.015}}}}},
+        {"garment",
+         {{"layout", (source / "examples/layouts/left_leg_anchored.json").string()},
+          {"pattern", {{"edge_length", 0.045}, {"scale", {0.95, 0.85}}, {"grain", {0, 1, 0}}}}}},
+        {"rig",
+         {{"mesh", (data / "bodies/mh_male_regular.obj").string()},
+          {"weights", (data / "rig/default_weights.mhw").string()},
+          {"joints", (data / "rig/mh_male_regular.joints.json").string()}}},
+        {"optimize",
+         {{"objectives", {{"stretch", {{"weight", 1}, {"min", 1.05}, {"max", 1.15}}}}},
+          {"max_iterations", 2},
+          {"checkpoint_every", 1}}}};
     std::ofstream(dir_ / "design.json") << design.dump(2);
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -84,8 +89,11 @@ class GradeCli : public ::testing::Test {
     const fs::path data(TIGHTFIT_DATA_DIR);
     write_scaled_obj(data / "bodies/mh_legs_male.obj", dir_ / (name + "_legs.obj"), s);
     write_scaled_obj(data / "bodies/mh_male_regular.obj", dir_ / (name + "_full.obj"), s);
-    write_scaled_joints(data / "rig/mh_male_regular.joints.json", dir_ / (name + ".joints.json"), s);
-    return {{"name", name}, {"mesh", name + "_legs.obj"}, {"rig_mesh", name + "_full.obj"},
+    write_scaled_joints(data / "rig/mh_male_regular.joints.json", dir_ / (name + ".joints.json"),
+                        s);
+    return {{"name", name},
+            {"mesh", name + "_legs.obj"},
+            {"rig_mesh", name + "_full.obj"},
             {"joints", name + ".joints.json"}};
   }
   fs::path write_bodies(const nlohmann::json& bodies) {
@@ -107,7 +115,8 @@ class GradeCli : public ::testing::Test {
 TEST_F(GradeCli, ThreeBodiesThroughGnuParallelWithTwoJobsThenGathered) {
   ASSERT_EQ(test::run_command("parallel --version").exit_code, 0)
       << "GNU parallel is missing: scripts/install-deps.sh installs it";
-  write_bodies(nlohmann::json::array({scaled_legs("small", 0.92), scaled_legs("medium", 1.0), scaled_legs("large", 1.08)}));
+  write_bodies(nlohmann::json::array(
+      {scaled_legs("small", 0.92), scaled_legs("medium", 1.0), scaled_legs("large", 1.08)}));
   const fs::path out = dir_ / "graded", joblog = dir_ / "joblog.txt";
   const std::string command = "parallel --jobs 2 --joblog " + test::shell_quote(joblog) +
                               " --resume-failed " + std::string(TIGHTFIT_CLI) + " --threads 1 " +
@@ -149,10 +158,13 @@ TEST_F(GradeCli, ThreeBodiesThroughGnuParallelWithTwoJobsThenGathered) {
   std::map<std::string, double> total;
   for (const auto& seam : grade["seams"]) {
     EXPECT_FALSE(seam["change_mm"].contains("small"));
-    for (const char* size : {"medium", "large"}) EXPECT_TRUE(seam["change_mm"].contains(size)) << seam.dump();
-    for (const char* size : {"small", "medium", "large"}) total[size] += seam["length_mm"][size].get<double>();
-    EXPECT_NEAR(seam["change_mm"]["large"].get<double>(),
-                seam["length_mm"]["large"].get<double>() - seam["length_mm"]["medium"].get<double>(), 1e-9);
+    for (const char* size : {"medium", "large"})
+      EXPECT_TRUE(seam["change_mm"].contains(size)) << seam.dump();
+    for (const char* size : {"small", "medium", "large"})
+      total[size] += seam["length_mm"][size].get<double>();
+    EXPECT_NEAR(
+        seam["change_mm"]["large"].get<double>(),
+        seam["length_mm"]["large"].get<double>() - seam["length_mm"]["medium"].get<double>(), 1e-9);
   }
   EXPECT_LT(total["small"], total["medium"]);
   EXPECT_LT(total["medium"], total["large"]);
@@ -162,19 +174,23 @@ TEST_F(GradeCli, ThreeBodiesThroughGnuParallelWithTwoJobsThenGathered) {
   for (const char* text : {"small", "medium", "large", "Nest", "thigh_front", "<svg"})
     EXPECT_NE(html.find(text), std::string::npos) << text;
   // Every exported nest holds the four pieces of the three sizes.
-  const std::string svg = test::read_text(out / "nest.svg"), dxf = test::read_text(out / "nest.dxf");
+  const std::string svg = test::read_text(out / "nest.svg"),
+                    dxf = test::read_text(out / "nest.dxf");
   EXPECT_NE(svg.find("<svg"), std::string::npos);
   EXPECT_EQ(test::read_text(out / "nest.pdf").rfind("%PDF", 0), 0u);
   for (const char* piece : {"thigh_front/small", "thigh_front/large", "lower_leg_back/medium"})
     EXPECT_NE(dxf.find(piece), std::string::npos) << piece;
 
   // The nest aligned at the start of a seam; an unknown seam is bad input.
-  const test::CliRun seam = test::run_cli(grade_args(out) + " --gather --nest-seam thigh_front/thigh_back");
+  const test::CliRun seam =
+      test::run_cli(grade_args(out) + " --gather --nest-seam thigh_front/thigh_back");
   EXPECT_EQ(seam.exit_code, 0) << seam.output;
-  EXPECT_NE(test::read_text(out / "grade.html").find("the start of seam thigh_front/thigh_back"), std::string::npos);
+  EXPECT_NE(test::read_text(out / "grade.html").find("the start of seam thigh_front/thigh_back"),
+            std::string::npos);
   const test::CliRun no_seam = test::run_cli(grade_args(out) + " --gather --nest-seam hem");
   EXPECT_EQ(no_seam.exit_code, 2);
-  EXPECT_NE(no_seam.output.find("--nest-seam: no seam \"hem\" in the pattern of small"), std::string::npos)
+  EXPECT_NE(no_seam.output.find("--nest-seam: no seam \"hem\" in the pattern of small"),
+            std::string::npos)
       << no_seam.output;
 
   // --resume-failed runs nothing again: every job succeeded.
@@ -211,29 +227,34 @@ TEST_F(GradeCli, AGradedBodyIsSkippedAKilledOneResumesAndTheSameInputsGiveTheSam
   EXPECT_EQ(read_json(folder / "grade_body.json")["status"], "running");
   EXPECT_FALSE(fs::exists(folder / "pieces.json"));
 
-  const test::CliRun resumed = test::run_cli("--threads 1 " + grade_args(out) + " --body medium --max-iterations 4");
+  const test::CliRun resumed =
+      test::run_cli("--threads 1 " + grade_args(out) + " --body medium --max-iterations 4");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
-  EXPECT_NE(resumed.output.find("resuming from its checkpoint"), std::string::npos) << resumed.output;
+  EXPECT_NE(resumed.output.find("resuming from its checkpoint"), std::string::npos)
+      << resumed.output;
   EXPECT_EQ(read_json(folder / "grade_body.json")["status"], "done");
   EXPECT_EQ(read_json(folder / "result.json")["optimization"]["iterations"], 4);
   const std::string pieces = test::read_text(folder / "pieces.json");
   const auto written = fs::last_write_time(folder / "pieces.json");
 
   // Again: skipped, nothing rewritten.
-  const test::CliRun skipped = test::run_cli("--threads 1 " + grade_args(out) + " --body medium --max-iterations 4");
+  const test::CliRun skipped =
+      test::run_cli("--threads 1 " + grade_args(out) + " --body medium --max-iterations 4");
   EXPECT_EQ(skipped.exit_code, 0) << skipped.output;
   EXPECT_NE(skipped.output.find("graded already"), std::string::npos) << skipped.output;
   EXPECT_EQ(fs::last_write_time(folder / "pieces.json"), written);
 
   // Other inputs (another iteration limit): graded afresh, not skipped.
-  const test::CliRun other = test::run_cli("--threads 1 " + grade_args(out) + " --body medium --max-iterations 1");
+  const test::CliRun other =
+      test::run_cli("--threads 1 " + grade_args(out) + " --body medium --max-iterations 1");
   EXPECT_EQ(other.exit_code, 0) << other.output;
   EXPECT_EQ(other.output.find("graded already"), std::string::npos) << other.output;
   EXPECT_EQ(read_json(folder / "result.json")["optimization"]["iterations"], 1);
 
   // The same inputs in another folder, without interruption: the same pattern.
   const fs::path fresh = dir_ / "fresh";
-  const test::CliRun straight = test::run_cli("--threads 1 " + grade_args(fresh) + " --body medium --max-iterations 4");
+  const test::CliRun straight =
+      test::run_cli("--threads 1 " + grade_args(fresh) + " --body medium --max-iterations 4");
   ASSERT_EQ(straight.exit_code, 0) << straight.output;
   const nlohmann::json a = nlohmann::json::parse(pieces);
   const nlohmann::json b = read_json(fresh / "bodies" / "medium" / "pieces.json");
@@ -254,13 +275,15 @@ TEST_F(GradeCli, SigtermToALocalRunStopsItsBodiesAtACheckpointAndTheNextRunResum
   const pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
-    const std::string command = "exec " + std::string(TIGHTFIT_CLI) + " --threads 2 " + args + " > /dev/null 2>&1";
+    const std::string command =
+        "exec " + std::string(TIGHTFIT_CLI) + " --threads 2 " + args + " > /dev/null 2>&1";
     ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   auto started = [&] {
-    return fs::exists(out / "bodies/small/checkpoint.json") && fs::exists(out / "bodies/large/checkpoint.json");
+    return fs::exists(out / "bodies/small/checkpoint.json") &&
+           fs::exists(out / "bodies/large/checkpoint.json");
   };
   while (!started() && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -272,17 +295,20 @@ TEST_F(GradeCli, SigtermToALocalRunStopsItsBodiesAtACheckpointAndTheNextRunResum
   // Each body finished its iteration, wrote its checkpoint and stayed "running".
   for (const char* name : {"small", "large"}) {
     EXPECT_EQ(read_json(out / "bodies" / name / "grade_body.json")["status"], "running") << name;
-    EXPECT_NE(test::read_text(out / "logs" / (std::string(name) + ".log")).find("interrupted by SIGTERM"),
-              std::string::npos)
+    EXPECT_NE(
+        test::read_text(out / "logs" / (std::string(name) + ".log")).find("interrupted by SIGTERM"),
+        std::string::npos)
         << name;
   }
   const test::CliRun resumed = test::run_cli("--threads 2 " + args);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   for (const char* name : {"small", "large"}) {
-    EXPECT_NE(test::read_text(out / "logs" / (std::string(name) + ".log")).find("resuming from its checkpoint"),
+    EXPECT_NE(test::read_text(out / "logs" / (std::string(name) + ".log"))
+                  .find("resuming from its checkpoint"),
               std::string::npos)
         << name;
-    EXPECT_EQ(read_json(out / "bodies" / name / "result.json")["optimization"]["iterations"], 8) << name;
+    EXPECT_EQ(read_json(out / "bodies" / name / "result.json")["optimization"]["iterations"], 8)
+        << name;
   }
   EXPECT_EQ(read_json(out / "grade.json")["counts"]["done"], 2);
 }
@@ -290,10 +316,13 @@ TEST_F(GradeCli, SigtermToALocalRunStopsItsBodiesAtACheckpointAndTheNextRunResum
 TEST_F(GradeCli, FailingBodiesAreRecordedAndTheOthersAreGraded) {
   nlohmann::json alien = scaled_legs("alien", 1.0);
   // Another body's skeleton, twice too large: its joints lie outside this body.
-  write_scaled_joints(fs::path(TIGHTFIT_DATA_DIR) / "rig/mh_child.joints.json", dir_ / "alien.joints.json", 2.0);
+  write_scaled_joints(fs::path(TIGHTFIT_DATA_DIR) / "rig/mh_child.joints.json",
+                      dir_ / "alien.joints.json", 2.0);
   std::ofstream(dir_ / "broken.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 7\n";
-  const nlohmann::json broken = {{"name", "broken"}, {"mesh", "broken.obj"},
-                                 {"joints", (fs::path(TIGHTFIT_DATA_DIR) / "rig/mh_male_regular.joints.json").string()}};
+  const nlohmann::json broken = {
+      {"name", "broken"},
+      {"mesh", "broken.obj"},
+      {"joints", (fs::path(TIGHTFIT_DATA_DIR) / "rig/mh_male_regular.joints.json").string()}};
   write_bodies(nlohmann::json::array({scaled_legs("medium", 1.0), alien, broken}));
   const fs::path out = dir_ / "graded";
   const test::CliRun r = test::run_cli("--threads 2 " + grade_args(out) + " --jobs 2");
@@ -310,8 +339,11 @@ TEST_F(GradeCli, FailingBodiesAreRecordedAndTheOthersAreGraded) {
   // A failed body's folder holds its scene and status only.
   for (const char* name : {"alien", "broken"}) {
     std::set<std::string> files;
-    for (const auto& e : fs::directory_iterator(out / "bodies" / name)) files.insert(e.path().filename().string());
-    EXPECT_EQ(files, (std::set<std::string>{".grade.lock", ".tightfit", "grade_body.json", "scene.json"})) << name;
+    for (const auto& e : fs::directory_iterator(out / "bodies" / name))
+      files.insert(e.path().filename().string());
+    EXPECT_EQ(files,
+              (std::set<std::string>{".grade.lock", ".tightfit", "grade_body.json", "scene.json"}))
+        << name;
   }
   EXPECT_NE(test::read_text(out / "grade.html").find(alien_error.substr(0, 40)), std::string::npos);
   // Gathering alone says the same.
@@ -323,7 +355,8 @@ TEST_F(GradeCli, TwoBodiesOfOneNameOrAnUnknownBodyAreErrorsBeforeAnythingIsWritt
   const fs::path out = dir_ / "graded";
   const test::CliRun r = test::run_cli(grade_args(out) + " --jobs 2");
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("bodies.json: /bodies/1/name: two bodies are named \"medium\""), std::string::npos)
+  EXPECT_NE(r.output.find("bodies.json: /bodies/1/name: two bodies are named \"medium\""),
+            std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(out));
   write_bodies(nlohmann::json::array({scaled_legs("medium", 1.0)}));

@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include "support/sphere_mesh.hpp"
@@ -75,9 +75,11 @@ TEST_F(GradeInputs, BadBodiesFilesNameTheFileAndTheEntry) {
   EXPECT_NE(error(R"({"bodies": [{"name": "a/b", "mesh": "x", "joints": "y"}]})")
                 .find(f + ": /bodies/0/name: \"a/b\" is not a body name"),
             std::string::npos);
-  EXPECT_NE(error(R"({"bodies": [{"name": "a", "mesh": "x"}]})").find(f + ": /bodies/0"), std::string::npos);
-  EXPECT_NE(error(R"({"bodies": [{"name": "a", "mesh": "x", "joints": "y", "scale": 2}]})").find("scale"),
+  EXPECT_NE(error(R"({"bodies": [{"name": "a", "mesh": "x"}]})").find(f + ": /bodies/0"),
             std::string::npos);
+  EXPECT_NE(
+      error(R"({"bodies": [{"name": "a", "mesh": "x", "joints": "y", "scale": 2}]})").find("scale"),
+      std::string::npos);
   EXPECT_NE(error(R"({"bodies": [{"name": "a", "mesh": "x", "joints": "y"},
                                  {"name": "a", "mesh": "z", "joints": "y"}]})")
                 .find(f + ": /bodies/1/name: two bodies are named \"a\" (/bodies/0 too)"),
@@ -93,10 +95,13 @@ TEST_F(GradeInputs, ABodysSceneReplacesBodyAndRigAndKeepsEveryOtherPathResolving
     "pressure": {"rig": {"mesh": "bodies/design_body.obj", "weights": "rig/w.mhw"}},
     "optimize": {"objectives": {"shape": {"weight": 1, "target": "/abs/target.obj"}}}})");
   const GradeDesign design = read_grade_design(design_file);
-  const GradeBody body{"tall", dir_ / "pop/tall.obj", dir_ / "pop/tall.joints.json", dir_ / "pop/tall_full.obj"};
+  const GradeBody body{"tall", dir_ / "pop/tall.obj", dir_ / "pop/tall.joints.json",
+                       dir_ / "pop/tall_full.obj"};
   const fs::path folder = dir_ / "out/bodies/tall";
   const nlohmann::json scene = grade_body_scene(design, body, folder);
-  auto resolved = [&](const nlohmann::json& v) { return (folder / v.get<std::string>()).lexically_normal(); };
+  auto resolved = [&](const nlohmann::json& v) {
+    return (folder / v.get<std::string>()).lexically_normal();
+  };
   EXPECT_EQ(scene["body"]["mesh"], "../../../pop/tall.obj");
   EXPECT_EQ(resolved(scene["rig"]["joints"]), dir_ / "pop/tall.joints.json");
   EXPECT_EQ(resolved(scene["rig"]["mesh"]), dir_ / "pop/tall_full.obj");
@@ -115,25 +120,31 @@ TEST_F(GradeInputs, ADesignWithoutOptimizeBodyMeshOrRigIsRefused) {
     write("d.json", text);
     return input_error([&] { read_grade_design(f); });
   };
-  EXPECT_NE(error(R"({"body": {"mesh": "b.obj"}, "rig": {"mesh": "b", "weights": "w", "joints": "j"}})")
-                .find("\"optimize\""),
-            std::string::npos);
-  EXPECT_NE(error(R"({"body": {"generator": "cylinder"}, "optimize": {}, "rig": {}})").find("/body"),
-            std::string::npos);
+  EXPECT_NE(
+      error(R"({"body": {"mesh": "b.obj"}, "rig": {"mesh": "b", "weights": "w", "joints": "j"}})")
+          .find("\"optimize\""),
+      std::string::npos);
+  EXPECT_NE(
+      error(R"({"body": {"generator": "cylinder"}, "optimize": {}, "rig": {}})").find("/body"),
+      std::string::npos);
   // Without a body, each body is its mesh with the default settings.
   write("d.json", R"({"optimize": {}, "rig": {"mesh": "b", "weights": "w", "joints": "j"}})");
   const GradeDesign bare = read_grade_design(f);
-  const nlohmann::json scene = grade_body_scene(bare, {"x", dir_ / "x.obj", dir_ / "x.json", dir_ / "x.obj"}, dir_);
+  const nlohmann::json scene =
+      grade_body_scene(bare, {"x", dir_ / "x.obj", dir_ / "x.json", dir_ / "x.obj"}, dir_);
   EXPECT_EQ(scene["body"], (nlohmann::json{{"mesh", "x.obj"}}));
-  EXPECT_NE(error(R"({"body": {"mesh": "b.obj"}, "optimize": {}})").find("\"rig\""), std::string::npos);
-  EXPECT_NE(error(R"({"body": {"mesh": "b.obj"}, "optimize": {}, "rig": {"mesh": "b", "weights": "w"}})")
-                .find("/rig/joints"),
+  EXPECT_NE(error(R"({"body": {"mesh": "b.obj"}, "optimize": {}})").find("\"rig\""),
             std::string::npos);
+  EXPECT_NE(
+      error(R"({"body": {"mesh": "b.obj"}, "optimize": {}, "rig": {"mesh": "b", "weights": "w"}})")
+          .find("/rig/joints"),
+      std::string::npos);
 }
 
 TEST_F(GradeInputs, TheFingerprintChangesWithTheSceneTheFilesItNamesAndTheExtra) {
   write("body.obj", "v 0 0 0\n");
-  const nlohmann::json scene = {{"body", {{"mesh", "body.obj"}}}, {"fabric", {{"thickness", 1e-4}}}};
+  const nlohmann::json scene = {{"body", {{"mesh", "body.obj"}}},
+                                {"fabric", {{"thickness", 1e-4}}}};
   const std::string base = grade_fingerprint(scene, dir_, "n=2");
   EXPECT_EQ(base.size(), 16u);
   EXPECT_EQ(grade_fingerprint(scene, dir_, "n=2"), base);
@@ -176,7 +187,8 @@ TEST_F(GradeInputs, TheNestTurnsGrainsUpAlignsCentroidsAndPlacesEachPieceOnce) {
   }
   PatternExportOptions options;
   options.nest_group = nest.group;
-  const PatternLayout layout = layout_pattern(draw_pattern_pieces(nest.pattern, options, "nest"), options);
+  const PatternLayout layout =
+      layout_pattern(draw_pattern_pieces(nest.pattern, options, "nest"), options);
   EXPECT_TRUE(layout.offsets[0].isApprox(layout.offsets[2]));
   EXPECT_TRUE(layout.offsets[1].isApprox(layout.offsets[3]));
   EXPECT_GT((layout.offsets[0] - layout.offsets[1]).norm(), 100.0);
@@ -184,20 +196,26 @@ TEST_F(GradeInputs, TheNestTurnsGrainsUpAlignsCentroidsAndPlacesEachPieceOnce) {
   EXPECT_EQ(error, "--nest-seam: no seam \"side\" in the pattern of S");
 }
 
-
 TEST_F(GradeInputs, JointsOutsideTheBodyAreAnErrorNamingTheFarthestAndTheFaceRigIsLeftOut) {
   const TriMesh ball = test::sphere_mesh(0.1, Vec3::Zero(), 0.02);
   std::map<std::string, BoneSegment> skeleton;
   skeleton["spine"] = {"spine", "", Vec3(0, -0.05, 0), Vec3(0, 0.05, 0)};
-  skeleton["head"] = {"head", "spine", Vec3(0, 0.05, 0), Vec3(0, 0.2, 0)};      // crown 10 cm out
+  skeleton["head"] = {"head", "spine", Vec3(0, 0.05, 0), Vec3(0, 0.2, 0)};  // crown 10 cm out
   skeleton["eye.L"] = {"eye.L", "head", Vec3(0.02, 0.15, 0.05), Vec3(0.02, 0.15, 0.2)};
-  skeleton["toe"] = {"toe", "spine", Vec3(0, -0.05, 0), Vec3(0, -0.105, 0)};    // 5 mm out: on the skin
+  skeleton["toe"] = {"toe", "spine", Vec3(0, -0.05, 0),
+                     Vec3(0, -0.105, 0)};  // 5 mm out: on the skin
   EXPECT_NO_THROW(check_joints_inside(ball, skeleton, "s.joints.json", "ball.obj"));
-  skeleton["arm"] = {"arm", "spine", Vec3(0.05, 0, 0), Vec3(0.15, 0, 0)};       // 5 cm out
-  skeleton["hand"] = {"hand", "arm", Vec3(0.15, 0, 0), Vec3(0.25, 0, 0)};      // 5 and 15 cm out
-  const std::string error = input_error([&] { check_joints_inside(ball, skeleton, "s.joints.json", "ball.obj"); });
-  EXPECT_EQ(error.rfind("s.joints.json: the tail of bone \"hand\" (0.250, 0.000, 0.000) m lies 150 mm outside "
-                        "the body ball.obj (3 joints lie more than 10 mm outside it)", 0), 0u) << error;
+  skeleton["arm"] = {"arm", "spine", Vec3(0.05, 0, 0), Vec3(0.15, 0, 0)};  // 5 cm out
+  skeleton["hand"] = {"hand", "arm", Vec3(0.15, 0, 0), Vec3(0.25, 0, 0)};  // 5 and 15 cm out
+  const std::string error =
+      input_error([&] { check_joints_inside(ball, skeleton, "s.joints.json", "ball.obj"); });
+  EXPECT_EQ(
+      error.rfind(
+          "s.joints.json: the tail of bone \"hand\" (0.250, 0.000, 0.000) m lies 150 mm outside "
+          "the body ball.obj (3 joints lie more than 10 mm outside it)",
+          0),
+      0u)
+      << error;
 }
 
 TEST_F(GradeInputs, TheGradingExamplesMatchTheirSchemasAndEveryBodysSceneParses) {
@@ -205,9 +223,10 @@ TEST_F(GradeInputs, TheGradingExamplesMatchTheirSchemasAndEveryBodysSceneParses)
   const fs::path bodies_file = source / "examples/grading/bodies_full.json";
   const fs::path design_file = source / "examples/grading/left_leg.json";
   auto validates = [&](const fs::path& schema, const fs::path& file) {
-    const std::string cmd = "/usr/bin/python3 -c \"import json,sys,jsonschema; "
-                            "jsonschema.validate(json.load(open(sys.argv[2])), json.load(open(sys.argv[1])))\" '" +
-                            schema.string() + "' '" + file.string() + "'";
+    const std::string cmd =
+        "/usr/bin/python3 -c \"import json,sys,jsonschema; "
+        "jsonschema.validate(json.load(open(sys.argv[2])), json.load(open(sys.argv[1])))\" '" +
+        schema.string() + "' '" + file.string() + "'";
     return std::system(cmd.c_str()) == 0;
   };
   EXPECT_TRUE(validates(source / "schema/bodies.schema.json", bodies_file));
@@ -221,7 +240,8 @@ TEST_F(GradeInputs, TheGradingExamplesMatchTheirSchemasAndEveryBodysSceneParses)
   std::ofstream(folder / "scene.json") << scene.dump(2);
   EXPECT_TRUE(validates(source / "schema/scene.schema.json", folder / "scene.json"));
   const SceneSpec spec = read_scene(folder / "scene.json");
-  EXPECT_EQ(fs::weakly_canonical(spec.body.mesh.path), fs::weakly_canonical(source / "data/bodies/mh_child.obj"));
+  EXPECT_EQ(fs::weakly_canonical(spec.body.mesh.path),
+            fs::weakly_canonical(source / "data/bodies/mh_child.obj"));
   ASSERT_TRUE(spec.rig);
 }
 

@@ -35,8 +35,9 @@ class FolderLock {
     if (fd_ < 0) throw InputError(folder.string(), "cannot create the lock file " + file.string());
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       ::close(fd_);
-      throw InputError(folder.string(), "another tightfit grade is working on this body (its lock " +
-                                            file.string() + " is held)");
+      throw InputError(folder.string(),
+                       "another tightfit grade is working on this body (its lock " + file.string() +
+                           " is held)");
     }
   }
   ~FolderLock() { ::close(fd_); }
@@ -75,8 +76,10 @@ BodyOutcome grade_body(const GradeDesign& design, const GradeBody& body, const f
   std::error_code ec;
   // Never empty a folder of the user's (DIR given with --force may hold one).
   if (fs::exists(folder, ec) && !is_tightfit_folder(folder))
-    throw InputError(folder.string(), "is not empty and was not written by tightfit grade: "
-                                      "refusing to grade body " + body.name + " into it");
+    throw InputError(folder.string(),
+                     "is not empty and was not written by tightfit grade: "
+                     "refusing to grade body " +
+                         body.name + " into it");
   fs::create_directories(folder, ec);
   if (ec) throw InputError(folder.string(), "cannot create the body's folder: " + ec.message());
   const FolderLock lock(folder);
@@ -111,12 +114,14 @@ BodyOutcome grade_body(const GradeDesign& design, const GradeBody& body, const f
     throw;
   } catch (const std::exception& e) {
     empty_folder(folder, {"scene.json", kOutputMarker});
-    write_grade_body_status(status_file, {body.name, "failed", fingerprint, e.what(), seconds_since(t_start)});
+    write_grade_body_status(status_file,
+                            {body.name, "failed", fingerprint, e.what(), seconds_since(t_start)});
     std::printf("tightfit grade: body %s FAILED: %s\n", body.name.c_str(), e.what());
     std::fflush(stdout);
     return BodyOutcome::kFailed;
   }
-  write_grade_body_status(status_file, {body.name, "done", fingerprint, "", seconds_since(t_start)});
+  write_grade_body_status(status_file,
+                          {body.name, "done", fingerprint, "", seconds_since(t_start)});
   std::printf("tightfit grade: body %s done in %.1f s (%s)\n", body.name.c_str(),
               seconds_since(t_start), folder.c_str());
   std::fflush(stdout);

@@ -77,7 +77,8 @@ int gather(const GradeOptions& o, const std::vector<GradeBody>& bodies) {
   for (const GradedBody& b : summary.bodies) {
     std::printf("  %-16s %s", b.name.c_str(), b.status.c_str());
     if (b.status == "done")
-      std::printf("  objective ratio %.4f, %s iterations", b.entry["objective"]["ratio"].get<double>(),
+      std::printf("  objective ratio %.4f, %s iterations",
+                  b.entry["objective"]["ratio"].get<double>(),
                   b.entry["iterations"].dump().c_str());
     if (!b.error.empty()) std::printf(": %s", b.error.c_str());
     std::printf("\n");
@@ -97,7 +98,8 @@ void prepare_grade_folder(const fs::path& dir, bool force) {
   if (!dir.empty() && !fs::exists(dir, ec)) {
     const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
     fs::create_directories(parent, ec);
-    const fs::path fresh = parent / (dir.filename().string() + ".tmp." + std::to_string(::getpid()) + ".0");
+    const fs::path fresh =
+        parent / (dir.filename().string() + ".tmp." + std::to_string(::getpid()) + ".0");
     fs::create_directory(fresh, ec);
     if (!ec) {
       mark_output_folder(fresh, "grade");
@@ -133,10 +135,12 @@ void run_grade(const GradeOptions& o) {
   }
   if (!o.gather_only) {
     const int threads = std::max(1, thread_count() / o.jobs);
-    std::vector<std::string> args = {"--threads", std::to_string(threads), "grade", o.design,
-                                     o.bodies, "--out", o.out};
-    if (o.max_iterations >= 0) args.insert(args.end(), {"--max-iterations", std::to_string(o.max_iterations)});
-    std::printf("tightfit grade: %zu bodies, %d at a time, %d threads each\n", bodies.size(), o.jobs, threads);
+    std::vector<std::string> args = {
+        "--threads", std::to_string(threads), "grade", o.design, o.bodies, "--out", o.out};
+    if (o.max_iterations >= 0)
+      args.insert(args.end(), {"--max-iterations", std::to_string(o.max_iterations)});
+    std::printf("tightfit grade: %zu bodies, %d at a time, %d threads each\n", bodies.size(),
+                o.jobs, threads);
     std::fflush(stdout);
     run_body_processes(args, names, o.jobs, fs::path(o.out) / "logs");
   }
@@ -147,49 +151,54 @@ void run_grade(const GradeOptions& o) {
   }
 }
 
-const CommandRegistration kGrade{"grade", [](CLI::App& root) {
-  auto* cmd = root.add_subcommand(
-      "grade",
-      "Grade one design over a population of bodies: optimize the design scene on every body "
-      "of BODIES (its body mesh and rig joints replaced), each in DIR/bodies/NAME (idempotent: a "
-      "graded body is skipped, a killed one resumes from its checkpoint), then gather "
-      "DIR/grade.json, the grading report DIR/grade.html and the nest of every size's pieces "
-      "(nest.svg, nest.pdf, nest.dxf). Exit code: 0 all graded, 2 bad input, 10 + the number "
-      "of bodies not graded.");
-  auto o = std::make_shared<GradeOptions>();
-  cmd->add_option("design", o->design,
-                  "Design scene: a scene with \"optimize\" and a \"rig\" {\"mesh\", \"weights\", "
-                  "\"joints\"}, with a body \"mesh\" (replaced by each body's) or without \"body\"")
-      ->required();
-  cmd->add_option("bodies", o->bodies,
-                  "Bodies file: {\"bodies\": [{\"name\", \"mesh\", \"joints\", \"rig_mesh\"}]} "
-                  "(schema/bodies.schema.json)")
-      ->required();
-  cmd->add_option("--out", o->out, std::string(kOutHelp) + "; DIR/bodies/NAME belongs to tightfit grade")
-      ->required();
-  cmd->add_flag("--force", o->force, kForceHelp);
-  auto* body = cmd->add_option("--body", o->body,
-                               "Grade this body only (one idempotent invocation, for GNU parallel "
-                               "or a Slurm array task); no gathering");
-  auto* gather_flag = cmd->add_flag("--gather", o->gather_only,
-                                    "Only gather the bodies graded so far into grade.json, "
-                                    "grade.html and the nest files");
-  cmd->add_option("--jobs", o->jobs,
-                  "Bodies graded at once, each in its own process with --threads / N threads "
-                  "(default 1)")
-      ->check(CLI::Range(1, 1024))
-      ->excludes(body)
-      ->excludes(gather_flag);
-  body->excludes(gather_flag);
-  cmd->add_option("--max-iterations", o->max_iterations,
-                  "Stop each body after this many L-BFGS iterations (overrides the design's "
-                  "optimize/max_iterations)")
-      ->check(non_negative_number());
-  cmd->add_option("--nest-seam", o->nest_seam,
-                  "Align the nest at the start of this seam (where its first notch sits) "
-                  "instead of the pieces' centroids");
-  cmd->callback([o] { run_grade(*o); });
-}};
+const CommandRegistration kGrade{
+    "grade", [](CLI::App& root) {
+      auto* cmd = root.add_subcommand(
+          "grade",
+          "Grade one design over a population of bodies: optimize the design scene on every body "
+          "of BODIES (its body mesh and rig joints replaced), each in DIR/bodies/NAME (idempotent: "
+          "a "
+          "graded body is skipped, a killed one resumes from its checkpoint), then gather "
+          "DIR/grade.json, the grading report DIR/grade.html and the nest of every size's pieces "
+          "(nest.svg, nest.pdf, nest.dxf). Exit code: 0 all graded, 2 bad input, 10 + the number "
+          "of bodies not graded.");
+      auto o = std::make_shared<GradeOptions>();
+      cmd->add_option(
+             "design", o->design,
+             "Design scene: a scene with \"optimize\" and a \"rig\" {\"mesh\", \"weights\", "
+             "\"joints\"}, with a body \"mesh\" (replaced by each body's) or without \"body\"")
+          ->required();
+      cmd->add_option("bodies", o->bodies,
+                      "Bodies file: {\"bodies\": [{\"name\", \"mesh\", \"joints\", \"rig_mesh\"}]} "
+                      "(schema/bodies.schema.json)")
+          ->required();
+      cmd->add_option("--out", o->out,
+                      std::string(kOutHelp) + "; DIR/bodies/NAME belongs to tightfit grade")
+          ->required();
+      cmd->add_flag("--force", o->force, kForceHelp);
+      auto* body =
+          cmd->add_option("--body", o->body,
+                          "Grade this body only (one idempotent invocation, for GNU parallel "
+                          "or a Slurm array task); no gathering");
+      auto* gather_flag = cmd->add_flag("--gather", o->gather_only,
+                                        "Only gather the bodies graded so far into grade.json, "
+                                        "grade.html and the nest files");
+      cmd->add_option("--jobs", o->jobs,
+                      "Bodies graded at once, each in its own process with --threads / N threads "
+                      "(default 1)")
+          ->check(CLI::Range(1, 1024))
+          ->excludes(body)
+          ->excludes(gather_flag);
+      body->excludes(gather_flag);
+      cmd->add_option("--max-iterations", o->max_iterations,
+                      "Stop each body after this many L-BFGS iterations (overrides the design's "
+                      "optimize/max_iterations)")
+          ->check(non_negative_number());
+      cmd->add_option("--nest-seam", o->nest_seam,
+                      "Align the nest at the start of this seam (where its first notch sits) "
+                      "instead of the pieces' centroids");
+      cmd->callback([o] { run_grade(*o); });
+    }};
 
 }  // namespace
 }  // namespace tightfit::app

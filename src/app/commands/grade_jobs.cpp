@@ -24,7 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Starts one body's process; returns its pid.
-pid_t spawn_body(const std::vector<std::string>& args, const std::string& name, const fs::path& log) {
+pid_t spawn_body(const std::vector<std::string>& args, const std::string& name,
+                 const fs::path& log) {
   std::vector<std::string> words = {"/proc/self/exe"};
   words.insert(words.end(), args.begin(), args.end());
   words.insert(words.end(), {"--body", name});
@@ -33,7 +34,8 @@ pid_t spawn_body(const std::vector<std::string>& args, const std::string& name, 
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_APPEND, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   // A process group of its own: Ctrl-C reaches this process only, which passes one
   // SIGTERM on (a second signal would end a body before it writes its checkpoint).
@@ -42,11 +44,13 @@ pid_t spawn_body(const std::vector<std::string>& args, const std::string& name, 
   posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
   posix_spawnattr_setpgroup(&attributes, 0);
   pid_t pid = -1;
-  const int error = posix_spawn(&pid, "/proc/self/exe", &actions, &attributes, argv.data(), environ);
+  const int error =
+      posix_spawn(&pid, "/proc/self/exe", &actions, &attributes, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
   if (error != 0)
-    throw std::runtime_error("cannot start the process of body " + name + ": " + std::strerror(error));
+    throw std::runtime_error("cannot start the process of body " + name + ": " +
+                             std::strerror(error));
   return pid;
 }
 
@@ -94,8 +98,8 @@ std::vector<BodyProcess> run_body_processes(const std::vector<std::string>& args
     BodyProcess& r = results[it->second];
     r.exit_code = exit_code_of(status);
     running.erase(it);
-    std::printf("  body %s %s (exit %d)\n", r.name.c_str(), r.exit_code == 0 ? "done" : "not graded",
-                r.exit_code);
+    std::printf("  body %s %s (exit %d)\n", r.name.c_str(),
+                r.exit_code == 0 ? "done" : "not graded", r.exit_code);
     std::fflush(stdout);
   }
   if (stopping) throw Interrupted{interrupt_signal()};

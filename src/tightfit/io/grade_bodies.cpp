@@ -42,11 +42,14 @@ std::vector<GradeBody> read_grade_bodies(const std::filesystem::path& file) {
     GradeBody body;
     body.name = f.string("name");
     if (!valid_body_name(body.name))
-      f.fail("\"" + body.name + "\" is not a body name (1 to 64 letters, digits, '_', '-', '.'; "
-             "it names the body's output folder)", "name");
+      f.fail("\"" + body.name +
+                 "\" is not a body name (1 to 64 letters, digits, '_', '-', '.'; "
+                 "it names the body's output folder)",
+             "name");
     if (const auto it = seen.find(body.name); it != seen.end())
       f.fail("two bodies are named \"" + body.name + "\" (/bodies/" + std::to_string(it->second) +
-             " too): every body needs its own name", "name");
+                 " too): every body needs its own name",
+             "name");
     seen.emplace(body.name, i);
     body.mesh = resolve(f, "mesh");
     body.joints = resolve(f, "joints");

@@ -32,7 +32,8 @@ std::string cell(const nlohmann::json& j, const char* key, int digits) {
 /// "min / median / max" of a statistics object.
 std::string range_cell(const nlohmann::json& j, int digits) {
   if (!j.is_object()) return "–";
-  return cell(j, "min", digits) + " / " + cell(j, "median", digits) + " / " + cell(j, "max", digits);
+  return cell(j, "min", digits) + " / " + cell(j, "median", digits) + " / " +
+         cell(j, "max", digits);
 }
 
 /// One inline SVG of nest group `g`: every size's sew line, in the colour of body
@@ -49,11 +50,12 @@ std::string nest_svg(const Nest& nest, int g, const std::vector<size_t>& colour_
   if (lo.x() > hi.x()) return "";
   const double pad = 10.0, w = hi.x() - lo.x() + 2 * pad, h = hi.y() - lo.y() + 2 * pad;
   std::ostringstream out;
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << fixed(w, 1) << " " << fixed(h, 1)
-      << "\" style=\"width:" << fixed(std::min(w, 420.0), 0) << "px\">";
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << fixed(w, 1) << " "
+      << fixed(h, 1) << "\" style=\"width:" << fixed(std::min(w, 420.0), 0) << "px\">";
   // The grain line: the vertical through the origin (every piece's grain points up).
   out << "<line x1=\"" << fixed(pad - lo.x(), 1) << "\" y1=\"0\" x2=\"" << fixed(pad - lo.x(), 1)
-      << "\" y2=\"" << fixed(h, 1) << "\" stroke=\"#999\" stroke-dasharray=\"4 3\" stroke-width=\"0.6\"/>";
+      << "\" y2=\"" << fixed(h, 1)
+      << "\" stroke=\"#999\" stroke-dasharray=\"4 3\" stroke-width=\"0.6\"/>";
   for (size_t p = 0; p < nest.pattern.pieces.size(); ++p) {
     if (nest.group[p] != g) continue;
     const PatternPiece& piece = nest.pattern.pieces[p];
@@ -78,39 +80,48 @@ void write_grade_report(const std::filesystem::path& file, const GradeSummary& s
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>tightfit grading — "
     << xml_escape(j.value("design", std::string())) << "</title><style>"
-    << "body{font-family:sans-serif;margin:2em;color:#222}table{border-collapse:collapse;margin:1em 0}"
+    << "body{font-family:sans-serif;margin:2em;color:#222}table{border-collapse:collapse;margin:"
+       "1em 0}"
     << "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#f3f3f3}"
-    << "td:first-child,th:first-child{text-align:left}.failed{color:#b00}.nest{display:inline-block;"
-    << "vertical-align:top;margin:0 1.5em 1.5em 0}.swatch{display:inline-block;width:1em;height:0.6em;"
+    << "td:first-child,th:first-child{text-align:left}.failed{color:#b00}.nest{display:inline-"
+       "block;"
+    << "vertical-align:top;margin:0 1.5em 1.5em "
+       "0}.swatch{display:inline-block;width:1em;height:0.6em;"
     << "margin:0 0.3em 0 1em}</style></head><body>\n";
-  h << "<h1>Grading of " << xml_escape(j.value("design", std::string())) << "</h1>\n<p>Bodies: "
-    << xml_escape(j.value("bodies_file", std::string())) << " — " << j["counts"]["done"] << " of "
-    << j["counts"]["bodies"] << " graded, " << j["counts"]["failed"] << " failed, "
-    << j["counts"]["not_run"] << " not run; " << xml_escape(j.value("date", std::string())) << ".</p>\n";
+  h << "<h1>Grading of " << xml_escape(j.value("design", std::string()))
+    << "</h1>\n<p>Bodies: " << xml_escape(j.value("bodies_file", std::string())) << " — "
+    << j["counts"]["done"] << " of " << j["counts"]["bodies"] << " graded, "
+    << j["counts"]["failed"] << " failed, " << j["counts"]["not_run"] << " not run; "
+    << xml_escape(j.value("date", std::string())) << ".</p>\n";
 
   h << "<h2>Sizes</h2>\n<table><tr><th>body</th><th>status</th><th>objective ratio</th>"
     << "<th>iterations</th><th>layout s</th><th>initial solve s</th><th>iterations s</th>"
     << "<th>largest stretch (min / median / max)</th><th>smallest stretch (min / median / max)</th>"
-    << "<th>pressure mmHg (min / median / max)</th><th>pressure spread</th><th>lift-off share</th></tr>\n";
+    << "<th>pressure mmHg (min / median / max)</th><th>pressure spread</th><th>lift-off "
+       "share</th></tr>\n";
   for (size_t k = 0; k < summary.bodies.size(); ++k) {
     const GradedBody& b = summary.bodies[k];
     const nlohmann::json& e = b.entry;
-    h << "<tr><td><span class=\"swatch\" style=\"background:" << size_colour(k) << ";margin-left:0\"></span>"
-      << xml_escape(b.name) << "</td><td" << (b.status == "failed" ? " class=\"failed\"" : "") << ">"
-      << xml_escape(b.status) << (b.error.empty() ? "" : ": " + xml_escape(b.error)) << "</td>";
+    h << "<tr><td><span class=\"swatch\" style=\"background:" << size_colour(k)
+      << ";margin-left:0\"></span>" << xml_escape(b.name) << "</td><td"
+      << (b.status == "failed" ? " class=\"failed\"" : "") << ">" << xml_escape(b.status)
+      << (b.error.empty() ? "" : ": " + xml_escape(b.error)) << "</td>";
     if (b.status != "done") {
       h << "<td colspan=\"10\"></td></tr>\n";
       continue;
     }
     const nlohmann::json& s = e["seconds"];
-    h << "<td>" << cell(e["objective"], "ratio", 3) << "</td><td>" << (e["iterations"].is_number() ? e["iterations"].dump() : "–")
-      << "</td><td>" << cell(s, "layout", 1) << "</td><td>" << cell(s, "initial_solve", 1) << "</td><td>"
+    h << "<td>" << cell(e["objective"], "ratio", 3) << "</td><td>"
+      << (e["iterations"].is_number() ? e["iterations"].dump() : "–") << "</td><td>"
+      << cell(s, "layout", 1) << "</td><td>" << cell(s, "initial_solve", 1) << "</td><td>"
       << cell(s, "iterations", 1) << "</td><td>" << range_cell(e["stretch_max"], 3) << "</td><td>"
-      << range_cell(e["stretch_min"], 3) << "</td><td>" << range_cell(e["pressure_mmhg"], 1) << "</td><td>"
-      << cell(e, "pressure_spread", 3) << "</td><td>" << cell(e, "lift_off_share", 3) << "</td></tr>\n";
+      << range_cell(e["stretch_min"], 3) << "</td><td>" << range_cell(e["pressure_mmhg"], 1)
+      << "</td><td>" << cell(e, "pressure_spread", 3) << "</td><td>" << cell(e, "lift_off_share", 3)
+      << "</td></tr>\n";
   }
   h << "</table>\n<p>Stretch: principal stretches of the fabric on the body (1 = unstretched), "
-       "pressure: on the body under the garment, both area-weighted medians over the garment.</p>\n";
+       "pressure: on the body under the garment, both area-weighted medians over the "
+       "garment.</p>\n";
 
   // Seam lengths and their size-to-size change.
   h << "<h2>Seam lengths (mm) and change from the size before</h2>\n<table><tr><th>seam</th>";
@@ -135,8 +146,10 @@ void write_grade_report(const std::filesystem::path& file, const GradeSummary& s
   h << "</table>\n";
 
   if (nest) {
-    h << "<h2>Nest</h2>\n<p>Every size's pieces on top of each other, grain lines up (dashed), aligned at "
-      << xml_escape(nest->alignment == "centroid" ? "the area centroid" : "the start of " + nest->alignment)
+    h << "<h2>Nest</h2>\n<p>Every size's pieces on top of each other, grain lines up (dashed), "
+         "aligned at "
+      << xml_escape(nest->alignment == "centroid" ? "the area centroid"
+                                                  : "the start of " + nest->alignment)
       << "; sew lines in mm. Sizes:";
     for (size_t k = 0; k < summary.bodies.size(); ++k)
       if (summary.bodies[k].status == "done")

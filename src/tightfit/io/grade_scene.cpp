@@ -81,16 +81,19 @@ GradeDesign read_grade_design(const fs::path& file) {
   const nlohmann::json& d = design.document;
   if (!d.is_object()) throw InputError(source, "expected a scene (a JSON object)");
   if (!d.contains("optimize") || !d["optimize"].is_object())
-    throw InputError(source, "a design needs an \"optimize\" section: grading optimizes the "
-                             "design on every body");
-  if (d.contains("body") && (!d["body"].is_object() || !d["body"].contains("mesh") ||
-                             !d["body"]["mesh"].is_string()))
-    throw InputError(source, "/body: a design's body must be a \"mesh\" (each body of the bodies "
-                             "file replaces it; its other settings — edge length, crop, core — "
-                             "apply to every body), or leave \"body\" out");
+    throw InputError(source,
+                     "a design needs an \"optimize\" section: grading optimizes the "
+                     "design on every body");
+  if (d.contains("body") &&
+      (!d["body"].is_object() || !d["body"].contains("mesh") || !d["body"]["mesh"].is_string()))
+    throw InputError(source,
+                     "/body: a design's body must be a \"mesh\" (each body of the bodies "
+                     "file replaces it; its other settings — edge length, crop, core — "
+                     "apply to every body), or leave \"body\" out");
   if (!d.contains("rig") || !d["rig"].is_object())
-    throw InputError(source, "a design needs a \"rig\" {\"mesh\", \"weights\", \"joints\"}: "
-                             "each body brings its own joints (and rig mesh)");
+    throw InputError(source,
+                     "a design needs a \"rig\" {\"mesh\", \"weights\", \"joints\"}: "
+                     "each body brings its own joints (and rig mesh)");
   for (const char* key : {"mesh", "weights", "joints"})
     if (!d["rig"].contains(key) || !d["rig"][key].is_string())
       throw InputError(source, std::string("/rig/") + key + ": expected a file name");

@@ -30,9 +30,9 @@ GradeDesign read_grade_design(const std::filesystem::path& file);
 bool is_scene_path_key(const std::string& key);
 
 /// The scene of `design` on `body`, to be written as a file in folder `scene_dir`:
-/// /body/mesh is the body's mesh (/body is made when the design has none), /rig/joints its joints, /rig/mesh its rig mesh (and
-/// /pressure/rig/mesh when the design has a pressure rig); every other relative path
-/// (is_scene_path_key) is rewritten relative to `scene_dir` so that it names the same
+/// /body/mesh is the body's mesh (/body is made when the design has none), /rig/joints its joints,
+/// /rig/mesh its rig mesh (and /pressure/rig/mesh when the design has a pressure rig); every other
+/// relative path (is_scene_path_key) is rewritten relative to `scene_dir` so that it names the same
 /// file as in the design. Paths are written relative to `scene_dir` when both lie under
 /// one folder, else absolute.
 nlohmann::json grade_body_scene(const GradeDesign& design, const GradeBody& body,

@@ -10,9 +10,12 @@
 namespace tightfit {
 
 void write_grade_body_status(const std::filesystem::path& file, const GradeBodyStatus& status) {
-  nlohmann::json j = {{"format", "tightfit-grade-body"}, {"version", 1},
-                      {"name", status.name},          {"status", status.status},
-                      {"fingerprint", status.fingerprint}, {"seconds", status.seconds},
+  nlohmann::json j = {{"format", "tightfit-grade-body"},
+                      {"version", 1},
+                      {"name", status.name},
+                      {"status", status.status},
+                      {"fingerprint", status.fingerprint},
+                      {"seconds", status.seconds},
                       {"date", utc_timestamp()}};
   if (!status.error.empty()) j["error"] = status.error;
   write_json_atomically(file, j, 2);
@@ -29,7 +32,8 @@ std::optional<GradeBodyStatus> read_grade_body_status(const std::filesystem::pat
   }
   static const std::set<std::string> states = {"running", "done", "failed"};
   if (!j.is_object() || j.value("format", std::string()) != "tightfit-grade-body" ||
-      !j.contains("status") || !j["status"].is_string() || !states.contains(j["status"].get<std::string>()))
+      !j.contains("status") || !j["status"].is_string() ||
+      !states.contains(j["status"].get<std::string>()))
     return std::nullopt;
   GradeBodyStatus s;
   s.name = j.value("name", std::string());

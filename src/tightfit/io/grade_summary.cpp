@@ -30,26 +30,30 @@ void read_done_body(GradedBody& body, const fs::path& folder) {
   const nlohmann::json o = member(result, "optimization");
   const double initial = number_or(o, "objective_initial", 0.0);
   const double final_value = number_or(o, "objective_final", 0.0);
-  e["objective"] = {{"initial", initial}, {"final", final_value},
+  e["objective"] = {{"initial", initial},
+                    {"final", final_value},
                     {"ratio", initial > 0.0 ? final_value / initial : 0.0}};
   e["iterations"] = member(o, "iterations");
   e["stop_reason"] = member(o, "stop_reason");
   const nlohmann::json seconds = member(result, "seconds");
   const nlohmann::json its = member(history, "iterations");
-  const double first = its.is_array() && !its.empty() ? number_or(its.front(), "seconds", 0.0) : 0.0;
+  const double first =
+      its.is_array() && !its.empty() ? number_or(its.front(), "seconds", 0.0) : 0.0;
   const double last = its.is_array() && !its.empty() ? number_or(its.back(), "seconds", 0.0) : 0.0;
-  e["seconds"] = {{"body", number_or(seconds, "body", 0.0)},
-                  {"layout", number_or(seconds, "garment", 0.0) + number_or(seconds, "limit surface", 0.0)},
-                  {"initial_solve", first},
-                  {"iterations", last - first},
-                  {"total", number_or(seconds, "total_this_run", 0.0)}};
+  e["seconds"] = {
+      {"body", number_or(seconds, "body", 0.0)},
+      {"layout", number_or(seconds, "garment", 0.0) + number_or(seconds, "limit surface", 0.0)},
+      {"initial_solve", first},
+      {"iterations", last - first},
+      {"total", number_or(seconds, "total_this_run", 0.0)}};
   const nlohmann::json fit = member(result, "fit");
-  for (const char* key : {"stretch_max", "stretch_min", "pressure_mmhg", "pressure_spread",
-                          "lift_off_share"})
+  for (const char* key :
+       {"stretch_max", "stretch_min", "pressure_mmhg", "pressure_spread", "lift_off_share"})
     e[key] = member(fit, key);
   e["pieces"] = nlohmann::json::array();
   for (const auto& piece : member(fit, "pieces"))
-    e["pieces"].push_back({{"name", member(piece, "name")}, {"pressure_mmhg", member(piece, "pressure_mmhg")}});
+    e["pieces"].push_back(
+        {{"name", member(piece, "name")}, {"pressure_mmhg", member(piece, "pressure_mmhg")}});
   e["seams_mm"] = nlohmann::json::object();
   for (const auto& seam : member(pieces, "seams"))
     if (seam.contains("name") && seam["name"].is_string())
@@ -117,14 +121,16 @@ GradeSummary gather_grade(const std::vector<GradeBody>& bodies, const fs::path& 
 
   nlohmann::json entries = nlohmann::json::array();
   for (const GradedBody& body : summary.bodies) entries.push_back(body.entry);
-  summary.json = {{"format", "tightfit-grade"},
-                  {"version", 1},
-                  {"design", design_file},
-                  {"bodies_file", bodies_file},
-                  {"date", utc_timestamp()},
-                  {"counts", {{"bodies", bodies.size()}, {"done", done}, {"failed", failed}, {"not_run", not_run}}},
-                  {"bodies", entries},
-                  {"seams", seams}};
+  summary.json = {
+      {"format", "tightfit-grade"},
+      {"version", 1},
+      {"design", design_file},
+      {"bodies_file", bodies_file},
+      {"date", utc_timestamp()},
+      {"counts",
+       {{"bodies", bodies.size()}, {"done", done}, {"failed", failed}, {"not_run", not_run}}},
+      {"bodies", entries},
+      {"seams", seams}};
   return summary;
 }
 

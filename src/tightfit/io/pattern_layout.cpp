@@ -63,13 +63,15 @@ PatternLayout layout_pattern(const std::vector<PieceDrawing>& pieces,
   for (size_t p = 0; p < pieces.size(); ++p) {
     const Box2 local = piece_box(pieces[p]);
     const auto [it, first] = group_box.emplace(group[p], local);
-    if (!first) it->second = {it->second.min.cwiseMin(local.min), it->second.max.cwiseMax(local.max)};
+    if (!first)
+      it->second = {it->second.min.cwiseMin(local.min), it->second.max.cwiseMax(local.max)};
   }
   std::map<int, Vec2> group_corner;
   for (size_t p = 0; p < pieces.size(); ++p) {
     const Box2& local = group_box.at(group[p]);
     auto it = group_corner.find(group[p]);
-    if (it == group_corner.end()) it = group_corner.emplace(group[p], place(local.width(), local.height())).first;
+    if (it == group_corner.end())
+      it = group_corner.emplace(group[p], place(local.width(), local.height())).first;
     const Vec2 corner = it->second;
     layout.offsets[p] = Vec2(corner.x() - local.min.x(), corner.y() + local.max.y());
     layout.piece_boxes[p] = {corner, corner + Vec2(local.width(), local.height())};

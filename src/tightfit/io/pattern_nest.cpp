@@ -59,8 +59,11 @@ Nest make_nest(const std::vector<NestSize>& sizes, const std::string& seam) {
   for (const PatternPiece& piece : first.pieces) nest.piece_names.push_back(piece.name);
   if (!seam.empty()) {
     bool found = false;
-    for (size_t p = 0; p < first.pieces.size(); ++p) found |= seam_start(first, static_cast<int>(p), seam) >= 0;
-    if (!found) throw InputError("--nest-seam", "no seam \"" + seam + "\" in the pattern of " + sizes.front().name);
+    for (size_t p = 0; p < first.pieces.size(); ++p)
+      found |= seam_start(first, static_cast<int>(p), seam) >= 0;
+    if (!found)
+      throw InputError("--nest-seam",
+                       "no seam \"" + seam + "\" in the pattern of " + sizes.front().name);
   }
   for (size_t s = 0; s < sizes.size(); ++s) {
     const Pattern& pattern = *sizes[s].pattern;
@@ -73,7 +76,8 @@ Nest make_nest(const std::vector<NestSize>& sizes, const std::string& seam) {
         if (nest.piece_names[g] == piece.name) group = static_cast<int>(g);
       if (group < 0) continue;
       const int start = seam.empty() ? -1 : seam_start(pattern, static_cast<int>(p), seam);
-      const Vec2 origin = start >= 0 ? Vec2(piece.rest.row(start).transpose()) : area_centroid(piece);
+      const Vec2 origin =
+          start >= 0 ? Vec2(piece.rest.row(start).transpose()) : area_centroid(piece);
       PatternPiece moved = aligned(piece, origin);
       moved.name = piece.name + "/" + sizes[s].name;
       index[static_cast<int>(p)] = static_cast<int>(nest.pattern.pieces.size());

@@ -22,11 +22,11 @@ struct Nest {
   /// Every piece of every size, aligned; named "PIECE/SIZE". Its seams and pinned
   /// boundaries are those of each size, named "SEAM/SIZE", so every size has its notches.
   Pattern pattern;
-  std::vector<int> group;               ///< per nest piece: its piece (index into piece_names)
-  std::vector<int> size;                ///< per nest piece: its size (index into sizes)
-  std::vector<std::string> piece_names; ///< the nested pieces, in the first size's order
+  std::vector<int> group;                ///< per nest piece: its piece (index into piece_names)
+  std::vector<int> size;                 ///< per nest piece: its size (index into sizes)
+  std::vector<std::string> piece_names;  ///< the nested pieces, in the first size's order
   std::vector<std::string> size_names;
-  std::string alignment;                ///< "centroid" or "seam SEAM"
+  std::string alignment;  ///< "centroid" or "seam SEAM"
 };
 
 /// Builds the nest of `sizes` (at least one). Pieces are matched by name: the pieces of

@@ -34,8 +34,9 @@ void check_joints_inside(const TriMesh& body, const std::map<std::string, BoneSe
       if (distance <= farthest) continue;
       farthest = distance;
       char text[200];
-      std::snprintf(text, sizeof text, "the %s of bone \"%s\" (%.3f, %.3f, %.3f) m lies %.0f mm outside",
-                    end, name.c_str(), p.x(), p.y(), p.z(), distance * 1000.0);
+      std::snprintf(text, sizeof text,
+                    "the %s of bone \"%s\" (%.3f, %.3f, %.3f) m lies %.0f mm outside", end,
+                    name.c_str(), p.x(), p.y(), p.z(), distance * 1000.0);
       where = text;
     }
   }
