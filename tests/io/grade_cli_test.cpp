@@ -323,21 +323,32 @@ TEST_F(GradeCli, FailingBodiesAreRecordedAndTheOthersAreGraded) {
       {"name", "broken"},
       {"mesh", "broken.obj"},
       {"joints", (fs::path(TIGHTFIT_DATA_DIR) / "rig/mh_male_regular.joints.json").string()}};
-  write_bodies(nlohmann::json::array({scaled_legs("medium", 1.0), alien, broken}));
+  // A head with the man's rig: the leg layout cannot be placed on it.
+  const fs::path data(TIGHTFIT_DATA_DIR);
+  const nlohmann::json head = {{"name", "head"},
+                               {"mesh", (data / "bodies/mh_head_neutral.obj").string()},
+                               {"rig_mesh", (data / "bodies/mh_male_regular.obj").string()},
+                               {"joints", (data / "rig/mh_male_regular.joints.json").string()}};
+  write_bodies(nlohmann::json::array({scaled_legs("medium", 1.0), alien, broken, head}));
   const fs::path out = dir_ / "graded";
   const test::CliRun r = test::run_cli("--threads 2 " + grade_args(out) + " --jobs 2");
-  EXPECT_EQ(r.exit_code, 12) << r.output;
+  EXPECT_EQ(r.exit_code, 13) << r.output;
   const nlohmann::json grade = read_json(out / "grade.json");
   EXPECT_EQ(grade["counts"]["done"], 1);
-  EXPECT_EQ(grade["counts"]["failed"], 2);
+  EXPECT_EQ(grade["counts"]["failed"], 3);
   EXPECT_EQ(grade["bodies"][0]["status"], "done");
   const std::string alien_error = grade["bodies"][1]["error"];
   EXPECT_NE(alien_error.find("alien.joints.json"), std::string::npos) << alien_error;
   EXPECT_NE(alien_error.find("outside"), std::string::npos) << alien_error;
   const std::string broken_error = grade["bodies"][2]["error"];
   EXPECT_NE(broken_error.find("broken.obj"), std::string::npos) << broken_error;
+  const std::string head_error = grade["bodies"][3]["error"];
+  EXPECT_NE(
+      head_error.find("left_leg_anchored.json: /dividers/0: divider \"thigh\" misses the body"),
+      std::string::npos)
+      << head_error;
   // A failed body's folder holds its scene and status only.
-  for (const char* name : {"alien", "broken"}) {
+  for (const char* name : {"alien", "broken", "head"}) {
     std::set<std::string> files;
     for (const auto& e : fs::directory_iterator(out / "bodies" / name))
       files.insert(e.path().filename().string());
@@ -347,7 +358,7 @@ TEST_F(GradeCli, FailingBodiesAreRecordedAndTheOthersAreGraded) {
   }
   EXPECT_NE(test::read_text(out / "grade.html").find(alien_error.substr(0, 40)), std::string::npos);
   // Gathering alone says the same.
-  EXPECT_EQ(test::run_cli(grade_args(out) + " --gather").exit_code, 12);
+  EXPECT_EQ(test::run_cli(grade_args(out) + " --gather").exit_code, 13);
 }
 
 TEST_F(GradeCli, TwoBodiesOfOneNameOrAnUnknownBodyAreErrorsBeforeAnythingIsWritten) {
