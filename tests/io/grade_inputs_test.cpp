@@ -128,7 +128,8 @@ TEST_F(GradeInputs, ADesignWithoutOptimizeBodyMeshOrRigIsRefused) {
       error(R"({"body": {"generator": "cylinder"}, "optimize": {}, "rig": {}})").find("/body"),
       std::string::npos);
   // Without a body, each body is its mesh with the default settings.
-  write("d.json", R"({"optimize": {}, "rig": {"mesh": "b", "weights": "w", "joints": "j"}})");
+  write("d.json", R"({"optimize": {"objectives": {"stretch": {"weight": 1}}},
+                       "rig": {"mesh": "b", "weights": "w", "joints": "j"}})");
   const GradeDesign bare = read_grade_design(f);
   const nlohmann::json scene =
       grade_body_scene(bare, {"x", dir_ / "x.obj", dir_ / "x.json", dir_ / "x.obj"}, dir_);
@@ -139,6 +140,11 @@ TEST_F(GradeInputs, ADesignWithoutOptimizeBodyMeshOrRigIsRefused) {
       error(R"({"body": {"mesh": "b.obj"}, "optimize": {}, "rig": {"mesh": "b", "weights": "w"}})")
           .find("/rig/joints"),
       std::string::npos);
+  // The "optimize" section is the same for every body: checked before any body runs.
+  EXPECT_EQ(error(R"({"optimize": {"objectives": {"stretch": {"weight": 1}}, "max_iteration": 3},
+                     "rig": {"mesh": "b", "weights": "w", "joints": "j"}})")
+                .rfind(f + ": /optimize", 0),
+            0u);
 }
 
 TEST_F(GradeInputs, TheFingerprintChangesWithTheSceneTheFilesItNamesAndTheExtra) {

@@ -8,6 +8,7 @@
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/json_fields.hpp"
+#include "tightfit/design/optimization_spec.hpp"
 
 namespace tightfit {
 namespace {
@@ -97,6 +98,8 @@ GradeDesign read_grade_design(const fs::path& file) {
   for (const char* key : {"mesh", "weights", "joints"})
     if (!d["rig"].contains(key) || !d["rig"][key].is_string())
       throw InputError(source, std::string("/rig/") + key + ": expected a file name");
+  // The same for every body: a mistake there is the design's, found before any body runs.
+  parse_optimization_spec(d["optimize"], source, "/optimize", file.parent_path());
   return design;
 }
 

@@ -22,7 +22,9 @@ struct GradeDesign {
 /// Reads the design scene: a JSON object with an "optimize" section, a "rig" with
 /// "mesh", "weights" and "joints", and either no "body" (each body is then its mesh with
 /// the default settings) or a "body" with a "mesh" (replaced by each body's; its other
-/// settings apply to every body). InputError naming the file and what is wrong.
+/// settings apply to every body). The "optimize" section is checked here
+/// (parse_optimization_spec): it is the same for every body. InputError naming the file
+/// and what is wrong.
 GradeDesign read_grade_design(const std::filesystem::path& file);
 
 /// The keys whose string values are file paths in a scene (body mesh, core skeleton,
