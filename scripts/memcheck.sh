@@ -17,10 +17,12 @@ command -v valgrind >/dev/null || { echo "memcheck: valgrind is not installed (s
 # except: CGAL-backed body operations (crop, isotropic remeshing, distances — also the
 # layouts' bone regions, whose skin weights are carried by closest point: valgrind
 # ignores the rounding modes CGAL's interval arithmetic sets, so their exact predicates
-# go wrong under it) and the few in-process runs that take over a second in Release
-# (20-50x that under memcheck; the scene-pose tests read the 0.9 MB rig a dozen times,
-# which the skin-weight tests already read under memcheck). CLI tests run the tightfit binary as a child process,
-# which is not traced.
+# go wrong under it; so do the grading's joint check) and the few in-process runs that
+# take over a second in Release (20-50x that under memcheck; the scene-pose tests read
+# the 0.9 MB rig a dozen times, which the skin-weight tests already read under memcheck,
+# as does the grading example; GradeCli writes scaled copies of the 13380-vertex bodies
+# for 3-6 grading runs). CLI tests run the tightfit binary as a child process, which is
+# not traced.
 slow='*Slow*'
 runs=(
   "tightfit_common_tests:*-$slow"
@@ -32,7 +34,7 @@ runs=(
   "tightfit_solve_tests:*-$slow:RigidCylinderSleeveSliding.*:RigidCurvedBody.EllipticCylinder*"
   "tightfit_objectives_tests:*-$slow:PressureRegions.BoneRegions*:SlidingObjective.PosesPull*:SlidingObjective.AdjointGradient*:AllPosesTerm.*:PinnedTractionRegularizer.*"
   "tightfit_design_tests:*-$slow:AdjointSolve.*:AdjointPipelineSoftBody.*:PatternOptimizer.RecoversTheShapeOfAnotherPattern:*PatternOptimizerResume*soft*"
-  "tightfit_io_tests:*-$slow:SceneSpec.EveryExampleValidatesAgainstTheSchema:LayoutSceneSimulation.*:PressureRegionStatistics.*:ScenePoses.*:SceneLayoutFileLoad.*"
+  "tightfit_io_tests:*-$slow:SceneSpec.EveryExampleValidatesAgainstTheSchema:LayoutSceneSimulation.*:PressureRegionStatistics.*:ScenePoses.*:SceneLayoutFileLoad.*:GradeCli.*:GradeInputs.TheGradingExamples*:GradeInputs.JointsOutside*"
 )
 
 logs="$build/memcheck"

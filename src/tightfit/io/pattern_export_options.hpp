@@ -4,6 +4,7 @@
 /// (or PDF points, 1 mm = 72/25.4 pt) when they write.
 #include <map>
 #include <string>
+#include <vector>
 
 namespace tightfit {
 
@@ -60,6 +61,11 @@ struct PatternExportOptions {
   double layout_gap = 0.010;
   /// Add a 10 cm × 10 cm test square to the layout (SVG, PDF: first page).
   bool test_square = true;
+  /// A grading nest: piece p is placed at the spot of group nest_group[p], and the
+  /// pieces of one group lie on top of each other in their own coordinates (aligned by
+  /// the caller, io/pattern_nest.hpp). Empty: every piece has its own spot. Otherwise one
+  /// group (≥ 0) per piece.
+  std::vector<int> nest_group;
 };
 
 }  // namespace tightfit

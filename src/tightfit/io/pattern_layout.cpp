@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace tightfit {
 namespace {
@@ -54,9 +55,24 @@ PatternLayout layout_pattern(const std::vector<PieceDrawing>& pieces,
     layout.has_test_square = true;
     layout.test_square = {corner, corner + Vec2(kTestSquareMm, kTestSquareMm)};
   }
+  // One spot per piece, or per nest group (the union of its pieces' boxes).
+  std::vector<int> group(pieces.size());
+  for (size_t p = 0; p < pieces.size(); ++p)
+    group[p] = options.nest_group.empty() ? static_cast<int>(p) : options.nest_group[p];
+  std::map<int, Box2> group_box;
   for (size_t p = 0; p < pieces.size(); ++p) {
     const Box2 local = piece_box(pieces[p]);
-    const Vec2 corner = place(local.width(), local.height());
+    const auto [it, first] = group_box.emplace(group[p], local);
+    if (!first)
+      it->second = {it->second.min.cwiseMin(local.min), it->second.max.cwiseMax(local.max)};
+  }
+  std::map<int, Vec2> group_corner;
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    const Box2& local = group_box.at(group[p]);
+    auto it = group_corner.find(group[p]);
+    if (it == group_corner.end())
+      it = group_corner.emplace(group[p], place(local.width(), local.height())).first;
+    const Vec2 corner = it->second;
     layout.offsets[p] = Vec2(corner.x() - local.min.x(), corner.y() + local.max.y());
     layout.piece_boxes[p] = {corner, corner + Vec2(local.width(), local.height())};
   }

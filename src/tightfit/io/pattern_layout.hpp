@@ -39,7 +39,8 @@ struct PatternLayout {
 
 /// Shelf layout: the test square first (if enabled), then the pieces in order, left
 /// to right in rows of at most `options.layout_width`, `options.layout_gap` apart and
-/// around the border. Boxes never overlap.
+/// around the border. Boxes never overlap, except in a nest (`options.nest_group`):
+/// the pieces of one group share one spot and its box (the union of theirs).
 PatternLayout layout_pattern(const std::vector<PieceDrawing>& pieces,
                              const PatternExportOptions& options);
 

@@ -173,6 +173,10 @@ void validate_export_options(const Pattern& pattern, const PatternExportOptions&
   for (const auto& [name, quantity] : options.quantities) {
     if (quantity < 1) fail("quantity of '" + name + "' must be >= 1");
   }
+  if (!options.nest_group.empty() && options.nest_group.size() != pattern.pieces.size())
+    fail("a nest needs one group per piece");
+  for (int group : options.nest_group)
+    if (group < 0) fail("nest groups must be >= 0");
 }
 
 }  // namespace tightfit
