@@ -63,15 +63,15 @@ class OpeningsCli : public ::testing::Test {
 
 TEST_F(OpeningsCli, AFailedBuildKeepsTheLayoutsWarnings) {
   // The mask: its mouth and nostril openings cut the closed lips' cavity off each half
-  // (a warning). With a seam tolerance no flattening meets, the build fails; the
+  // (a warning). With an area tolerance no flattening meets, the build fails; the
   // warnings come with the error.
   std::ifstream in(std::string(TIGHTFIT_SOURCE_DIR) + "/examples/optimize_mask_pressure.json");
   nlohmann::json scene = nlohmann::json::parse(in);
   scene["body"]["mesh"] = std::string(TIGHTFIT_SOURCE_DIR) + "/data/bodies/mh_head_neutral.obj";
-  scene["garment"]["layout"]["seam_tolerance"] = 1e-9;
+  scene["garment"]["layout"]["area_tolerance"] = 1e-9;
   const auto r = test::run_cli("layout " + write_scene(scene).string() + " --out " + (dir_ / "out").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("seam_tolerance"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("area_tolerance"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("after the warning: "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("cuts a part of"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "out"));

@@ -99,7 +99,7 @@ TriMesh crop_beyond_nearest_loop(const TriMesh& surface, const CropPlane& plane,
     return (1.0 - t) * vertices.row(e.first).transpose() + t * vertices.row(e.second).transpose();
   };
 
-  const BeyondLoop beyond = beyond_nearest_loop(surface, side, plane.point, source);
+  const BeyondLoop beyond = beyond_nearest_loop(surface, side, plane.point, unit, source);
   const std::vector<char>& removed = beyond.beyond;
   std::map<Edge, int> cut_vertex;  // crossed edge of the loop → new vertex index
   for (const Edge& e : beyond.loop_edges) cut_vertex.emplace(e, -1);

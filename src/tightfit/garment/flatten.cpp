@@ -343,11 +343,22 @@ Flattening flatten_panel(const TriMesh& mesh, const std::vector<std::vector<int>
       for (int i = 0; i < n; ++i)
         if (id[i] >= 0) out.uv.row(i) = u.row(id[i]);
       // The boundary-length pull can fold tiny triangles at sharp corners of strongly
-      // curved panels: keep the last iterate that folds no more than the one before.
-      const int folds = count_folds(faces, out.uv, orientation);
+      // curved panels: a step that folds more triangles than the iterate before is
+      // shortened (halved up to 20 times) until it does not; when no length works,
+      // the iterations stop at the last iterate.
+      int folds = count_folds(faces, out.uv, orientation);
       if (folds > folds_before) {
-        out.uv = before;
-        break;
+        const Points2 full = out.uv;
+        double alpha = 1.0;
+        for (int halving = 0; halving < 20 && folds > folds_before; ++halving) {
+          alpha *= 0.5;
+          out.uv = before + alpha * (full - before);
+          folds = count_folds(faces, out.uv, orientation);
+        }
+        if (folds > folds_before) {
+          out.uv = before;
+          break;
+        }
       }
       folds_before = folds;
       out.iterations = it + 1;

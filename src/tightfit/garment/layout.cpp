@@ -89,6 +89,49 @@ double face_area(const TriMesh& m, int f) {
   return 0.5 * (b - a).cross(c - a).norm();
 }
 
+/// The connected parts of every panel (faces joined across edges to faces of the same
+/// panel).
+struct PanelParts {
+  std::vector<int> part;     ///< per face: its part, −1 for faces in no panel
+  std::vector<double> area;  ///< per part (m²)
+  std::vector<int> panel;    ///< per part
+  std::vector<int> face;     ///< per part: one of its faces
+  std::vector<int> largest;  ///< per panel: its largest part (−1: none)
+};
+
+PanelParts panel_parts(const TriMesh& m, const SurfaceTopology& topo, const std::vector<int>& face_panel,
+                       size_t num_panels) {
+  const int nf = m.num_faces();
+  PanelParts out;
+  out.part.assign(static_cast<size_t>(nf), -1);
+  for (int f = 0; f < nf; ++f) {
+    if (face_panel[f] < 0 || out.part[f] >= 0) continue;
+    const int id = static_cast<int>(out.area.size());
+    out.area.push_back(0.0);
+    out.panel.push_back(face_panel[f]);
+    out.face.push_back(f);
+    std::vector<int> stack{f};
+    out.part[f] = id;
+    while (!stack.empty()) {
+      const int g = stack.back();
+      stack.pop_back();
+      out.area[id] += face_area(m, g);
+      for (int i = 0; i < 3; ++i)
+        for (int h : topo.edge_all_faces(topo.face_edge(g, i)))
+          if (out.part[h] < 0 && face_panel[h] == face_panel[g]) {
+            out.part[h] = id;
+            stack.push_back(h);
+          }
+    }
+  }
+  out.largest.assign(num_panels, -1);
+  for (size_t k = 0; k < out.area.size(); ++k) {
+    int& best = out.largest[static_cast<size_t>(out.panel[k])];
+    if (best < 0 || out.area[k] > out.area[static_cast<size_t>(best)]) best = static_cast<int>(k);
+  }
+  return out;
+}
+
 /// Openings can cut a part of a panel off the rest (the mouth cavity behind a mouth
 /// opening, the inside of a nostril): per panel, every connected part but the largest
 /// that touches an opening's rim goes with the openings (its faces get panel −1), with
@@ -98,35 +141,13 @@ void drop_parts_cut_off_by_openings(const CutMesh& cut, const LayoutSpec& spec, 
   const TriMesh& m = cut.mesh;
   const SurfaceTopology topo(m.faces, m.num_vertices());
   const int nf = m.num_faces();
-  std::vector<int> part(nf, -1);
-  std::vector<double> part_area;
-  std::vector<int> part_panel, part_face;
-  for (int f = 0; f < nf; ++f) {
-    if (face_panel[f] < 0 || part[f] >= 0) continue;
-    const int id = static_cast<int>(part_area.size());
-    part_area.push_back(0.0);
-    part_panel.push_back(face_panel[f]);
-    part_face.push_back(f);
-    std::vector<int> stack{f};
-    part[f] = id;
-    while (!stack.empty()) {
-      const int g = stack.back();
-      stack.pop_back();
-      part_area[id] += face_area(m, g);
-      for (int i = 0; i < 3; ++i)
-        for (int h : topo.edge_all_faces(topo.face_edge(g, i)))
-          if (part[h] < 0 && face_panel[h] == face_panel[g]) {
-            part[h] = id;
-            stack.push_back(h);
-          }
-    }
-  }
+  const PanelParts parts = panel_parts(m, topo, face_panel, spec.panels.size());
+  const std::vector<int>& part = parts.part;
+  const std::vector<double>& part_area = parts.area;
+  const std::vector<int>& part_panel = parts.panel;
+  const std::vector<int>& part_face = parts.face;
+  const std::vector<int>& largest = parts.largest;
   const int np = static_cast<int>(part_area.size());
-  std::vector<int> largest(spec.panels.size(), -1);
-  for (int k = 0; k < np; ++k) {
-    int& best = largest[static_cast<size_t>(part_panel[k])];
-    if (best < 0 || part_area[k] > part_area[best]) best = k;
-  }
   std::vector<char> drop(np, 0);
   for (int k = 0; k < np; ++k) {
     if (largest[static_cast<size_t>(part_panel[k])] == k) continue;
@@ -148,6 +169,43 @@ void drop_parts_cut_off_by_openings(const CutMesh& cut, const LayoutSpec& spec, 
   }
   for (int f = 0; f < nf; ++f)
     if (part[f] >= 0 && drop[part[f]]) face_panel[f] = -1;
+}
+
+/// Dividers that graze the body (a plane nearly tangent to a shoulder or a buttock)
+/// leave small islands of one panel inside its neighbour. Per panel, every part but the
+/// largest whose area is below spec.stray_part_fraction of the panel's area joins the
+/// neighbouring panel it shares the longest edge with, with a warning naming it. Larger
+/// parts stay: the topology check reports them as a panel that falls apart.
+void join_stray_parts(const TriMesh& m, const LayoutSpec& spec, std::vector<int>& face_panel,
+                      std::vector<std::string>& warnings) {
+  const SurfaceTopology topo(m.faces, m.num_vertices());
+  const PanelParts parts = panel_parts(m, topo, face_panel, spec.panels.size());
+  std::vector<double> panel_area(spec.panels.size(), 0.0);
+  for (size_t k = 0; k < parts.area.size(); ++k) panel_area[static_cast<size_t>(parts.panel[k])] += parts.area[k];
+  std::vector<int> joins(parts.area.size(), -1);
+  for (size_t k = 0; k < parts.area.size(); ++k) {
+    const size_t panel = static_cast<size_t>(parts.panel[k]);
+    if (parts.largest[panel] == static_cast<int>(k) || parts.area[k] >= spec.stray_part_fraction * panel_area[panel])
+      continue;
+    std::map<int, double> shared;  // neighbouring panel → length of the shared edges (m)
+    for (int f = 0; f < m.num_faces(); ++f) {
+      if (parts.part[f] != static_cast<int>(k)) continue;
+      for (int i = 0; i < 3; ++i)
+        for (int h : topo.edge_all_faces(topo.face_edge(f, i)))
+          if (face_panel[h] >= 0 && face_panel[h] != face_panel[f])
+            shared[face_panel[h]] += (m.vertices.row(m.faces(f, i)) - m.vertices.row(m.faces(f, (i + 1) % 3))).norm();
+    }
+    if (shared.empty()) continue;
+    joins[k] = std::max_element(shared.begin(), shared.end(),
+                                [](const auto& a, const auto& b) { return a.second < b.second; })->first;
+    warnings.push_back(spec.source + ": panel \"" + spec.panels[panel].name + "\" has a stray part of " +
+                       std::to_string(parts.area[k] * 1e4) + " cm² near " +
+                       format_point(face_centroid(m, parts.face[k])) + " apart from the rest (a divider grazes the "
+                       "body there); it joins panel \"" + spec.panels[static_cast<size_t>(joins[k])].name + "\"");
+  }
+  for (int f = 0; f < m.num_faces(); ++f)
+    if (parts.part[f] >= 0 && joins[static_cast<size_t>(parts.part[f])] >= 0)
+      face_panel[f] = joins[static_cast<size_t>(parts.part[f])];
 }
 
 /// Directed open boundary edges of the garment (following face orientation) and the
@@ -590,6 +648,7 @@ Layout layout_from_rules(const TriMesh& body_surface, const LayoutSpec& spec) {
                                         "\" cuts nothing: no part of the garment's surface lies inside its ellipsoid");
   std::vector<std::string> warnings;
   if (!spec.openings.empty()) drop_parts_cut_off_by_openings(cut, spec, first_opening, in.face_panel, warnings);
+  join_stray_parts(cut.mesh, spec, in.face_panel, warnings);
   in.on_opening.assign(static_cast<size_t>(cut.mesh.num_vertices()), 0);
   for (size_t o = 0; o < spec.openings.size(); ++o)
     for (int v = 0; v < cut.mesh.num_vertices(); ++v)

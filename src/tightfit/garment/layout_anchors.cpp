@@ -105,7 +105,7 @@ class Resolver {
       distance[static_cast<std::size_t>(v)] = plane.distance(body_.vertices.row(v).transpose());
     BeyondLoop loop;
     try {
-      loop = beyond_nearest_loop(body_, distance, plane.point, "");
+      loop = beyond_nearest_loop(body_, distance, plane.point, plane.normal, "");
     } catch (const InputError& e) {
       fail(plane.source_path, "local plane \"" + plane.name + "\": " + e.what());
     }

@@ -185,6 +185,8 @@ LayoutSpec parse_layout_spec(JsonFields& f, const std::string& base_dir) {
   }
   spec.seam_tolerance = f.positive("seam_tolerance", spec.seam_tolerance);
   spec.area_tolerance = f.positive("area_tolerance", spec.area_tolerance);
+  spec.stray_part_fraction = f.positive("stray_part_fraction", spec.stray_part_fraction, true);
+  if (spec.stray_part_fraction >= 0.5) f.fail("must be below 0.5 (a share of the panel's area)", "stray_part_fraction");
   spec.plane_tolerance = f.positive("plane_tolerance", spec.plane_tolerance);
   f.finish();
   return spec;

@@ -62,8 +62,12 @@
 /// * `area_tolerance`: the largest accepted relative difference between a panel's
 ///   flattened and 3D areas (default 0.5 = 50 %; a hemisphere flattens with about 32 %):
 ///   beyond it the panel is too curved to be one piece.
+/// * `stray_part_fraction`: a part of a panel cut off from the rest by dividers that
+///   graze the body, smaller than this share of the panel's area (default 0.05; 0: none),
+///   joins the neighbouring panel it shares the longest edge with, with a warning.
 /// * `seam_tolerance`: the largest accepted relative length difference of the two sides
-///   of a seam after flattening, before scale-down (default 0.05 = 5 %).
+///   of a seam after flattening, before scale-down (default 0.05 = 5 %); differences
+///   below one pattern edge length are accepted whatever their share.
 /// * `description`: free text, ignored.
 #include <limits>
 #include <optional>
@@ -162,6 +166,7 @@ struct LayoutSpec {
   std::vector<PinRule> pins;
   double seam_tolerance = 0.05;          ///< relative seam side length difference
   double area_tolerance = 0.5;           ///< relative flattened area difference of a panel
+  double stray_part_fraction = 0.05;     ///< stray parts below this share of their panel join a neighbour
   double plane_tolerance = 1e-4;         ///< m, for "on_plane" with an inline plane
   double weld_tolerance = 1e-6;          ///< m, coincident OBJ vertices are welded
 

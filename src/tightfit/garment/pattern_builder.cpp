@@ -252,12 +252,15 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     r.length_a = flat_length(pa, pa.segments[seam.segment_a], out.maps[seam.panel_a].flat, Mat2::Identity());
     r.length_b = flat_length(pb, pb.segments[seam.segment_b], out.maps[seam.panel_b].flat, Mat2::Identity());
     r.relative_difference = std::abs(r.length_a - r.length_b) / std::max(r.length_a, r.length_b);
-    if (r.relative_difference > layout.seam_tolerance)
-      throw InputError(layout.source, "seam \"" + seam.name + "\": its sides are " + std::to_string(r.length_a) +
+    // A difference below one pattern edge is below what the pattern mesh resolves (and
+    // a few millimetres of ease on a short seam): only longer ones are checked.
+    if (r.relative_difference > layout.seam_tolerance && std::abs(r.length_a - r.length_b) > h)
+      throw InputError(layout.source, "seam \"" + seam.name + "\" (" + std::to_string(r.length_3d) + " m on the body): its sides are " + std::to_string(r.length_a) +
                                           " m and " + std::to_string(r.length_b) +
                                           " m long after flattening, a difference of " + percent(r.relative_difference) +
                                           " (seam_tolerance " + percent(layout.seam_tolerance) +
-                                          "); the panels are too curved for this seam: add dividers");
+                                          ", and more than the pattern edge length); the panels are too curved for "
+                                          "this seam: add dividers");
     out.seams.push_back(r);
   }
 

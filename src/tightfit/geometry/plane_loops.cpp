@@ -58,22 +58,52 @@ class CutLoops {
 
 }  // namespace
 
-BeyondLoop beyond_nearest_loop(const TriMesh& mesh, const std::vector<double>& side,
-                               const Vec3& point, const std::string& source) {
+BeyondLoop beyond_nearest_loop(const TriMesh& mesh, const std::vector<double>& side, const Vec3& point,
+                               const Vec3& normal, const std::string& source) {
   const int nv = mesh.num_vertices();
   CutLoops loops(mesh, side);
   if (loops.edges().empty()) throw InputError(source, "the plane misses the surface");
-  int nearest_loop = -1;
-  double nearest = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < static_cast<int>(loops.edges().size()); ++i) {
-    const auto [a, b] = loops.edges()[static_cast<size_t>(i)];
+  // The crossing points, in plane coordinates around `point`.
+  const Vec3 n = normal.normalized(), u = n.unitOrthogonal(), v_axis = n.cross(u);
+  const size_t ne = loops.edges().size();
+  std::vector<Eigen::Vector2d> crossing(ne);
+  std::vector<double> distance(ne);
+  std::map<Edge, int> index;
+  for (size_t i = 0; i < ne; ++i) {
+    const auto [a, b] = loops.edges()[i];
     const double da = side[static_cast<size_t>(a)], db = side[static_cast<size_t>(b)];
     const double t = da / (da - db);
-    const Vec3 crossing = (1.0 - t) * mesh.vertices.row(a).transpose() + t * mesh.vertices.row(b).transpose();
-    const double d = (crossing - point).norm();
-    if (d < nearest) {
-      nearest = d;
-      nearest_loop = loops.loop_of(i);
+    const Vec3 x = (1.0 - t) * mesh.vertices.row(a).transpose() + t * mesh.vertices.row(b).transpose() - point;
+    crossing[i] = Eigen::Vector2d(u.dot(x), v_axis.dot(x));
+    distance[i] = x.norm();
+    index.emplace(loops.edges()[i], static_cast<int>(i));
+  }
+  // Which loops go around the point: a ray from it along u crosses an odd number of
+  // their segments (one segment per face the loop crosses).
+  std::map<int, int> ray_crossings;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    std::array<int, 3> ends{};
+    int count = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
+      if (negative(side, a) != negative(side, b)) ends[static_cast<size_t>(count++)] = index.at(edge_key(a, b));
+    }
+    if (count != 2) continue;
+    const Eigen::Vector2d p = crossing[static_cast<size_t>(ends[0])], q = crossing[static_cast<size_t>(ends[1])];
+    if ((p.y() > 0.0) != (q.y() > 0.0) && p.x() + (q.x() - p.x()) * (0.0 - p.y()) / (q.y() - p.y()) > 0.0)
+      ++ray_crossings[loops.loop_of(ends[0])];
+  }
+  // The nearest loop around the point, else the nearest loop.
+  int nearest_loop = -1;
+  bool nearest_encloses = false;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < ne; ++i) {
+    const int loop = loops.loop_of(static_cast<int>(i));
+    const bool encloses = ray_crossings[loop] % 2 == 1;
+    if ((encloses && !nearest_encloses) || (encloses == nearest_encloses && distance[i] < nearest)) {
+      nearest = distance[i];
+      nearest_loop = loop;
+      nearest_encloses = encloses;
     }
   }
   BeyondLoop out;

@@ -19,14 +19,16 @@ struct BeyondLoop {
   std::vector<std::pair<int, int>> loop_edges;
 };
 
-/// `side` holds one signed distance per vertex of `mesh` (m, negative behind the
-/// plane). The plane cuts the mesh's edges whose ends have opposite signs (a zero
-/// counts as positive); crossed edges of one face belong to one loop. Picks the loop
-/// whose crossing points (linear interpolation of `side`) come nearest to `point` and
-/// marks the vertices beyond it. Throws InputError(source, …) when no edge is crossed
-/// (the plane misses the surface) or the loop does not separate the surface (a handle
+/// `side` holds one signed distance per vertex of `mesh` (m, negative behind the plane
+/// through `point` with normal `normal`). The plane cuts the mesh's edges whose ends
+/// have opposite signs (a zero counts as positive); crossed edges of one face belong to
+/// one loop. Picks, among the loops that go around `point` in the plane (a limb's
+/// cross-section around its bone), the one whose crossing points (linear interpolation
+/// of `side`) come nearest to it; when none goes around it, the nearest loop. Marks
+/// the vertices beyond it. Throws InputError(source, …) when no edge is crossed (the
+/// plane misses the surface) or the loop does not separate the surface (a handle
 /// through it).
-BeyondLoop beyond_nearest_loop(const TriMesh& mesh, const std::vector<double>& side,
-                               const Vec3& point, const std::string& source);
+BeyondLoop beyond_nearest_loop(const TriMesh& mesh, const std::vector<double>& side, const Vec3& point,
+                               const Vec3& normal, const std::string& source);
 
 }  // namespace tightfit
