@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "garment/garment_test_meshes.hpp"
 #include "tightfit/body/skeleton.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
@@ -91,6 +92,36 @@ TEST(LocalCrop, TakesOffTheHandAndLeavesTheLegsBehindTheSamePlane) {
   EXPECT_GT(cap_area, 5e-4);  // a wrist's cross-section, about 2 cm by 3 cm or more
   EXPECT_LT(cap_area, 5e-3);
   EXPECT_LT(signed_volume(cropped), signed_volume(body.surface));
+}
+
+TEST(LocalCrop, TheLoopAroundThePointIsCutEvenWhenAnotherLoopComesNearer) {
+  // A hexagonal prism (radius 0.05) and, just outside the middle of one of its sides, a
+  // thin octagonal one (radius 0.004): a limb and, beside it, a chin. The point lies
+  // inside the hexagon, 8 mm in from that side: the thin prism's cut points are nearer
+  // to it than any of the hexagon's, but the loop around the point is the hexagon's.
+  const double side = 30.0 * M_PI / 180.0;
+  const Vec3 out_dir(std::cos(side), 0.0, -std::sin(side));  // the side's middle (test mesh frame)
+  const TriMesh limb = test::closed_cylinder(0.05, 0.4, 6, 5);
+  TriMesh chin = test::closed_cylinder(0.004, 0.4, 8, 5);
+  chin.vertices.rowwise() += (0.0493 * out_dir).transpose();
+  TriMesh both;
+  both.vertices.resize(limb.num_vertices() + chin.num_vertices(), 3);
+  both.vertices << limb.vertices, chin.vertices;
+  both.faces.resize(limb.num_faces() + chin.num_faces(), 3);
+  both.faces << limb.faces, chin.faces.array() + limb.num_vertices();
+  ASSERT_TRUE(surface_problems(both).empty());
+  const Vec3 point = 0.042 * out_dir + Vec3(0.0, 0.21, 0.0);
+  const TriMesh cropped = crop_beyond_nearest_loop(both, {point, -Vec3::UnitY(), true}, "crop");
+  EXPECT_TRUE(surface_problems(cropped).empty());
+  double limb_top = 0.0, chin_top = 0.0;
+  for (int v = 0; v < cropped.num_vertices(); ++v) {
+    const Vec3 x = cropped.vertices.row(v).transpose();
+    const bool on_chin = (Vec3(x.x(), 0.0, x.z()) - 0.0493 * out_dir).norm() < 0.0041;
+    double& top = on_chin ? chin_top : limb_top;
+    top = std::max(top, x.y());
+  }
+  EXPECT_NEAR(limb_top, 0.21, 1e-12);
+  EXPECT_NEAR(chin_top, 0.4, 1e-12);
 }
 
 TEST(LocalCrop, ALoopAroundAHandleOrAPlaneThatMissesIsAnError) {

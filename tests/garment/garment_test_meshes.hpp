@@ -56,6 +56,18 @@ inline TriMesh closed_cylinder(double radius, double length, int segments, int r
 }
 
 /// Geodesic sphere: icosahedron with each face split into k² triangles, projected.
+/// Two closed cylinders (closed_cylinder(0.05, 0.4, 32, 17)), the second moved by
+/// 0.3 m along x: one surface of two separate parts.
+inline TriMesh two_cylinders() {
+  const TriMesh one = closed_cylinder(0.05, 0.4, 32, 17);
+  TriMesh two;
+  two.vertices.resize(2 * one.num_vertices(), 3);
+  two.vertices << one.vertices, one.vertices.rowwise() + Eigen::RowVector3d(0.3, 0.0, 0.0);
+  two.faces.resize(2 * one.num_faces(), 3);
+  two.faces << one.faces, one.faces.array() + one.num_vertices();
+  return two;
+}
+
 inline TriMesh geodesic_sphere(double radius, int k) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   Points3 ico(12, 3);

@@ -202,12 +202,7 @@ TEST(LayoutAnchors, ANormalAcrossTwoBonesIsTheNormalOfTheirPlane) {
 TEST(LayoutAnchors, ALocalPlaneCutsOnlyAlongItsLoopNearestItsPoint) {
   // Two closed cylinders side by side that the plane y = 0.1 crosses both: the local
   // region plane, whose point is on the first, cuts only the first.
-  const TriMesh one = test::closed_cylinder(0.05, 0.4, 32, 17);
-  TriMesh two;
-  two.vertices.resize(2 * one.num_vertices(), 3);
-  two.vertices << one.vertices, one.vertices.rowwise() + Eigen::RowVector3d(0.3, 0.0, 0.0);
-  two.faces.resize(2 * one.num_faces(), 3);
-  two.faces << one.faces, one.faces.array() + one.num_vertices();
+  const TriMesh two = test::two_cylinders();
   const std::string text = R"({
     "region": [{"name": "cuff", "point": [0, 0.1, 0], "normal": "up", "local": true}],
     "dividers": [{"name": "side", "point": [0.15, 0, 0], "normal": "left"},

@@ -88,6 +88,32 @@ TEST(Layout, ReportsGapsAndOverlapsBetweenRulePanels) {
   EXPECT_NE(overlap.find("\"all\" and \"front\""), std::string::npos) << overlap;
 }
 
+TEST(Layout, AStrayPartLeftByAGrazingDividerJoinsItsNeighbour) {
+  // The divider x = 0.0499 grazes the first cylinder (radius 0.05 at x = 0): panel "p"
+  // (x > 0.0499) is the second cylinder and a sliver of the first, which joins "q".
+  const std::string text = R"({
+    "region": [{"name": "top", "point": [0, 0.35, 0], "normal": "down"}],
+    "dividers": [{"name": "d", "point": [0.0499, 0, 0], "normal": "left"}],
+    "panels": [{"name": "p", "sides": ["+d"]}, {"name": "q", "sides": ["-d"]}]})";
+  const Layout layout = layout_from_rules(test::two_cylinders(), spec_from(text));
+  ASSERT_EQ(layout.panels.size(), 2u);
+  ASSERT_EQ(layout.warnings.size(), 1u);
+  EXPECT_NE(layout.warnings[0].find("panel \"p\" has a stray part of "), std::string::npos) << layout.warnings[0];
+  EXPECT_NE(layout.warnings[0].find("it joins panel \"q\""), std::string::npos) << layout.warnings[0];
+  for (int v : layout.panels[0].surface_vertex) EXPECT_GT(layout.surface.vertices(v, 0), 0.2);
+  for (int v : layout.panels[1].surface_vertex) EXPECT_LT(layout.surface.vertices(v, 0), 0.1);
+
+  // With stray parts kept (fraction 0) the panel falls apart.
+  auto j = nlohmann::json::parse(text);
+  j["stray_part_fraction"] = 0;
+  try {
+    layout_from_rules(test::two_cylinders(), spec_from(j.dump()));
+    ADD_FAILURE() << "a panel in two parts accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("panel \"p\" is not a disc: it falls apart"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Layout, RejectsPanelsThatAreNotDiscs) {
   const TriMesh body = test::closed_cylinder(0.05, 0.4, 32, 17);
   // One panel all around the cylinder: a band with two boundary loops.

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <cstdio>
 
 #include "tightfit/body/surface_remeshing.hpp"
@@ -12,12 +14,14 @@ namespace {
 /// Pants on the legs body (y up, front +z, left leg +x): waist at 1.0 m, cuffs at 0.15 m,
 /// left/right by the sagittal plane, front/back by a coronal plane; pants8 adds a knee
 /// divider. The specs are in tests/garment/data (examples for `tightfit layout`).
-std::string spec_file(const char* name) { return std::string(TIGHTFIT_SOURCE_DIR) + "/tests/garment/data/" + name; }
+std::string spec_file(const char* name) {
+  return (std::filesystem::path(TIGHTFIT_SOURCE_DIR) / "tests/garment/data" / name).string();
+}
 
 class Pants : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    body_ = new TriMesh(read_tri_mesh(std::string(TIGHTFIT_DATA_DIR) + "/bodies/mh_legs_male.obj"));
+    body_ = new TriMesh(read_tri_mesh(std::filesystem::path(TIGHTFIT_DATA_DIR) / "bodies/mh_legs_male.obj"));
     limit_ = new LimitSurface(*body_);
   }
   static void TearDownTestSuite() {
