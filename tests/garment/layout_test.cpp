@@ -3,8 +3,12 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+
 #include "garment/garment_test_meshes.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/geometry/mesh_io.hpp"
 
 namespace tightfit {
 namespace {
@@ -112,6 +116,29 @@ TEST(Layout, AStrayPartLeftByAGrazingDividerJoinsItsNeighbour) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("panel \"p\" is not a disc: it falls apart"), std::string::npos) << e.what();
   }
+}
+
+TEST(Layout, SeamsBetweenTheSamePanelsAreNumberedFromTheTopDown) {
+  // The mask's halves meet along three seams (the nostril and mouth notches split the
+  // midline): "left/right" is the highest, then "#2", "#3", on any head.
+  std::ifstream in(std::string(TIGHTFIT_SOURCE_DIR) + "/examples/optimize_mask_pressure.json");
+  const nlohmann::json scene = nlohmann::json::parse(in);
+  JsonFields f(scene["garment"]["layout"], "mask.json", "/garment/layout");
+  const LayoutSpec spec = parse_layout_spec(f, "");
+  const Layout layout = layout_from_rules(read_tri_mesh(std::string(TIGHTFIT_DATA_DIR) + "/bodies/mh_head_neutral.obj"), spec);
+  std::vector<std::pair<std::string, double>> seams;
+  for (const LayoutSeam& seam : layout.seams) {
+    double y = 0.0;
+    for (int v : seam.vertices) y += layout.surface.vertices(v, 1);
+    seams.emplace_back(seam.name, y / static_cast<double>(seam.vertices.size()));
+  }
+  std::sort(seams.begin(), seams.end());
+  ASSERT_EQ(seams.size(), 3u);
+  EXPECT_EQ(seams[0].first, "left/right");
+  EXPECT_EQ(seams[1].first, "left/right#2");
+  EXPECT_EQ(seams[2].first, "left/right#3");
+  EXPECT_GT(seams[0].second, seams[1].second);
+  EXPECT_GT(seams[1].second, seams[2].second);
 }
 
 TEST(Layout, RejectsPanelsThatAreNotDiscs) {

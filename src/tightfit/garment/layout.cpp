@@ -299,6 +299,34 @@ OpenEdges assign_pins(const Layout& layout, const SurfaceTopology& topo,
   return open;
 }
 
+/// Two panels may meet along several seams (the shoulder and the side seam of a front
+/// and a back): "A/B", "A/B#2", … numbered from the highest (mean height y of the seam's
+/// vertices) down, so that the same seam has the same name on every body a layout is
+/// laid out on (grading compares seams by name).
+void name_seams_top_down(Layout& layout) {
+  std::map<std::pair<int, int>, std::vector<int>> by_pair;
+  for (size_t k = 0; k < layout.seams.size(); ++k)
+    by_pair[{layout.seams[k].panel_a, layout.seams[k].panel_b}].push_back(static_cast<int>(k));
+  auto mean_height = [&](int k) {
+    double sum = 0.0;
+    for (int v : layout.seams[static_cast<size_t>(k)].vertices) sum += layout.surface.vertices(v, 1);
+    return sum / static_cast<double>(layout.seams[static_cast<size_t>(k)].vertices.size());
+  };
+  for (auto& [pair, seams] : by_pair) {
+    std::stable_sort(seams.begin(), seams.end(), [&](int a, int b) { return mean_height(a) > mean_height(b); });
+    for (size_t i = 0; i < seams.size(); ++i) {
+      std::string name = layout.panels[static_cast<size_t>(pair.first)].name;
+      name += '/';
+      name += layout.panels[static_cast<size_t>(pair.second)].name;
+      if (i > 0) {
+        name += '#';
+        name += std::to_string(i + 1);
+      }
+      layout.seams[static_cast<size_t>(seams[i])].name = std::move(name);
+    }
+  }
+}
+
 /// Checks that a panel is a disc, possibly with holes: connected, manifold, one or more
 /// boundary loops, no handles.
 void check_panel_topology(const LayoutPanel& panel, const std::string& source, const std::string& path) {
@@ -502,7 +530,6 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
     for (int i = 0; i <= s.count; ++i) v.push_back(panel.surface_vertex[panel.boundary[(s.first + i) % n]]);
     return v;
   };
-  std::map<std::pair<int, int>, int> pair_count;
   for (int p = 0; p < np; ++p) {
     for (size_t si = 0; si < layout.panels[p].segments.size(); ++si) {
       BoundarySegment& s = layout.panels[p].segments[si];
@@ -522,12 +549,7 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
         throw InputError(spec.source, "panels \"" + layout.panels[p].name + "\" and \"" +
                                           layout.panels[q].name + "\" meet along an edge chain that is not one seam on both sides (panels touching at a single vertex near " +
                                           format_point(surf.vertices.row(va[0]).transpose()) + "?)");
-      LayoutSeam seam;
-      const int k = ++pair_count[{p, q}];
-      seam.name = layout.panels[p].name;
-      seam.name += '/';
-      seam.name += layout.panels[q].name;
-      if (k > 1) seam.name += '#' + std::to_string(k);
+      LayoutSeam seam;  // named by name_seams_top_down
       seam.panel_a = p;
       seam.segment_a = static_cast<int>(si);
       seam.panel_b = q;
@@ -546,6 +568,7 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
     for (const auto& s : panel.segments)
       if (s.seam < -1)
         throw InputError(spec.source, "panel \"" + panel.name + "\": a seam has no matching side");
+  name_seams_top_down(layout);
   return layout;
 }
 
