@@ -17,12 +17,12 @@ command -v valgrind >/dev/null || { echo "memcheck: valgrind is not installed (s
 # except: CGAL-backed body operations (crop, local crop with its self-intersection
 # checks, isotropic remeshing, distances — also the layouts' bone regions, whose skin
 # weights are carried by closest point: valgrind ignores the rounding modes CGAL's
-# interval arithmetic sets, so their exact predicates go wrong under it; so do the grading's joint check) and the few in-process runs that
-# take over a second in Release (20-50x that under memcheck; the scene-pose tests read
-# the 0.9 MB rig a dozen times, which the skin-weight tests already read under memcheck,
-# as does the grading example; GradeCli writes scaled copies of the 13380-vertex bodies
-# for 3-6 grading runs). CLI tests run the tightfit binary as a child process, which is
-# not traced.
+# interval arithmetic sets, so their exact predicates go wrong under it; so do the
+# grading's joint check) and the few in-process runs that take over a second in Release
+# (20-50x that under memcheck; the scene-pose tests read the 0.9 MB rig a dozen times,
+# which the skin-weight tests already read under memcheck, as does the grading example;
+# GradeCli writes scaled copies of the 13380-vertex bodies for 3-6 grading runs). CLI
+# tests run the tightfit binary as a child process, which is not traced.
 slow='*Slow*'
 runs=(
   "tightfit_common_tests:*-$slow"
