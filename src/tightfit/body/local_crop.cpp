@@ -1,5 +1,6 @@
 #include "tightfit/body/local_crop.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -1,5 +1,6 @@
 #include "tightfit/body/skeleton_anchor.hpp"
 
+#include <Eigen/Geometry>
 #include <vector>
 
 #include "tightfit/common/error.hpp"

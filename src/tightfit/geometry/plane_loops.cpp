@@ -1,5 +1,6 @@
 #include "tightfit/geometry/plane_loops.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <limits>
