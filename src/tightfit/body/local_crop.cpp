@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
 #include "tightfit/geometry/plane_loops.hpp"
 
 namespace tightfit {
@@ -18,11 +19,6 @@ using Edge = std::pair<int, int>;  // (smaller, larger) vertex index
 
 Edge edge_key(int a, int b) { return a < b ? Edge{a, b} : Edge{b, a}; }
 
-/// Twice the signed area of the 2D triangle (a, b, c).
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-}
-
 /// Triangulates the simple polygon `loop` (indices into `points`, counter-clockwise) by
 /// ear clipping, always clipping the ear with the largest smallest angle.
 std::vector<std::array<int, 3>> triangulate_polygon(std::vector<int> loop,
@@ -31,11 +27,9 @@ std::vector<std::array<int, 3>> triangulate_polygon(std::vector<int> loop,
   std::vector<std::array<int, 3>> triangles;
   auto min_angle = [&](int a, int b, int c) {
     const std::array<Eigen::Vector2d, 3> p{points[a], points[b], points[c]};
-    double smallest = M_PI;
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-      smallest = std::min(smallest, std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v)));
-    }
+    double smallest = 180.0;
+    for (int k = 0; k < 3; ++k)
+      smallest = std::min(smallest, angle_between_deg(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]));
     return smallest;
   };
   while (loop.size() > 3) {
@@ -44,14 +38,14 @@ std::vector<std::array<int, 3>> triangulate_polygon(std::vector<int> loop,
     double best_angle = -1.0;
     for (size_t i = 0; i < n; ++i) {
       const int a = loop[(i + n - 1) % n], b = loop[i], c = loop[(i + 1) % n];
-      if (cross2(points[a], points[b], points[c]) <= 0.0) continue;  // reflex or flat
+      if (signed_area(points[a], points[b], points[c]) <= 0.0) continue;  // reflex or flat
       bool empty = true;
       for (size_t j = 0; j < n && empty; ++j) {
         const int q = loop[j];
         if (q == a || q == b || q == c) continue;
-        empty = !(cross2(points[a], points[b], points[q]) >= 0.0 &&
-                  cross2(points[b], points[c], points[q]) >= 0.0 &&
-                  cross2(points[c], points[a], points[q]) >= 0.0);
+        empty = !(signed_area(points[a], points[b], points[q]) >= 0.0 &&
+                  signed_area(points[b], points[c], points[q]) >= 0.0 &&
+                  signed_area(points[c], points[a], points[q]) >= 0.0);
       }
       if (!empty) continue;
       const double angle = min_angle(a, b, c);
@@ -180,7 +174,7 @@ TriMesh crop_beyond_nearest_loop(const TriMesh& surface, const CropPlane& plane,
   }
   double area = 0.0;
   for (size_t i = 0; i < loop.size(); ++i)
-    area += cross2(Eigen::Vector2d::Zero(), planar[static_cast<size_t>(loop[i])],
+    area += signed_area(Eigen::Vector2d::Zero(), planar[static_cast<size_t>(loop[i])],
                    planar[static_cast<size_t>(loop[(i + 1) % loop.size()])]);
   if (!(area > 0.0))
     throw InputError(source, "the cut loop winds the wrong way around the normal; is the surface outward-oriented?");
