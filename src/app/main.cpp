@@ -2,11 +2,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "cli_checks.hpp"
 #include "command_registry.hpp"
+#include "help_formatter.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/interrupt.hpp"
 #include "tightfit/common/memory_reuse.hpp"
@@ -26,6 +28,7 @@ int main(int argc, char** argv) {
   CLI::App root{
       "tightfit: physics-based pattern design for skintight garments "
       "(Montes et al., SIGGRAPH 2020).\nRun 'tightfit COMMAND --help' for a command's options."};
+  root.formatter(std::make_shared<app::WrappingFormatter>());
   root.set_version_flag("--version", std::string("tightfit ") + tightfit_version());
   root.require_subcommand(1);
   root.fallthrough();  // --threads may also follow the command's name

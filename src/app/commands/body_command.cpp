@@ -89,6 +89,10 @@ const CommandRegistration kBody{"body", [](CLI::App& root) {
       "body",
       "Build a simulation body (surface, tets, pinned core) from a JSON spec and/or flags;\n"
       "writes OUT/surface.obj, OUT/volume.vtu and OUT/body.json. Units: metres.");
+  cmd->footer(
+      "Examples:\n  tightfit body --generator cylinder --radius 0.05 --length 0.3 --out "
+      "out/cylinder\n  tightfit body --mesh data/bodies/mh_child.obj --units m --edge-length 0.03 "
+      "--out out/child");
   auto o = std::make_shared<BodyOptions>();
   cmd->add_option("spec", o->spec, "JSON body spec (flags below override its keys)");
   cmd->add_option("--out", o->out, kOutHelp)->required();

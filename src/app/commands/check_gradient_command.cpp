@@ -145,6 +145,9 @@ const CommandRegistration kCheckGradient{
           "check-gradient",
           "Compare the adjoint design gradient of the scene's \"optimize\" objective with finite "
           "differences of simulate-then-evaluate along random directions (total and per term).");
+      cmd->footer(
+          "Examples:\n  tightfit check-gradient examples/optimize_sleeve_stretch.json\n  tightfit "
+          "check-gradient examples/optimize_pants_stretch.json --at out/pants");
       auto args = std::make_shared<CheckArgs>();
       cmd->add_option("scene", args->scene, "Scene file with an \"optimize\" section")->required();
       cmd->add_option("--directions", args->directions, "Random directions per term (default 3)")

@@ -87,6 +87,7 @@ const CommandRegistration kExport{"export", [](CLI::App& root) {
       "(with the objective history of optimize runs), fit.glb, garment.ply, body.ply, "
       "result.json; for layout runs garment_embedded.ply and layout.json. Prints the force "
       "residual of the saved state.");
+  cmd->footer("Example:\n  tightfit export out/pants --out out/pants_again");
   auto dir = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   cmd->add_option("dir", *dir, "Output folder of an earlier run (holds state.json)")->required();

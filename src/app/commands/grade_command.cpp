@@ -162,6 +162,9 @@ const CommandRegistration kGrade{
           "DIR/grade.json, the grading report DIR/grade.html and the nest of every size's pieces "
           "(nest.svg, nest.pdf, nest.dxf). Exit code: 0 all graded, 2 bad input, 10 + the number "
           "of bodies not graded.");
+      cmd->footer(
+          "Example:\n  tightfit grade examples/optimize_wetsuit_regular.json \\\n"
+          "      examples/grading/bodies_full.json --out out/grade --jobs 2");
       auto o = std::make_shared<GradeOptions>();
       cmd->add_option(
              "design", o->design,

@@ -44,6 +44,7 @@ const CommandRegistration kLayout{"layout", [](CLI::App& root) {
       "PDF, DXF, pieces.json) and embed the garment on the body (garment_embedded.ply), "
       "without simulating. layout.json reports the flattening distortion per piece; "
       "state.json is the run state for `tightfit export`.");
+  cmd->footer("Example:\n  tightfit layout examples/pants_legs.json --out out/pants_layout");
   auto scene = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto force = std::make_shared<bool>(false);

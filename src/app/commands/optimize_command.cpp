@@ -23,6 +23,10 @@ const CommandRegistration kOptimize{
           "runs, then the pattern files (SVG, PDF, DXF, pieces.json), report.html, fit.glb, "
           "garment.ply, body.ply, result.json and state.json (the run state for "
           "`tightfit export`).");
+      cmd->footer(
+          "Examples:\n  tightfit optimize examples/optimize_pants_stretch.json --out out/pants\n"
+          "  tightfit optimize examples/optimize_pants_stretch.json --out out/pants \\\n"
+          "      --resume out/pants --max-iterations 80");
       auto scene = std::make_shared<std::string>();
       auto out = std::make_shared<std::string>();
       auto resume = std::make_shared<std::string>();
@@ -45,8 +49,11 @@ const CommandRegistration kOptimize{
                       "When the initial equilibrium does not converge, write its last state to "
                       "this folder: the fit outputs and garment_residual.ply / "
                       "body_residual.ply (unbalanced force per vertex, N)");
-      cmd->callback([scene, out, resume, max_iterations, force, keep_failed] {
-        run_optimize({*scene, *out, *resume, *max_iterations, *force, *keep_failed});
+      auto terse = std::make_shared<bool>(false);
+      cmd->add_flag("--terse", *terse,
+                    "Progress: one row per iteration, without the values of the objective's terms");
+      cmd->callback([scene, out, resume, max_iterations, force, keep_failed, terse] {
+        run_optimize({*scene, *out, *resume, *max_iterations, *force, *keep_failed, *terse});
       });
     }};
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "kept_failure.hpp"
+#include "optimize_progress.hpp"
 #include "run_outputs.hpp"
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
@@ -25,53 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = SteadyClock;
-
-/// "1m40s" / "42 s" for progress lines.
-std::string duration_text(double seconds) {
-  char text[32];
-  if (seconds < 60.0)
-    std::snprintf(text, sizeof text, "%.0f s", seconds);
-  else if (seconds < 3600.0)
-    std::snprintf(text, sizeof text, "%dm%02ds", static_cast<int>(seconds / 60.0),
-                  static_cast<int>(seconds) % 60);
-  else
-    std::snprintf(text, sizeof text, "%dh%02dm", static_cast<int>(seconds / 3600.0),
-                  static_cast<int>(seconds / 60.0) % 60);
-  return text;
-}
-
-/// One progress line: "it 12/150", the objective and its terms, the gradient, the step
-/// and its cost, the elapsed time and, from the mean time per iteration so far, the
-/// time left if the run goes on to its iteration limit (it may stop earlier).
-void print_iteration(const OptimizationIteration& it, const std::vector<std::string>& names,
-                     int max_iterations) {
-  std::printf("  it %3d/%d  T %.6e", it.iteration, max_iterations, it.value);
-  for (size_t k = 0; k < names.size() && k < it.term_values.size(); ++k)
-    std::printf("  %s %.4e", names[k].c_str(), it.term_values[k]);
-  std::printf("  |g| %.3e  step %.2e m  trials %d  newton %d (chord %d)  chol %d",
-              it.gradient_norm, it.max_point_move, it.line_search_trials, it.newton_iterations,
-              it.chord_steps, it.factorizations);
-  if (it.failed_solves > 0) std::printf(" (failed trials %d)", it.failed_solves);
-  if (it.hessian_shift > 0.0)
-    std::printf("  [adjoint H shifted by %.1e: inexact]", it.hessian_shift);
-  std::printf("  %.1f s", it.seconds);
-  if (it.iteration > 0 && it.iteration < max_iterations)
-    std::printf(" (left at most %s)",
-                duration_text(it.seconds / it.iteration * (max_iterations - it.iteration)).c_str());
-  std::printf("\n");
-  if (const auto& r = it.remesh) {
-    std::string pieces;
-    for (const std::string& p : r->pieces) pieces += (pieces.empty() ? "" : ", ") + p;
-    if (r->failure.empty())
-      std::printf("    remeshed %s (min angle %.1f -> %.1f deg): T %.6e, %d design parameters, "
-                  "%d garment vertices, newton %d, %.1f s\n",
-                  pieces.c_str(), r->min_angle_before, r->min_angle_after, r->value, r->parameters,
-                  r->garment_vertices, r->newton_iterations, r->seconds);
-    else
-      std::printf("    remeshing %s failed and was undone: %s\n", pieces.c_str(), r->failure.c_str());
-  }
-  std::fflush(stdout);
-}
 
 /// The stage of a run before its first iteration is reported (the initial equilibrium).
 constexpr const char* kStartOfRun = "the start of the run";
@@ -164,11 +118,12 @@ void run_optimize(const OptimizeRequest& request) {
     // checkpoint and the outputs of the last accepted pattern as after a normal stop.
     const InterruptGuard interrupts;
     std::optional<TriMesh> initial_garment;  // the initial equilibrium (unknown on resume)
+    OptimizeProgress progress(names, spec.optimizer.max_iterations, request.terse);
     const OptimizationResult result = optimizer.run(
         [&](const OptimizationIteration& it) {
           if (it.iteration == 0 && resume_dir.empty())
             initial_garment = TriMesh{sim->garment_positions(), sim->garment().garment_triangles};
-          print_iteration(it, names, spec.optimizer.max_iterations);
+          progress.print(it);
           stage = "writing history.json and checkpoint.json after iteration " +
                   std::to_string(it.iteration);
           write_json_atomically(out / "history.json", history_json(optimizer.history(), names), 2);

@@ -26,6 +26,8 @@ struct OptimizeRequest {
   /// Folder for the last state of an initial equilibrium that does not converge; empty:
   /// none (app/commands/kept_failure.hpp).
   std::string keep_failed;
+  /// Progress rows only, without each iteration's line of term values.
+  bool terse = false;
 };
 
 /// Runs the optimization and writes its outputs (header comment). Progress goes to

@@ -82,6 +82,7 @@ const CommandRegistration kPose{"pose", [](CLI::App& root) {
       "The scene's body in each of its poses (\"rig\" and \"poses\" in the scene), to look at "
       "before optimizing: writes OUT/body_neutral.obj, OUT/body_pose_NAME.obj per pose and "
       "OUT/poses.json (volume ratios, displacements). A pose that inverts a tet is an error.");
+  cmd->footer("Example:\n  tightfit pose examples/poses_legs_stride.json --out out/poses");
   auto scene = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto force = std::make_shared<bool>(false);

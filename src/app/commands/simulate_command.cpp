@@ -102,6 +102,7 @@ const CommandRegistration kSimulate{"simulate", [](CLI::App& root) {
       "and result.json (energies, residual, iterations, time split, pressure statistics), "
       "report.html, fit.glb, the pattern files, and state.json (the run state for "
       "`tightfit export`).");
+  cmd->footer("Example:\n  tightfit simulate examples/sleeve_two_panels.json --out out/sleeve");
   auto scene = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto force = std::make_shared<bool>(false);
