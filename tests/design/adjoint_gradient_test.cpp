@@ -10,6 +10,7 @@
 #include "tightfit/design/adjoint_check.hpp"
 #include "tightfit/design/adjoint_gradient.hpp"
 #include "tightfit/design/optimization_problem.hpp"
+#include "tightfit/design/regularizer_corner_angle.hpp"
 
 namespace tightfit {
 namespace {
@@ -152,6 +153,8 @@ TEST_P(AdjointPipeline, MatchesFiniteDifferencesOfSimulateThenEvaluate) {
     objective = single(target, 1.0);
   } else if (which == "cloth") {
     objective = single(cloth, 1.0);
+  } else if (which == "corner angle") {
+    objective = single(std::make_shared<CornerAngleRegularizer>(g), 1.0);
   } else {
     for (const auto& r : regs)
       if (r->name() == which) objective = single(r, 1.0);
@@ -165,7 +168,7 @@ TEST_P(AdjointPipeline, MatchesFiniteDifferencesOfSimulateThenEvaluate) {
 INSTANTIATE_TEST_SUITE_P(Terms, AdjointPipeline,
                          ::testing::Values("all", "target", "cloth", "seam length",
                                            "boundary spacing", "boundary smoothness",
-                                           "compactness"),
+                                           "compactness", "corner angle"),
                          [](const ::testing::TestParamInfo<std::string>& term) {
                            std::string n = term.param;
                            for (char& c : n)

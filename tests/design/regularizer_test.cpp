@@ -9,6 +9,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/design_term.hpp"
 #include "tightfit/design/regularizer_compactness.hpp"
+#include "tightfit/design/regularizer_corner_angle.hpp"
 #include "tightfit/design/regularizer_edge_lengths.hpp"
 #include "tightfit/design/regularizer_smoothness.hpp"
 #include "tightfit/garment/garment.hpp"
@@ -165,6 +166,42 @@ TEST(BoundarySmoothnessRegularizer, GradientMatchesFiniteDifferences) {
   expect_rest_gradient(term, perturbed(g.rest_positions(), 0.01, 3));
   const Garment p = polygon_piece(9, 0.1);
   expect_rest_gradient(BoundarySmoothnessRegularizer(p), perturbed(p.rest_positions(), 0.01, 4));
+}
+
+TEST(CornerAngleRegularizer, ZeroAtTheReferenceAndTheSquaredAngleChangeByHand) {
+  const Garment g = two_pieces(0.2);
+  const CornerAngleRegularizer term(g);
+  ASSERT_EQ(term.triples().size(), 8u);  // four corners per grid
+  for (const double theta : term.reference_angles())
+    EXPECT_NEAR(theta, std::numbers::pi / 2.0, 1e-12);  // a left turn of 90° at each corner
+  const VecX x;
+  Points2 rest = g.rest_positions();
+  EXPECT_EQ(term.value({x, rest}), 0.0);
+  // Piece A's lower-left corner (vertex 0) pulled left along the bottom side by 0.1 m:
+  // its neighbour on the left side (0, 0.2/3) now meets it at 90° + atan(0.1 / (0.2/3)).
+  rest(0, 0) -= 0.1;
+  const double change_at_corner = std::atan2(0.1, 0.2 / 3.0);
+  // The turn at the next corner is unchanged (vertex 1 is not a corner: edges 0→1 and
+  // 1→2 stay collinear), so only corner 0 contributes.
+  EXPECT_NEAR(term.value({x, rest}), change_at_corner * change_at_corner, 1e-12);
+}
+
+TEST(CornerAngleRegularizer, GradientMatchesFiniteDifferences) {
+  const Garment g = two_pieces(0.26);
+  const CornerAngleRegularizer term(g);
+  expect_rest_gradient(term, perturbed(g.rest_positions(), 0.01, 11));
+  expect_rest_gradient(term, perturbed(g.rest_positions(), 0.03, 12));
+}
+
+TEST(CornerAngleRegularizer, ACollapsedCornerEdgeIsInfinite) {
+  const Garment g = two_pieces(0.2);
+  const CornerAngleRegularizer term(g);
+  Points2 rest = g.rest_positions();
+  rest.row(1) = rest.row(0);  // the edge from corner 0 to vertex 1 has zero length
+  const VecX x;
+  EXPECT_TRUE(std::isinf(term.value({x, rest})));
+  VecX dx = VecX::Zero(3), dr = VecX::Zero(rest.size());
+  EXPECT_THROW(term.add_gradient({x, rest}, dx, dr), SolverError);
 }
 
 TEST(BoundarySmoothnessRegularizer, FoldBackIsInfinite) {

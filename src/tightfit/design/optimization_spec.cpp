@@ -134,6 +134,7 @@ OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const st
     w.seam_length = r->positive("seam_length", 0.0, true);
     w.boundary_spacing = r->positive("boundary_spacing", 0.0, true);
     w.boundary_smoothness = r->positive("boundary_smoothness", 0.0, true);
+    w.corner_angle = r->positive("corner_angle", 0.0, true);
     w.pinned_traction = r->positive("pinned_traction", 0.0, true);
     if (auto c = r->object("compactness")) {
       w.compactness = weight(*c);
@@ -163,7 +164,8 @@ OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const st
                    (spec.pressure && spec.pressure->weight > 0) ||
                    (spec.seam_traction && spec.seam_traction->weight > 0) ||
                    (spec.sliding && spec.sliding->weight > 0) || w.seam_length > 0 ||
-                   w.boundary_spacing > 0 || w.boundary_smoothness > 0 || w.compactness > 0 ||
+                   w.boundary_spacing > 0 || w.boundary_smoothness > 0 || w.corner_angle > 0 ||
+                   w.compactness > 0 ||
                    w.pinned_traction > 0;
   if (!any) f.fail("no objective or regularizer with a positive weight");
   return spec;

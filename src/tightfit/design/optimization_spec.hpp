@@ -20,6 +20,7 @@
 ///     },
 ///     "regularizers": {                     // weights, all optional (default 0 = off)
 ///       "seam_length": 1, "boundary_spacing": 0.1, "boundary_smoothness": 1e-4,
+///       "corner_angle": 1e-3,              // corners held at their angles (rad²)
 ///       "pinned_traction": 0.01,           // Eq. 27, N² (needs pinned boundaries)
 ///       "compactness": {"weight": 1, "min_ratio": 0.1, "pair_stride": 1}
 ///     },
@@ -124,6 +125,8 @@ struct RegularizerWeights {
   double seam_length = 0.0;
   double boundary_spacing = 0.0;
   double boundary_smoothness = 0.0;
+  /// Corners held at their reference angles (design/regularizer_corner_angle.hpp).
+  double corner_angle = 0.0;
   double compactness = 0.0;
   CompactnessOptions compactness_options;
   /// Eq. 27: the tangential force the pins hold (objectives/pinned_traction_regularizer.hpp).

@@ -122,22 +122,28 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
   iteration_ = checkpoint.iteration;
   seconds_before_ = history_.back().seconds;
   resumed_ = true;
-  // The loop's counters as they were after the last record (see run()).
+  // The loop's counters as they were after the last record: replayed by the rule run()
+  // applies after each iteration.
   stalled_ = 0;
   remesh_blocked_until_ = -1;
   for (size_t k = 1; k < history_.size(); ++k) {
     const OptimizationIteration& prev = history_[k - 1];
     const double before =
         prev.remesh && prev.remesh->failure.empty() ? prev.remesh->value : prev.value;
-    const double decrease = before - history_[k].value;
-    stalled_ = decrease <= options_.relative_decrease_tolerance * std::abs(before) ? stalled_ + 1
-                                                                                    : 0;
-    if (const auto& r = history_[k].remesh) {
-      if (r->failure.empty())
-        stalled_ = 0;
-      else
-        remesh_blocked_until_ = history_[k].iteration + kRemeshRetryGap;
-    }
+    update_counters(before, history_[k]);
+  }
+}
+
+void PatternOptimizer::update_counters(double value_before, const OptimizationIteration& record) {
+  const double decrease = value_before - record.value;
+  stalled_ = decrease <= options_.relative_decrease_tolerance * std::abs(value_before)
+                 ? stalled_ + 1
+                 : 0;
+  if (const auto& r = record.remesh) {
+    if (r->failure.empty())
+      stalled_ = 0;
+    else
+      remesh_blocked_until_ = record.iteration + kRemeshRetryGap;
   }
 }
 
@@ -326,10 +332,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
     push_pair(step, trial.gradient - current.gradient);
     problem_.accept();
     p += step;
-    const double decrease = current.value - trial.value;
-    stalled_ = decrease <= options_.relative_decrease_tolerance * std::abs(current.value)
-                  ? stalled_ + 1
-                  : 0;
+    const double value_before = current.value;
     current = std::move(trial);
     ++iteration_;
 
@@ -367,14 +370,12 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
           current = std::move(o.evaluation);
           p = problem_.accepted_parameters();
           memory_ = {};
-          stalled_ = 0;
           r.value = current.value;
           r.term_values = current.term_values;
           r.gradient_norm = current.gradient.norm();
           r.parameters = o.parameters_after;
           r.garment_vertices = o.garment_vertices_after;
         } else {
-          remesh_blocked_until_ = iteration_ + kRemeshRetryGap;
           r.value = current.value;
           r.term_values = current.term_values;
           r.gradient_norm = current.gradient.norm();
@@ -384,6 +385,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
         rec.remesh = std::move(r);
       }
     }
+    update_counters(value_before, rec);
     rec.seconds = elapsed();
     history_.push_back(rec);
     if (on_iteration) on_iteration(rec);

@@ -116,6 +116,9 @@ class PatternOptimizer {
  private:
   VecX direction(const VecX& g) const;
   void push_pair(const VecX& s, const VecX& y);
+  /// The stall and remeshing counters after iteration `record`, whose objective was
+  /// `value_before` before its step: the one rule for run() and resume().
+  void update_counters(double value_before, const OptimizationIteration& record);
 
   DesignProblem& problem_;
   PatternOptimizerOptions options_;

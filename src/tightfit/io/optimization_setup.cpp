@@ -8,6 +8,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/regularizer_compactness.hpp"
 #include "tightfit/design/regularizer_edge_lengths.hpp"
+#include "tightfit/design/regularizer_corner_angle.hpp"
 #include "tightfit/design/regularizer_smoothness.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/surface_sampling.hpp"
@@ -172,6 +173,7 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
   add(w.boundary_spacing,
       [&] { return std::make_shared<EdgeLengthDifferenceTerm>(even_spacing_regularizer(g)); });
   add(w.boundary_smoothness, [&] { return std::make_shared<BoundarySmoothnessRegularizer>(g); });
+  add(w.corner_angle, [&] { return std::make_shared<CornerAngleRegularizer>(g); });
   add(w.compactness,
       [&] { return std::make_shared<CompactnessRegularizer>(g, w.compactness_options); });
   add(w.pinned_traction,

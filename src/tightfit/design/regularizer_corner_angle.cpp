@@ -1,0 +1,109 @@
+#include "tightfit/design/regularizer_corner_angle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
+
+namespace tightfit {
+namespace {
+
+/// The two boundary edges at a corner (incoming, outgoing).
+struct CornerEdges {
+  Vec2 in;
+  Vec2 out;
+};
+
+CornerEdges edges_at(const Points2& rest, const std::array<int, 3>& t) {
+  return {(rest.row(t[1]) - rest.row(t[0])).transpose(),
+          (rest.row(t[2]) - rest.row(t[1])).transpose()};
+}
+
+/// Turning angle (rad, in (−π, π]) from edge `in` to edge `out`.
+double turning_angle(const CornerEdges& e) { return std::atan2(cross2(e.in, e.out), e.in.dot(e.out)); }
+
+/// θ − θ⁰ taken into (−π, π], so that a corner turning through ±π is not a jump of 2π.
+double angle_difference(double theta, double reference) {
+  double d = theta - reference;
+  if (d > std::numbers::pi) d -= 2.0 * std::numbers::pi;
+  if (d <= -std::numbers::pi) d += 2.0 * std::numbers::pi;
+  return d;
+}
+
+bool degenerate(const CornerEdges& e) { return !(e.in.norm() > 0.0 && e.out.norm() > 0.0); }
+
+}  // namespace
+
+CornerAngleRegularizer::CornerAngleRegularizer(const Garment& garment)
+    : num_pattern_(garment.num_pattern_vertices()) {
+  const Points2 rest = garment.rest_positions();
+  for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k) {
+    const PatternPiece& piece = garment.pattern.pieces[k];
+    const int o = garment.piece_offset[k];
+    for (const std::vector<int>& loop : piece.loops()) {
+      const std::size_t n = loop.size();
+      if (n < 3) continue;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (std::find(piece.corners.begin(), piece.corners.end(), loop[i]) == piece.corners.end())
+          continue;
+        const std::array<int, 3> t{o + loop[(i + n - 1) % n], o + loop[i], o + loop[(i + 1) % n]};
+        const CornerEdges e = edges_at(rest, t);
+        if (degenerate(e))
+          throw std::invalid_argument("corner angle: piece '" + piece.name +
+                                      "' has a zero-length boundary edge at corner vertex " +
+                                      std::to_string(loop[i]));
+        triples_.push_back(t);
+        reference_.push_back(turning_angle(e));
+      }
+    }
+  }
+}
+
+void CornerAngleRegularizer::check(const DesignState& state) const {
+  if (state.rest.rows() != num_pattern_)
+    throw std::invalid_argument("corner angle: expected " + std::to_string(num_pattern_) +
+                                " rest positions, got " + std::to_string(state.rest.rows()));
+}
+
+double CornerAngleRegularizer::value(const DesignState& state) const {
+  check(state);
+  double total = 0.0;
+  for (std::size_t c = 0; c < triples_.size(); ++c) {
+    const CornerEdges e = edges_at(state.rest, triples_[c]);
+    if (degenerate(e)) return std::numeric_limits<double>::infinity();
+    const double d = angle_difference(turning_angle(e), reference_[c]);
+    total += d * d;
+  }
+  return total;
+}
+
+void CornerAngleRegularizer::add_gradient(const DesignState& state, VecX& /*d_x*/,
+                                          VecX& d_rest) const {
+  check(state);
+  if (d_rest.size() != 2 * num_pattern_)
+    throw std::invalid_argument("corner angle: rest gradient has the wrong size");
+  for (std::size_t c = 0; c < triples_.size(); ++c) {
+    const std::array<int, 3>& t = triples_[c];
+    const CornerEdges e = edges_at(state.rest, t);
+    if (degenerate(e))
+      throw SolverError("corner angle: a boundary edge at pattern vertex " + std::to_string(t[1]) +
+                        " has zero length");
+    const double d = angle_difference(turning_angle(e), reference_[c]);
+    // θ = atan2(c, s), c = in × out, s = in · out: dθ = (s dc − c ds) / (c² + s²).
+    const double cr = cross2(e.in, e.out), dot = e.in.dot(e.out);
+    const double scale = 2.0 * d / (cr * cr + dot * dot);
+    const Vec2 dcr_in(e.out.y(), -e.out.x()), dcr_out(-e.in.y(), e.in.x());
+    const Vec2 g_in = scale * (dot * dcr_in - cr * e.out);
+    const Vec2 g_out = scale * (dot * dcr_out - cr * e.in);
+    d_rest.segment<2>(2 * t[0]) -= g_in;
+    d_rest.segment<2>(2 * t[1]) += g_in - g_out;
+    d_rest.segment<2>(2 * t[2]) += g_out;
+  }
+}
+
+}  // namespace tightfit
