@@ -109,8 +109,13 @@ TEST(EaseTable, LevelsTheGarmentDoesNotGoAroundAreSkippedWithTheReason) {
   MeasurementLevel beside = level_at(0.2037, "beside");
   beside.point = Vec3(1.0, 0.2037, 0.0);
   beside.normal = Vec3::UnitX();
-  const EaseTable table = measure_ease({level_at(0.35, "above"), beside, level_at(0.2037, "calf")}, body, garment, fitted);
-  ASSERT_EQ(table.levels.size(), 3u);
+  MeasurementLevel outside = level_at(0.2037, "outside");
+  outside.point = Vec3(0.2, 0.2037, 0.0);  // in the plane, but beside the body's cross-section
+  const EaseTable table =
+      measure_ease({level_at(0.35, "above"), beside, level_at(0.2037, "calf"), outside}, body, garment, fitted);
+  ASSERT_EQ(table.levels.size(), 4u);
+  EXPECT_EQ(table.levels[3].skipped, "the level's point is not inside the body's cross-section there");
+  EXPECT_FALSE(table.levels[3].reached);
   EXPECT_EQ(table.levels[0].skipped, "the garment does not reach this level");
   EXPECT_FALSE(table.levels[0].reached);
   EXPECT_EQ(table.levels[1].skipped, "the plane misses the body");

@@ -53,7 +53,13 @@ LevelMeasurement measure_level(const MeasurementLevel& level, const TriMesh& bod
     m.skipped = "the plane misses the body";
     return m;
   }
-  const int body_loop = nearest_cut_loop(body, body_cut, level.point, n).loop;
+  const NearestCutLoop around = nearest_cut_loop(body, body_cut, level.point, n);
+  if (!around.encloses) {
+    // E.g. a level on an arm bone of a body cropped to the legs: its plane cuts the legs.
+    m.skipped = "the level's point is not inside the body's cross-section there";
+    return m;
+  }
+  const int body_loop = around.loop;
   const double body_reach = loop_reach(body, body_cut, body_loop, level.point);
   const PlaneCut cut = cut_by_plane(fitted, plane_side(fitted.vertices, level));
   const NearestCutLoop loop = nearest_cut_loop(fitted, cut, level.point, n);

@@ -6,8 +6,8 @@
 ///
 /// A level is a plane (point + unit normal). At each level:
 /// * body circumference: the length of the loop along which the plane cuts the body
-///   surface around the level's point (geometry/plane_loops.hpp: the loop that goes
-///   around the point, else the nearest one), on the surface given: the callers pass
+///   surface around the level's point (geometry/plane_loops.hpp; the point must lie
+///   inside the body's cross-section: on a bone, on a limb's axis), on the surface given: the callers pass
 ///   the body's Loop limit surface at rest evaluated at the control vertices (the
 ///   triangulated limit surface the garment lies on, before the garment compresses it:
 ///   what a tape measure gives on the bare body);
@@ -22,8 +22,10 @@
 ///
 /// Levels the garment does not go all the way around (its loop there is open: the
 /// garment's edge or an opening crosses the level) are kept as skipped with the reason;
-/// so are levels where the plane misses the body or the garment does not reach the level
-/// at all. Lengths in m.
+/// so are levels where the plane misses the body, where no loop of the body's cut goes
+/// around the level's point, or where the garment does not reach the level (its cut in
+/// the plane comes no nearer the point than 1.1 times the body loop's farthest point).
+/// Lengths in m.
 #include <map>
 #include <optional>
 #include <string>
@@ -55,8 +57,8 @@ struct LevelMeasurement {
   /// Empty when measured; else why the level has no numbers (then all lengths are 0).
   std::string skipped;
   /// The garment's cut comes to this level's body loop (measured, or skipped because it
-  /// goes only part of the way around); false when the plane misses the body or the
-  /// garment ends before the level.
+  /// goes only part of the way around); false when the plane misses the body, no body
+  /// loop goes around the point, or the garment ends before the level.
   bool reached = false;
   double body_circumference = 0.0;     ///< m
   double pattern_circumference = 0.0;  ///< m, summed over the pieces
