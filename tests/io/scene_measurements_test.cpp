@@ -1,7 +1,11 @@
 // The scene's "measurements" (the ease table's levels) and the skeleton they are placed on.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "tightfit/body/skeleton.hpp"
 #include "tightfit/common/error.hpp"
@@ -31,6 +35,22 @@ std::string error_of(const std::string& measurements) {
     return e.what();
   }
   return "no error";
+}
+
+/// 0 when `scene` (JSON text) validates against schema/scene.schema.json.
+int schema_check(const std::string& scene, const std::string& tag) {
+  const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                     ("tightfit_measurements_" + tag + "_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(file) << scene;
+  std::string cmd = "/usr/bin/python3 -c \"import json,sys,jsonschema; "
+                    "jsonschema.validate(json.load(open(sys.argv[2])), json.load(open(sys.argv[1])))\" '";
+  cmd += TIGHTFIT_SOURCE_DIR;
+  cmd += "/schema/scene.schema.json' '";
+  cmd += file.string();
+  cmd += "' 2>/dev/null";
+  const int status = std::system(cmd.c_str());
+  std::filesystem::remove(file);
+  return status;
 }
 
 }  // namespace scene_measurements_test
@@ -88,6 +108,20 @@ TEST(SceneMeasurements, MistakesNameTheFileAndJsonPath) {
     error = e.what();
   }
   EXPECT_EQ(error.rfind("bad.json: /measurements/0: anchored on the skeleton, but there is none", 0), 0u) << error;
+}
+
+TEST(SceneMeasurements, TheSchemaKnowsTheKey) {
+  const std::string base = R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}}, )";
+  std::string good = base;
+  good += R"("measurements": [{"name": "calf", "point": {"bone": "lowerleg01.L", "at": 0.45}, "normal": "along_bone"},
+                              {"name": "y", "point": [0, 0.5, 0], "normal": [0, 1, 0]}]})";
+  EXPECT_EQ(schema_check(good, "good"), 0);
+  std::string bad = base;
+  bad += R"("measurements": [{"name": "calf", "point": [0, 0.5, 0], "normal": "sideways"}]})";
+  EXPECT_NE(schema_check(bad, "bad"), 0);
+  std::string unnamed = base;
+  unnamed += R"("measurements": [{"point": [0, 0.5, 0], "normal": "up"}]})";
+  EXPECT_NE(schema_check(unnamed, "unnamed"), 0);
 }
 
 }  // namespace tightfit
