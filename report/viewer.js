@@ -599,7 +599,7 @@ function drawRegions() {
 function drawMeasurements() {
   const cm = (m) => (m === null || m === undefined ? '–' : (100 * m).toFixed(1));
   drawTable('measurements', data.measurements,
-    'No measurement levels: the garment goes all the way around none of them.',
+    'No measurement levels: the garment reaches none (or the scene turns them off with "measurements": []).',
     '<thead><tr><th class="name">level</th><th>placed at</th><th>body (cm)</th><th>pattern (cm)</th>' +
     '<th>ease (%)</th><th>fitted (cm)</th><th>fitted stretch</th><th class="name">pattern width per piece (cm)</th></tr></thead>',
     (tr, m) => {
