@@ -98,6 +98,7 @@ TEST(SceneMeasurements, MistakesNameTheFileAndJsonPath) {
   EXPECT_EQ(error_of(R"([{"name": "a", "point": [0, 0.5, 0], "normal": "up", "height": 1}])"),
             "scene.json: /measurements/0/height: unknown key \"height\"");
   EXPECT_EQ(error_of(R"({"name": "a"})"), "scene.json: /measurements: expected an array of objects, got object");
+  EXPECT_EQ(error_of("null"), "scene.json: /measurements: expected an array of objects, got null");
   // Bones without a skeleton.
   const std::string text = R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}},
       "measurements": [{"name": "calf", "point": {"bone": "lowerleg01.L", "at": 0.45}, "normal": "along_bone"}]})";

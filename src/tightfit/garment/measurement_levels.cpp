@@ -67,6 +67,7 @@ std::vector<MeasurementLevel> parse_measurement_levels(JsonFields& f, const std:
                                                        const SkeletonRef& skeleton) {
   std::vector<MeasurementLevel> levels;
   std::set<std::string> names;
+  if (f.raw(key).is_null()) f.fail("expected an array of objects, got null", key);
   for (JsonFields& entry : f.objects(key)) {
     MeasurementLevel level;
     level.origin = "scene";
