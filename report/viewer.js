@@ -594,6 +594,34 @@ function drawRegions() {
     });
 }
 
+/// The ease table: per measurement level the body and pattern circumferences (cm), the
+/// ease (%), the fitted garment's circumference and stretch, and each piece's width.
+function drawMeasurements() {
+  const cm = (m) => (m === null || m === undefined ? '–' : (100 * m).toFixed(1));
+  drawTable('measurements', data.measurements,
+    'No measurement levels: the garment reaches none (or the scene turns them off with "measurements": []).',
+    '<thead><tr><th class="name">level</th><th>placed at</th><th>body (cm)</th><th>pattern (cm)</th>' +
+    '<th>ease (%)</th><th>fitted (cm)</th><th>fitted stretch</th><th class="name">pattern width per piece (cm)</th></tr></thead>',
+    (tr, m) => {
+      cell(tr, m.name, 'name');
+      cell(tr, m.anchor);
+      if (m.status !== 'measured') {
+        const td = document.createElement('td');
+        td.colSpan = 6;
+        td.className = 'name skipped';
+        td.textContent = 'skipped: ' + m.reason;
+        tr.appendChild(td);
+        return;
+      }
+      cell(tr, cm(m.body_circumference_m));
+      cell(tr, cm(m.pattern_circumference_m));
+      cell(tr, m.ease_percent.toFixed(1), 'ease');
+      cell(tr, cm(m.garment_circumference_m));
+      cell(tr, m.fitted_stretch.toFixed(3));
+      cell(tr, m.pieces.map((p) => `${p.piece} ${cm(p.pattern_width_m)}`).join(', '), 'name');
+    });
+}
+
 /// The silhouettes of the shape target, the initial and the optimized garment in a
 /// front and a side view: each layer's triangles filled opaque on its own canvas, then
 /// laid over the others translucent (so overlapping triangles do not darken).
@@ -944,6 +972,7 @@ drawPattern();
 drawStats();
 drawSilhouettes();
 drawSeams();
+drawMeasurements();
 drawRegions();
 drawHistogram();
 drawHistory();

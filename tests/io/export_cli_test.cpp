@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -151,6 +152,22 @@ TEST_F(ExportCli, SimulateRunIsRegeneratedExactly) {
   EXPECT_FALSE(fs::exists(copy / "history.json"));
   expect_json_near(read_json(copy / "result.json"), read_json(original / "result.json"), 1e-12);
   EXPECT_EQ(report_data(copy / "report.html"), report_data(original / "report.html"));
+  // The ease table: the cylinder has no skeleton, so levels by planes along its axis (z)
+  // every 5 cm across the sleeve (z in [-0.04, 0.04]): z = 0. The sleeve's pattern is
+  // 0.9 times the cylinder's circumference around: an ease of about -10 %.
+  const nlohmann::json measurements = read_json(original / "result.json").at("measurements");
+  ASSERT_EQ(measurements.size(), 1u) << measurements.dump(2);
+  const nlohmann::json& level = measurements[0];
+  EXPECT_EQ(level.at("name"), "z 0.00 m");
+  EXPECT_EQ(level.at("origin"), "planes");
+  EXPECT_EQ(level.at("status"), "measured");
+  EXPECT_NEAR(level.at("body_circumference_m").get<double>(), 2 * std::numbers::pi * 0.05, 0.01 * 2 * std::numbers::pi * 0.05);
+  EXPECT_NEAR(level.at("pattern_circumference_m").get<double>(), 0.9 * 2 * std::numbers::pi * 0.05, 0.01 * 2 * std::numbers::pi * 0.05);
+  EXPECT_NEAR(level.at("ease_percent").get<double>(), -10.0, 1.0);
+  EXPECT_NEAR(level.at("fitted_stretch").get<double>(),
+              level.at("garment_circumference_m").get<double>() / level.at("pattern_circumference_m").get<double>(),
+              1e-12);
+  EXPECT_EQ(report_data(original / "report.html").at("measurements"), measurements);
   // fit.glb is y up: the cylinder's axis (z) was turned onto +y, so the body's length
   // (0.16 m side and two 0.05 m round caps) is its y extent, its 0.1 m diameter the
   // z extent; the export writes it alike.

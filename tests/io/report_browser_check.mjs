@@ -153,6 +153,8 @@ try {
   }));
   summary.seamRows = await page.locator('#seams tbody tr').count();
   summary.seamsText = await page.locator('#seams').textContent();
+  summary.measurementRows = await page.locator('#measurements tbody tr').count();
+  summary.measurementsText = await page.locator('#measurements').textContent();
   summary.histogramBars = await page.locator('#histogram rect.bar').count();
   summary.liftoffBars = await page.locator('#histogram rect.bar.liftoff').count();
   summary.targetLines = await page.locator('#histogram line.target').count();

@@ -177,6 +177,21 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
     for (Eigen::Index i = 0; i < distance.size(); ++i) distance[i] = 0.1 * view.garment.vertices.row(i).norm();
     view.garment_fields.push_back(shape_distance_field(view.garment.faces, distance));
   }
+  // The ease table: a measured level and one the garment goes only part of the way around.
+  {
+    LevelMeasurement calf;
+    calf.level = {"calf.L", "skeleton", "lowerleg01.L at 0.45", Vec3(0.17, 0.4, 0.02), Vec3::UnitY()};
+    calf.reached = true;
+    calf.body_circumference = 0.352;
+    calf.pattern_circumference = 0.303;
+    calf.garment_circumference = 0.349;
+    calf.pieces = {{"front", 0.1515}, {"back", 0.1515}};
+    LevelMeasurement knee;
+    knee.level = {"knee.L", "skeleton", "lowerleg01.L at 0", Vec3(0.15, 0.5, 0.03), Vec3::UnitY()};
+    knee.reached = true;
+    knee.skipped = "the garment does not go all the way around here";
+    view.measurements.levels = {calf, knee};
+  }
   const auto summary = check_in_browser(view, "report_browser");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
   EXPECT_EQ(summary.at("poses"), (nlohmann::json{"neutral", "turned"}));
@@ -222,6 +237,13 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   const std::string seams = summary.at("seamsText").get<std::string>();
   for (const char* word : {"side seam A", "1.25", "31.5", "47.2", "mismatch"})
     EXPECT_NE(seams.find(word), std::string::npos) << word << " missing in: " << seams;
+  // The measurements table: body, pattern, ease (30.3 / 35.2 − 1 = −13.9 %), fitted and
+  // its stretch (34.9 / 30.3); the skipped level's reason.
+  EXPECT_EQ(summary.at("measurementRows"), 2);
+  const std::string measurements = summary.at("measurementsText").get<std::string>();
+  for (const char* word : {"calf.L", "lowerleg01.L at 0.45", "35.2", "30.3", "-13.9", "34.9", "1.152",
+                           "front 15.2", "back 15.2", "knee.L", "skipped: the garment does not go all the way around"})
+    EXPECT_NE(measurements.find(word), std::string::npos) << word << " missing in: " << measurements;
   // Seam sides on both pieces, named; the pinned edge.
   EXPECT_EQ(summary.at("seamEdges"), 2);
   EXPECT_EQ(summary.at("pinnedEdges"), 1);
@@ -254,6 +276,7 @@ TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
   EXPECT_EQ(summary.at("colorings").size(), 4u);  // stretch max/min, pressure, piece
   EXPECT_EQ(summary.at("pressureWarnings"), 1);
   EXPECT_EQ(summary.at("regionRows"), 0);
+  EXPECT_EQ(summary.at("measurementRows"), 0);
   EXPECT_EQ(summary.at("seamRows"), 0);
   EXPECT_FALSE(summary.at("shapeSectionVisible").get<bool>());
   EXPECT_EQ(summary.at("initialOutlines"), 0);

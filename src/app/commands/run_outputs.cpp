@@ -6,6 +6,8 @@
 #include "tightfit/common/parallel.hpp"
 #include "tightfit/common/version.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/io/ease_json.hpp"
+#include "tightfit/io/ease_outputs.hpp"
 #include "tightfit/io/pattern_outputs.hpp"
 #include "tightfit/io/pose_outputs.hpp"
 #include "tightfit/io/pressure_statistics.hpp"
@@ -48,6 +50,9 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
       scene, state.scene_file, sim.garment_positions(),
       state.initial_garment ? &*state.initial_garment : nullptr);
   if (shape) state.result["fit"]["shape"] = shape_statistics_json(*shape);
+  // The ease table: body and pattern circumferences at the measurement levels.
+  EaseTable ease = fit_ease_table(sim, scene);
+  state.result["measurements"] = ease_table_json(ease);
   PoseOutputs poses = write_pose_outputs(folder, sim, scene);
   if (!poses.files.empty()) {
     state.result["poses"] = poses.statistics;
@@ -88,6 +93,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
     if (state.initial_garment) view.initial_garment = *state.initial_garment;
   }
   view.summary = report_summary(state);
+  view.measurements = std::move(ease);
   if (initial_pattern && state.command == "optimize") {
     for (const PatternPiece& piece : view.pattern.pieces) {
       Points2 outline;

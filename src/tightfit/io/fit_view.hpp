@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tightfit/common/types.hpp"
+#include "tightfit/garment/ease_table.hpp"
 #include "tightfit/garment/pattern.hpp"
 #include "tightfit/geometry/mesh.hpp"
 #include "tightfit/io/seam_statistics.hpp"
@@ -123,6 +124,9 @@ struct FitView {
   /// (initial, optimized, target) in a front and a side view.
   TriMesh shape_target;
   TriMesh initial_garment;
+  /// The ease table (garment/ease_table.hpp): body and pattern circumferences and the
+  /// ease at the measurement levels; the report's measurements table. May be empty.
+  EaseTable measurements;
 };
 
 /// Checks shapes and indices: faces index existing vertices, every field has one row

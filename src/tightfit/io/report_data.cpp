@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include "tightfit/io/ease_json.hpp"
 #include "tightfit/io/fit_stats.hpp"
 #include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/io/report_encoding.hpp"
@@ -166,6 +167,7 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
           {"pressure_regions", regions},
           {"pressure_histogram", histogram},
           {"seams", seam_statistics_json(view.seams)},
+          {"measurements", ease_table_json(view.measurements)},
           {"silhouettes",
            view.shape_target.num_faces() == 0
                ? nlohmann::json()

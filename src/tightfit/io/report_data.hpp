@@ -22,6 +22,7 @@
 ///   stats                 fit_statistics_json
 ///   parameters, history   as in FitView
 ///   pressure_regions[]    region_statistics_json of each FitView region (pressure_statistics.hpp)
+///   measurements[]        the ease table, ease_table_json (io/ease_json.hpp)
 ///   pressure_histogram    {edges_mmhg, area_m2, warning_mmhg, share_above_warning, max_mmhg}
 ///                         of the whole garment, null without pressure
 #include <nlohmann/json.hpp>

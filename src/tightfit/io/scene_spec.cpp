@@ -129,6 +129,14 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   auto body = root.object("body", true);
   s.body = parse_body_spec(*body, base_dir,
                            s.rig ? SkeletonRef{&s.rig->skeleton, s.rig->source} : SkeletonRef{});
+  if (const nlohmann::json& b = document.at("body"); b.contains("skeleton") && b["skeleton"].is_string()) {
+    const std::filesystem::path joints = base_dir / b["skeleton"].get<std::string>();
+    s.skeleton = std::make_shared<const std::map<std::string, BoneSegment>>(read_skeleton(joints));
+    s.skeleton_source = joints.string();
+  } else if (s.rig) {
+    s.skeleton = std::shared_ptr<const std::map<std::string, BoneSegment>>(s.rig, &s.rig->skeleton);
+    s.skeleton_source = s.rig->source;
+  }
   auto garment = root.object("garment", true);
   s.garment = parse_garment(*garment, base_dir);
   if (auto f = root.object("fabric")) parse_fabric(*f, s.materials.fabric);
@@ -169,6 +177,11 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
         f->fail("names bones but the scene has no /rig or /pressure/rig",
                 "regions/" + std::to_string(k) + "/bones");
     f->finish();
+  }
+  if (root.has("measurements")) {
+    s.measurements_given = true;
+    s.measurements = parse_measurement_levels(
+        root, "measurements", s.skeleton ? SkeletonRef{s.skeleton.get(), s.skeleton_source} : SkeletonRef{});
   }
   if (root.has("optimize")) {
     s.optimize = root.raw("optimize");

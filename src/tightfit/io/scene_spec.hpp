@@ -25,7 +25,9 @@
 ///                  "regions": [...design/pressure_region.hpp...],
 ///                  "rig": {"mesh": "body.obj", "weights": "default_weights.mhw",
 ///                          "radius": 0.03}},
-///     "rig": {...}, "poses": [...]     // io/scene_poses.hpp
+///     "rig": {...}, "poses": [...],    // io/scene_poses.hpp
+///     "measurements": [{"name": "calf", "point": {"bone": "lowerleg01.L", "at": 0.45},
+///                       "normal": "along_bone"}]   // garment/measurement_levels.hpp
 ///   }
 #include <filesystem>
 #include <memory>
@@ -37,6 +39,7 @@
 #include "tightfit/body/skin_weights.hpp"
 #include "tightfit/design/pressure_region.hpp"
 #include "tightfit/garment/layout_spec.hpp"
+#include "tightfit/garment/measurement_levels.hpp"
 #include "tightfit/garment/pattern_options.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/io/scene_poses.hpp"
@@ -78,6 +81,16 @@ struct SceneSpec {
   std::shared_ptr<const SceneRig> rig;
   /// The poses ("poses"), resolved to bone rotations of the rig's skeleton.
   std::vector<ScenePose> poses;
+  /// The levels of the ease table listed in the scene ("measurements"; garment/
+  /// measurement_levels.hpp). Without the key (`measurements_given` false) the outputs
+  /// measure at the standard levels of `skeleton`, or by planes without one; an empty
+  /// list turns the table off.
+  std::vector<MeasurementLevel> measurements;
+  bool measurements_given = false;
+  /// The body's skeleton: the body's own "skeleton" (joints file), else the rig's; null
+  /// without either. `skeleton_source` names it in messages.
+  std::shared_ptr<const std::map<std::string, BoneSegment>> skeleton;
+  std::string skeleton_source;
   /// The "optimize" section (objectives, regularizers, optimizer settings), validated by
   /// the design layer's parser when a command optimizes; null when absent.
   nlohmann::json optimize;
