@@ -170,6 +170,9 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
                 "regions/" + std::to_string(k) + "/bones");
     f->finish();
   }
+  s.patterns.file = file;
+  s.patterns.json_path = "/patterns";
+  if (auto f = root.object("patterns")) s.patterns = parse_pattern_export_spec(*f);
   if (root.has("optimize")) {
     s.optimize = root.raw("optimize");
     if (!s.optimize.is_object()) root.fail("expected an object", "optimize");

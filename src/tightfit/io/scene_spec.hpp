@@ -25,7 +25,8 @@
 ///                  "regions": [...design/pressure_region.hpp...],
 ///                  "rig": {"mesh": "body.obj", "weights": "default_weights.mhw",
 ///                          "radius": 0.03}},
-///     "rig": {...}, "poses": [...]     // io/scene_poses.hpp
+///     "rig": {...}, "poses": [...],    // io/scene_poses.hpp
+///     "patterns": {...}                // io/pattern_export_spec.hpp
 ///   }
 #include <filesystem>
 #include <memory>
@@ -39,6 +40,7 @@
 #include "tightfit/garment/layout_spec.hpp"
 #include "tightfit/garment/pattern_options.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
+#include "tightfit/io/pattern_export_spec.hpp"
 #include "tightfit/io/scene_poses.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
@@ -78,6 +80,8 @@ struct SceneSpec {
   std::shared_ptr<const SceneRig> rig;
   /// The poses ("poses"), resolved to bone rotations of the rig's skeleton.
   std::vector<ScenePose> poses;
+  /// The "patterns" section: how the pattern files are drawn (defaults when absent).
+  PatternExportSpec patterns;
   /// The "optimize" section (objectives, regularizers, optimizer settings), validated by
   /// the design layer's parser when a command optimizes; null when absent.
   nlohmann::json optimize;
