@@ -74,6 +74,10 @@ struct PendingNotch {
   int edge = 0;        ///< loop edge (loop point edge → edge+1)
   double t = 0.0;      ///< parameter along the loop edge, 0 … 1
   Vec2 direction;      ///< unit direction of the loop edge (counter-clockwise)
+  /// At the seam's ends: the unit direction along the edge into the seam (a double
+  /// notch starts at the end and runs inward so that both ticks stay on the seam);
+  /// zero elsewhere (the ticks are centred on the notch).
+  Vec2 into_seam = Vec2::Zero();
 };
 
 void add_notches(const Pattern& pattern, const Seam& seam, const PatternExportOptions& options,
@@ -111,6 +115,9 @@ void add_notches(const Pattern& pattern, const Seam& seam, const PatternExportOp
       n.edge = edge.edge;
       n.t = t;
       n.direction = (b - a).normalized();
+      const Vec2 along_side = edge.forward ? n.direction : Vec2(-n.direction);
+      if (k == 0) n.into_seam = along_side;
+      if (k + 1 == params.t.size()) n.into_seam = -along_side;
       pending[static_cast<size_t>(p)].push_back(std::move(n));
     }
   }
@@ -126,11 +133,11 @@ void cut_notch(PendingNotch& pending, double depth, const PatternExportOptions& 
     n.ticks.push_back({n.sew, n.cut});
     return;
   }
-  const double half = 0.5 * options.double_notch_gap * kMmPerM;
-  for (double side : {-half, half}) {
-    const Vec2 start = n.sew + dir * side;
-    n.ticks.push_back({start, start + outward * depth});
-  }
+  const double gap = options.double_notch_gap * kMmPerM;
+  const std::array<Vec2, 2> starts =
+      pending.into_seam.isZero() ? std::array<Vec2, 2>{n.sew - dir * (0.5 * gap), n.sew + dir * (0.5 * gap)}
+                                 : std::array<Vec2, 2>{n.sew, n.sew + pending.into_seam * gap};
+  for (const Vec2& start : starts) n.ticks.push_back({start, start + outward * depth});
 }
 
 /// Trues the sew line of piece `p` through its kept points (corners, sharp turns, ends

@@ -25,7 +25,9 @@ struct Notch {
   Vec2 cut;          ///< mm, outer end of the notch centre (sew + depth × outward normal)
   NotchStyle style = NotchStyle::Single;
   /// mm, the ticks to cut, each from the sew line outward: one through `sew` (Single)
-  /// or two, ± double_notch_gap / 2 along the sew line (Double).
+  /// or two, ± double_notch_gap / 2 along the sew line (Double) — at the seam's first
+  /// and last notch one at `sew` and one double_notch_gap further into the seam, so
+  /// that both stay on the seam.
   std::vector<std::array<Vec2, 2>> ticks;
 };
 
