@@ -11,6 +11,7 @@
 #include "io/support/pattern_fixtures.hpp"
 #include "io/support/pattern_tools.hpp"
 #include "objectives/objective_test_garments.hpp"
+#include "tightfit/common/error.hpp"
 #include "tightfit/io/pattern_drawing.hpp"
 #include "tightfit/io/pattern_dxf.hpp"
 #include "tightfit/io/pattern_layout.hpp"
@@ -331,6 +332,56 @@ TEST(PatternTrade, DxfLayersTwoThreeFourAndStyleTextReadByEzdxf) {
   for (const char* text : {"Style Name: Sleeve", "Creation Date: 2001-02-03", "Author: tightfit",
                            "Sample Size: M", "Units: METRIC"})
     EXPECT_NE(std::find(style.begin(), style.end(), text), style.end()) << text << " in " << style;
+}
+
+}  // namespace trade_test
+}  // namespace tightfit
+
+namespace tightfit {
+namespace trade_test {
+
+SceneSpec cylinder_scene(const nlohmann::json& patterns) {
+  nlohmann::json j = nlohmann::json::parse(R"({
+      "body": {"generator": "cylinder", "radius": 0.05, "length": 0.3, "edge_length": 0.01},
+      "garment": {"sleeve": {"radius": 0.05}},
+      "fabric": {"youngs_modulus": 6e6, "thickness": 4e-4, "relaxation": 0.1},
+      "optimize": {"objectives": {"stretch": {"min": 1.05, "max": 1.2}}}})");
+  if (!patterns.is_null()) j["patterns"] = patterns;
+  return parse_scene(j, "/some/where/racer.json", ".");
+}
+
+TEST(PatternTrade, RunOptionsFromTheSceneAndTheGarmentOnTheBody) {
+  const test::GarmentState s = small_sleeve();
+  const Points3 x = positions_of(s);
+  PatternExportOptions o = scene_pattern_export_options(cylinder_scene(nullptr), s.garment, x, "2001-02-03");
+  // A cylinder has no front: single notches; up is its axis (+z): the seam's last end.
+  EXPECT_EQ(o.seam_notch_styles.at("axial seam"), NotchStyle::Single);
+  EXPECT_TRUE(o.seam_last_end_up.at("axial seam"));
+  EXPECT_EQ(o.label.style, "racer");
+  EXPECT_EQ(o.label.size, "cylinder");
+  EXPECT_EQ(o.label.date, "2001-02-03");
+  EXPECT_NEAR(o.label.youngs_modulus, 6e6, 1e-3);  // before relaxation
+  EXPECT_DOUBLE_EQ(o.label.thickness, 4e-4);
+  EXPECT_DOUBLE_EQ(o.label.stretch_min, 1.05);
+  EXPECT_DOUBLE_EQ(o.label.stretch_max, 1.2);
+  EXPECT_DOUBLE_EQ(o.notch_depth, 0.004);
+  // The scene's section: an explicit rule wins, style and size given.
+  o = scene_pattern_export_options(
+      cylinder_scene({{"notches", {{"axial seam", "double"}}}, {"style", "Sleeve"}, {"size", "S"},
+                      {"notch_depth", 0.005}}),
+      s.garment, x, "2001-02-03");
+  EXPECT_EQ(o.seam_notch_styles.at("axial seam"), NotchStyle::Double);
+  EXPECT_EQ(o.label.style, "Sleeve");
+  EXPECT_EQ(o.label.size, "S");
+  EXPECT_DOUBLE_EQ(o.notch_depth, 0.005);
+  // A seam the garment does not have: the scene file and JSON path are named.
+  try {
+    scene_pattern_export_options(cylinder_scene({{"seam_allowances", {{"hem", 0.02}}}}), s.garment, x, "");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("racer.json: /patterns/seam_allowances/hem"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace trade_test

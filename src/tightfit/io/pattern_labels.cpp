@@ -10,6 +10,8 @@ namespace {
 
 constexpr double kDescent = 0.25;
 constexpr double kLinePitch = 1.4;
+/// |direction.y| above which a text counts as vertical (within about 11°).
+constexpr double kNearlyVertical = 0.98;
 
 bool inside(const Polygon2& polygon, const Vec2& q) {
   return inside_polygon(polygon.size(), [&](size_t i) { return polygon[i]; }, q);
@@ -159,7 +161,8 @@ PlacedText place_along_side(const Polygon2& polygon, const std::vector<Vec2>& si
     if (from_end_mm >= 0.0) centre = std::max(0.5 * length, length - from_end_mm - 0.5 * along);
     Vec2 d;
     const Vec2 mid = at_arc(centre, d);
-    if (d.x() < -1e-9 || (std::abs(d.x()) <= 1e-9 && d.y() < 0.0)) d = -d;
+    // Left to right; (nearly) vertical text reads bottom to top.
+    if (std::abs(d.y()) > kNearlyVertical ? d.y() < 0.0 : d.x() < 0.0) d = -d;
     const Vec2 up(-d.y(), d.x());
     // The inward normal: the side of the outline the polygon's interior is on.
     const Vec2 inward = inside(polygon, mid + up * 0.5) ? up : Vec2(-up);

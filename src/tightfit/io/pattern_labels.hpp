@@ -57,7 +57,8 @@ std::vector<PlacedText> place_text_block(const Polygon2& polygon,
 /// Places one line along the polyline `side` (a part of the polygon's outline, ≥ 2
 /// points): centred at the side's arc-length middle or, when `from_end_mm` ≥ 0, ending
 /// `from_end_mm` before the side's last point (but not before its middle); parallel to
-/// the side there, reading left to right (direction.x > 0, or up when vertical), with
+/// the side there, reading left to right (direction.x > 0; within about 11° of vertical:
+/// bottom to top), with
 /// its box `gap` mm inside the polygon. Its height shrinks from `height` (by 15 % steps)
 /// to kMinTextHeightMm until text_inside(...) holds; the last try is returned.
 PlacedText place_along_side(const Polygon2& polygon, const std::vector<Vec2>& side,
