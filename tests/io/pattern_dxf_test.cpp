@@ -34,6 +34,11 @@ PatternExportOptions dxf_options() {
   options.seam_allowances["side_left"] = 0.015;
   options.annotations["front"] = "Front, cut on fold: no";
   options.quantities["back"] = 2;
+  // Double notches, "top" marks and style text go through the audit and LibreCAD too.
+  options.seam_notch_styles["side_left"] = NotchStyle::Double;
+  options.seam_last_end_up["side_right"] = true;
+  options.label.style = "Test style";
+  options.label.date = "2001-02-03";
   return options;
 }
 

@@ -15,6 +15,7 @@
 #include "tightfit/io/pattern_drawing.hpp"
 #include "tightfit/io/pattern_dxf.hpp"
 #include "tightfit/io/pattern_layout.hpp"
+#include "tightfit/io/pattern_pdf.hpp"
 #include "tightfit/io/pattern_scene_options.hpp"
 #include "tightfit/io/pattern_svg.hpp"
 #include "tightfit/io/pattern_truing.hpp"
@@ -204,6 +205,60 @@ TEST(PatternTrade, SvgSeamNamesOnBothPiecesBoundaryNamesAndTopMarks) {
   }
 }
 
+TEST(PatternTrade, SvgNotchesAreNotchDepthLong) {
+  const auto dir = test::scratch_dir("trade_svg_notches");
+  const Pattern pattern = test::test_pattern();
+  PatternExportOptions options;
+  options.notch_depth = 0.005;
+  options.seam_allowances["side_left"] = 0.003;  // shallower than the notch: clamped
+  options.seam_notch_styles["sleeve_hem"] = NotchStyle::Double;
+  write_pattern_svg(pattern, options, dir / "pattern.svg");
+  const std::string svg = read_text(dir / "pattern.svg");
+  const auto pieces = draw_pattern_pieces(pattern, options, "test");
+  static const std::regex line(R"re(<line x1="([-0-9.]+)" y1="([-0-9.]+)" x2="([-0-9.]+)" y2="([-0-9.]+)"/>)re");
+  size_t from = 0;
+  size_t five = 0;
+  size_t three = 0;
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    const size_t begin = svg.find("<g class=\"notches\">", from);
+    ASSERT_NE(begin, std::string::npos);
+    const size_t end = svg.find("</g>", begin);
+    from = end;
+    const std::string group = svg.substr(begin, end - begin);
+    size_t lines = 0;
+    for (auto it = std::sregex_iterator(group.begin(), group.end(), line); it != std::sregex_iterator(); ++it) {
+      const Vec2 a(std::stod((*it)[1]), std::stod((*it)[2]));
+      const Vec2 b(std::stod((*it)[3]), std::stod((*it)[4]));
+      const double length = (b - a).norm();
+      ++lines;
+      if (std::abs(length - 5.0) < 1e-3) ++five;
+      if (std::abs(length - 3.0) < 1e-3) ++three;
+    }
+    size_t ticks = 0;
+    for (const Notch& n : pieces[p].notches) ticks += n.ticks.size();
+    EXPECT_EQ(lines, ticks);
+  }
+  // side_left: 5 notches on each of its 2 sides, 3 mm deep (its allowance); every
+  // other tick 5 mm: side_right 2 × 5, sleeve_hem 2 × 3 notches × 2 ticks.
+  EXPECT_EQ(three, 10u);
+  EXPECT_EQ(five, 10u + 12u);
+}
+
+TEST(PatternTrade, PdfCarriesSeamNamesTopMarksAndTheLabel) {
+  test::require_program("/usr/bin/pdftotext");
+  const auto dir = test::scratch_dir("trade_pdf");
+  PatternExportOptions options;
+  options.seam_last_end_up["side_right"] = true;
+  options.label.style = "Racer";
+  options.label.date = "2001-02-03";
+  write_pattern_pdf_full_size(test::test_pattern(), options, dir / "pattern.pdf");
+  const auto text = run_command("/usr/bin/pdftotext " + shell_quote(dir / "pattern.pdf") + " -");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  for (const char* word : {"side_right", "side_left", "sleeve_hem", "waist", "top", "Racer", "2001-02-03",
+                           "cut 1", "front", "sleeve"})
+    EXPECT_NE(text.output.find(word), std::string::npos) << word << " in " << text.output;
+}
+
 TEST(PatternTrade, SvgGrainLineHasArrowHeadsAtBothEnds) {
   const auto dir = test::scratch_dir("trade_svg_grain");
   const Pattern pattern = test::test_pattern();
@@ -300,6 +355,11 @@ TEST(PatternTrade, DxfLayersTwoThreeFourAndStyleTextReadByEzdxf) {
   const auto& block = found["blocks"]["grid"];
   // Layer 4: both ticks of every (double) notch.
   EXPECT_EQ(block["notches"].size(), 2 * d.notches.size());
+  for (const auto& n : block["notches"]) {
+    const Vec2 a(n[0].get<double>(), n[1].get<double>());
+    const Vec2 b(n[2].get<double>(), n[3].get<double>());
+    EXPECT_NEAR((b - a).norm(), 4.0, 1e-6);  // the default notch depth
+  }
   // Layers 2 and 3: one POINT per cut-line vertex; the four mitred corners are turn points.
   EXPECT_EQ(block["turn_points"].size() + block["curve_points"].size(), d.cut_line.size());
   EXPECT_GE(block["turn_points"].size(), 4u);
