@@ -16,6 +16,22 @@
 #include "tightfit/io/simulation_outputs.hpp"
 
 namespace tightfit::app {
+namespace {
+
+/// The date on the pattern labels: the run's (result "run"/"date", UTC), so that
+/// `tightfit export` of a run redraws its pattern files byte for byte; today's for a
+/// state without one.
+std::string pattern_date(const RunState& state) {
+  const auto run = state.result.find("run");
+  if (run != state.result.end() && run->is_object()) {
+    const auto date = run->find("date");
+    if (date != run->end() && date->is_string() && date->get<std::string>().size() >= 10)
+      return date->get<std::string>().substr(0, 10);
+  }
+  return utc_timestamp().substr(0, 10);
+}
+
+}  // namespace
 
 std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& folder,
                                                const GarmentSimulation& sim,
@@ -30,7 +46,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
     const std::vector<SeamStatistics> seams =
         fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
     const PatternExportOptions options = scene_pattern_export_options(
-        scene, sim.garment(), sim.garment_positions(), utc_timestamp().substr(0, 10));
+        scene, sim.garment(), sim.garment_positions(), pattern_date(state));
     for (const auto& f : write_pattern_files(folder, sim.garment().pattern, options, &seams))
       files.push_back(f);
   }
@@ -122,7 +138,7 @@ std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& f
     x.row(i) = surface.position(garment.embedding[i], control).transpose();
   const SceneSpec scene = run_state_scene(state, state.scene_file);
   std::vector<std::string> files = write_pattern_files(
-      folder, garment.pattern, scene_pattern_export_options(scene, garment, x, utc_timestamp().substr(0, 10)));
+      folder, garment.pattern, scene_pattern_export_options(scene, garment, x, pattern_date(state)));
   write_ply(folder / "garment_embedded.ply", TriMesh{x, garment.garment_triangles});
   write_json_atomically(folder / "layout.json", state.result, 2);
   write_run_state(folder / "state.json", state);
