@@ -1,7 +1,8 @@
 #pragma once
 /// What is drawn for each pattern piece, in millimetres in the piece's own plane
-/// (x right, y up, like PatternPiece::rest × 1000): sew line, cut line, notches,
-/// grain line. All pattern writers draw from this.
+/// (x right, y up, like PatternPiece::rest × 1000): sew line (as given and trued), cut
+/// line, notches (single or double ticks), grain line, seam and boundary names, "top"
+/// marks and the piece label. All pattern writers draw from this.
 #include <array>
 #include <string>
 #include <vector>
