@@ -446,3 +446,39 @@ TEST(PatternTrade, RunOptionsFromTheSceneAndTheGarmentOnTheBody) {
 
 }  // namespace trade_test
 }  // namespace tightfit
+
+namespace tightfit {
+namespace trade_test {
+
+TEST(PatternTrade, PieceLabelStaysClearOfAnOpening) {
+  // A 200 mm square with an 80 mm square opening around its centroid: the label goes
+  // beside the opening, inside the piece (SVG and DXF alike use place_text_block).
+  PatternPiece piece;
+  piece.name = "mask";
+  piece.rest.resize(8, 2);
+  piece.rest << 0.0, 0.0, 0.2, 0.0, 0.2, 0.2, 0.0, 0.2,  // outer, counter-clockwise
+      0.06, 0.06, 0.06, 0.14, 0.14, 0.14, 0.14, 0.06;    // opening, clockwise
+  piece.triangles.resize(1, 3);
+  piece.triangles << 0, 1, 4;
+  piece.boundary = {0, 1, 2, 3};
+  piece.holes = {{4, 5, 6, 7}};
+  piece.corners = {0, 1, 2, 3};
+  Pattern pattern;
+  pattern.pieces.push_back(piece);
+  PatternExportOptions options;
+  options.label.style = "Mask";
+  options.label.date = "2001-02-03";
+  const auto pieces = draw_pattern_pieces(pattern, options, "test");
+  const PieceDrawing& d = pieces[0];
+  ASSERT_FALSE(d.label.empty());
+  for (const PlacedText& t : d.label) {
+    SCOPED_TRACE(t.text);
+    EXPECT_TRUE(text_inside(t, d.trued_sew_line));
+    EXPECT_TRUE(text_clear_of(t, d.holes[0]));
+  }
+  // The centroid lies in the opening: the label could not stay there.
+  EXPECT_TRUE(test::inside_polygon(d.centroid, d.holes[0]));
+}
+
+}  // namespace trade_test
+}  // namespace tightfit

@@ -227,11 +227,20 @@ std::vector<Vec2> polyline_mm(const PatternPiece& piece, const std::vector<int>&
   return out;
 }
 
+/// Whether the polyline runs along the piece's outer boundary (not an opening's rim).
+bool on_outer_boundary(const PatternPiece& piece, const std::vector<int>& vertices) {
+  return !vertices.empty() &&
+         std::find(piece.boundary.begin(), piece.boundary.end(), vertices.front()) != piece.boundary.end();
+}
+
+/// Names along the sides of seams and pinned boundaries on the outer boundary (the
+/// openings' rims are left unlabelled: their text would have to go around the hole).
 void add_seam_texts(const Pattern& pattern, const PatternExportOptions& options,
                     std::vector<PieceDrawing>& drawings) {
   for (const Seam& seam : pattern.seams) {
     const auto up = options.seam_last_end_up.find(seam.name);
     for (const SeamSide* side : {&seam.a, &seam.b}) {
+      if (!on_outer_boundary(pattern.pieces[static_cast<size_t>(side->piece)], side->vertices)) continue;
       PieceDrawing& d = drawings[static_cast<size_t>(side->piece)];
       std::vector<Vec2> points = polyline_mm(pattern.pieces[static_cast<size_t>(side->piece)], side->vertices);
       d.seam_texts.push_back(place_along_side(d.trued_sew_line, points, seam.name, kSeamTextMm, kSeamTextGapMm));
@@ -242,6 +251,7 @@ void add_seam_texts(const Pattern& pattern, const PatternExportOptions& options,
     }
   }
   for (const PinnedBoundary& pin : pattern.pinned) {
+    if (!on_outer_boundary(pattern.pieces[static_cast<size_t>(pin.piece)], pin.vertices)) continue;
     PieceDrawing& d = drawings[static_cast<size_t>(pin.piece)];
     d.seam_texts.push_back(place_along_side(d.trued_sew_line,
                                             polyline_mm(pattern.pieces[static_cast<size_t>(pin.piece)], pin.vertices),
@@ -389,7 +399,7 @@ std::vector<PieceDrawing> draw_pattern_pieces(const Pattern& pattern,
   if (options.seam_labels) add_seam_texts(pattern, options, drawings);
   for (PieceDrawing& d : drawings) {
     d.label_lines = piece_label_lines(d, options);
-    d.label = place_text_block(d.trued_sew_line, d.label_lines, d.centroid);
+    d.label = place_text_block(d.trued_sew_line, d.label_lines, d.centroid, d.holes);
   }
   return drawings;
 }

@@ -173,7 +173,7 @@ void write_piece_text(DxfWriter& dxf, const PieceDrawing& piece, const PatternEx
       continue;
     lines.push_back({line.text, 3.0, false});
   }
-  const std::vector<PlacedText> placed = place_text_block(piece.trued_sew_line, lines, piece.centroid);
+  const std::vector<PlacedText> placed = place_text_block(piece.trued_sew_line, lines, piece.centroid, piece.holes);
   for (size_t k = 0; k < placed.size(); ++k) dxf.text(k < system ? "1" : "15", placed[k]);
 }
 

@@ -62,8 +62,12 @@ Vec2 block_size(const std::vector<TextLine>& lines, double scale) {
   return {w, h};
 }
 
-bool block_inside(const std::vector<PlacedText>& block, const Polygon2& polygon) {
-  return std::all_of(block.begin(), block.end(), [&](const PlacedText& t) { return text_inside(t, polygon); });
+bool block_inside(const std::vector<PlacedText>& block, const Polygon2& polygon,
+                  const std::vector<Polygon2>& holes) {
+  return std::all_of(block.begin(), block.end(), [&](const PlacedText& t) {
+    return text_inside(t, polygon) &&
+           std::all_of(holes.begin(), holes.end(), [&](const Polygon2& hole) { return text_clear_of(t, hole); });
+  });
 }
 
 }  // namespace
@@ -95,9 +99,23 @@ bool text_inside(const PlacedText& text, const Polygon2& polygon) {
   return true;
 }
 
+bool text_clear_of(const PlacedText& text, const Polygon2& hole) {
+  const std::array<Vec2, 4> box = text_box(text);
+  for (size_t k = 0; k < 4; ++k) {
+    const Vec2& a = box[k];
+    const Vec2& b = box[(k + 1) % 4];
+    if (inside(hole, a) || inside(hole, 0.5 * (a + b))) return false;
+    for (size_t i = 0; i < hole.size(); ++i)
+      if (segments_cross(a, b, hole[i], hole[(i + 1) % hole.size()])) return false;
+  }
+  // A hole entirely inside the box.
+  return hole.empty() || !inside_polygon(4, [&](size_t i) { return box[i]; }, hole.front());
+}
+
 std::vector<PlacedText> place_text_block(const Polygon2& polygon,
                                          const std::vector<TextLine>& lines,
-                                         const Vec2& preferred) {
+                                         const Vec2& preferred,
+                                         const std::vector<Polygon2>& holes) {
   if (lines.empty()) return {};
   double smallest = 1e300;
   for (const TextLine& line : lines) smallest = std::min(smallest, line.height);
@@ -119,7 +137,14 @@ std::vector<PlacedText> place_text_block(const Polygon2& polygon,
   for (int i = 0; i <= kGrid; ++i) {
     for (int j = 0; j <= kGrid; ++j) {
       const Vec2 q = lo + Vec2((hi - lo).x() * i / kGrid, (hi - lo).y() * j / kGrid);
-      if (inside(polygon, q)) grid.emplace_back(outline_distance(polygon, q), q);
+      if (!inside(polygon, q)) continue;
+      double clearance = outline_distance(polygon, q);
+      bool in_hole = false;
+      for (const Polygon2& hole : holes) {
+        in_hole = in_hole || inside(hole, q);
+        clearance = std::min(clearance, outline_distance(hole, q));
+      }
+      if (!in_hole) grid.emplace_back(clearance, q);
     }
   }
   std::stable_sort(grid.begin(), grid.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -130,7 +155,7 @@ std::vector<PlacedText> place_text_block(const Polygon2& polygon,
     for (const auto& g : grid) corners.push_back(g.second + Vec2(-0.5 * size.x(), 0.5 * size.y()));
     for (const Vec2& corner : corners) {
       std::vector<PlacedText> block = block_at(lines, scale, corner);
-      if (block_inside(block, polygon)) return block;
+      if (block_inside(block, polygon, holes)) return block;
     }
   }
   const Vec2 size = block_size(lines, min_scale);

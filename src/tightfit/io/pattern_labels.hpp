@@ -44,15 +44,21 @@ std::array<Vec2, 4> text_box(const PlacedText& text);
 /// edge midpoints inside, no polygon edge crossing the box edges).
 bool text_inside(const PlacedText& text, const Polygon2& polygon);
 
+/// Whether the box of `text` stays clear of the closed polygon `hole` (no corner or edge
+/// midpoint inside it, no crossing, the hole not inside the box).
+bool text_clear_of(const PlacedText& text, const Polygon2& hole);
+
 /// Places `lines` as a left-aligned block, first line on top, horizontal (direction
-/// +x), inside `polygon` (counter-clockwise): the block is tried at the polygon's
-/// `preferred` point and then at interior grid points, farthest from the outline first;
+/// +x), inside `polygon` (counter-clockwise) and clear of `holes`: the block is tried
+/// right of and centred on `preferred` and then at interior grid points outside the
+/// holes, farthest from the outline and the holes first;
 /// at every spot the heights are scaled by 1, 0.9, 0.8, … down to the scale that makes
 /// the smallest line kMinTextHeightMm high. The first spot and scale that fit win;
 /// when none fits, the smallest scale at the interior point farthest from the outline.
 std::vector<PlacedText> place_text_block(const Polygon2& polygon,
                                          const std::vector<TextLine>& lines,
-                                         const Vec2& preferred);
+                                         const Vec2& preferred,
+                                         const std::vector<Polygon2>& holes = {});
 
 /// Places one line along the polyline `side` (a part of the polygon's outline, ≥ 2
 /// points): centred at the side's arc-length middle or, when `from_end_mm` ≥ 0, ending
