@@ -1,6 +1,7 @@
 #include "tightfit/io/pattern_export_spec.hpp"
 
 #include <set>
+#include <string>
 
 #include "tightfit/common/error.hpp"
 

@@ -1,6 +1,8 @@
 #include "tightfit/io/pattern_scene_options.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "tightfit/io/body_up.hpp"
 
