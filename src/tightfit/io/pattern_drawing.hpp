@@ -69,9 +69,6 @@ struct PieceDrawing {
   std::vector<PlacedText> seam_texts;
 };
 
-/// Number formatting of the labels: `value` rounded to `decimals` digits, trailing
-/// zeros dropped ("5.4", "10", "0.5").
-std::string label_number(double value, int decimals);
 
 /// Arc-length positions of notches along one seam: for k = 0..m the notch k sits at
 /// segment `segment[k]` (between side vertices segment and segment+1) at local
