@@ -178,13 +178,11 @@ void true_piece(const Pattern& pattern, size_t p, const PatternExportOptions& op
   std::vector<int> outline_edge;
   std::vector<bool> keep;
   std::vector<bool> sharp;
-  std::vector<bool> turn;
   for (size_t k = 0; k < n; ++k) {
     outline.push_back(d.sew_line[k]);
     outline_edge.push_back(static_cast<int>(k));
     keep.push_back(corner[k] || end[k] || vertex_notch[k]);
     sharp.push_back(corner[k]);
-    turn.push_back(corner[k] || end[k]);
     std::sort(on_edge[k].begin(), on_edge[k].end(),
               [](const PendingNotch* a, const PendingNotch* b) { return a->t < b->t; });
     for (const PendingNotch* pn : on_edge[k]) {
@@ -193,7 +191,6 @@ void true_piece(const Pattern& pattern, size_t p, const PatternExportOptions& op
       outline_edge.push_back(static_cast<int>(k));
       keep.push_back(true);
       sharp.push_back(false);
-      turn.push_back(false);
     }
   }
   const TruedOutline trued =
@@ -201,8 +198,6 @@ void true_piece(const Pattern& pattern, size_t p, const PatternExportOptions& op
   d.trued_sew_line = trued.points;
   std::vector<double> allowance;
   for (size_t k = 0; k < trued.points.size(); ++k) {
-    const int source = trued.source[k];
-    d.turn_point.push_back(source >= 0 && turn[static_cast<size_t>(source)]);
     const auto edge = static_cast<size_t>(outline_edge[static_cast<size_t>(trued.edge_source[k])]);
     allowance.push_back(d.allowance[edge]);
   }

@@ -45,9 +45,6 @@ struct PieceDrawing {
   /// pinned-boundary ends and notch positions. Equals sew_line plus the notch points
   /// when truing is off.
   Polygon2 trued_sew_line;
-  /// Per point of trued_sew_line: whether it is a turn point (corner, sharp turn, end
-  /// of a seam or pinned boundary) rather than a curve point.
-  std::vector<bool> turn_point;
   /// mm, counter-clockwise, outward offset of the trued sew line by the allowances.
   Polygon2 cut_line;
   /// mm, clockwise: the openings (rest vertices holes[h][k]); cut on their sew line,
