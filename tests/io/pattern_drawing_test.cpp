@@ -94,20 +94,37 @@ TEST(PatternDrawing, NotchesMatchAcrossEachSeam) {
   }
 }
 
-TEST(PatternDrawing, NotchesArePerpendicularTicksFromSewToCutLine) {
+// Notches are `notch_depth` deep (default 4 mm, the trade's 3–6 mm) and stop at the
+// cut line where the allowance is smaller: depth = min(notch_depth, allowance). Before
+// the notch depth existed, every notch ran to the cut line.
+void check_notch_ticks(double notch_depth, double expected_default, double expected_side_left) {
   PatternExportOptions options;
   options.seam_allowances["side_left"] = 0.015;
+  if (notch_depth >= 0.0) options.notch_depth = notch_depth;
   const Pattern pattern = test::test_pattern();
   const auto pieces = draw_pattern_pieces(pattern, options, "test");
   size_t count = 0;
   for (const PieceDrawing& piece : pieces) {
     for (const Notch& n : piece.notches) {
       ++count;
-      const double expected = n.seam == "side_left" ? 15.0 : 10.0;
+      const double allowance = n.seam == "side_left" ? 15.0 : 10.0;
+      const double expected = n.seam == "side_left" ? expected_side_left : expected_default;
       EXPECT_NEAR((n.cut - n.sew).norm(), expected, 1e-9);
       EXPECT_LT(polygon_distance(n.sew, piece.sew_line), 1e-9);
-      EXPECT_LT(polygon_distance(n.cut, piece.cut_line), 1e-9) << piece.name << " " << n.seam;
+      EXPECT_LT(polygon_distance(n.sew, piece.trued_sew_line), 1e-9);
+      const double to_cut = polygon_distance(n.cut, piece.cut_line);
+      if (expected == allowance) {
+        EXPECT_LT(to_cut, 1e-9) << piece.name << " " << n.seam;
+      } else {
+        // Inside the cut line, at most allowance − depth from it (less near corners).
+        EXPECT_TRUE(inside_polygon(n.cut, piece.cut_line)) << piece.name << " " << n.seam;
+        EXPECT_LE(to_cut, allowance - expected + 1e-6) << piece.name << " " << n.seam;
+        EXPECT_GT(to_cut, 0.5) << piece.name << " " << n.seam;
+      }
       EXPECT_FALSE(inside_polygon(n.cut, piece.sew_line));
+      ASSERT_EQ(n.ticks.size(), 1u);
+      EXPECT_EQ(n.ticks[0][0], n.sew);
+      EXPECT_EQ(n.ticks[0][1], n.cut);
       // Perpendicular to a sew-line edge the notch sits on (at a corner, one of two).
       double best_dot = 1.0;
       for (size_t k = 0; k < piece.sew_line.size(); ++k) {
@@ -120,6 +137,18 @@ TEST(PatternDrawing, NotchesArePerpendicularTicksFromSewToCutLine) {
     }
   }
   EXPECT_EQ(count, 2u * (5 + 5 + 3));
+}
+
+TEST(PatternDrawing, NotchesArePerpendicularTicksFromSewToCutLine) {
+  // Deeper than every allowance: the notches reach the cut line.
+  check_notch_ticks(0.020, 10.0, 15.0);
+}
+
+TEST(PatternDrawing, NotchDepthDefaultsToFourMillimetres) { check_notch_ticks(-1.0, 4.0, 4.0); }
+
+TEST(PatternDrawing, NotchDepthClampedToTheAllowanceOfItsEdge) {
+  // 12 mm: within the 15 mm side_left allowance, beyond the 10 mm of the others.
+  check_notch_ticks(0.012, 10.0, 12.0);
 }
 
 TEST(PatternDrawing, NotchParametersFollowTheVertexCorrespondence) {

@@ -34,6 +34,11 @@ PatternExportOptions dxf_options() {
   options.seam_allowances["side_left"] = 0.015;
   options.annotations["front"] = "Front, cut on fold: no";
   options.quantities["back"] = 2;
+  // Double notches, "top" marks and style text go through the audit and LibreCAD too.
+  options.seam_notch_styles["side_left"] = NotchStyle::Double;
+  options.seam_last_end_up["side_right"] = true;
+  options.label.style = "Test style";
+  options.label.date = "2001-02-03";
   return options;
 }
 
@@ -102,13 +107,19 @@ TEST(PatternDxf, EzdxfReadsBackPiecesOutlinesAndLayers) {
     EXPECT_TRUE(block["cut"][0]["closed"].get<bool>());
     EXPECT_TRUE(block["sew"][0]["closed"].get<bool>());
     const double cut = perimeter(pieces[p].cut_line);
-    const double sew = perimeter(pieces[p].sew_line);
+    // The sew line drawn is the trued one (io/pattern_truing.hpp).
+    const double sew = perimeter(pieces[p].trued_sew_line);
     EXPECT_NEAR(block["cut"][0]["length"].get<double>(), cut, 1e-9 * cut);
     EXPECT_NEAR(block["sew"][0]["length"].get<double>(), sew, 1e-9 * sew);
     EXPECT_EQ(block["cut"][0]["vertices"].get<size_t>(), pieces[p].cut_line.size());
-    EXPECT_EQ(block["sew"][0]["vertices"].get<size_t>(), pieces[p].sew_line.size());
-    EXPECT_EQ(block["notches"].size(), pieces[p].notches.size());
-    EXPECT_EQ(block["grain"].size(), 1u);
+    EXPECT_EQ(block["sew"][0]["vertices"].get<size_t>(), pieces[p].trued_sew_line.size());
+    size_t ticks = 0;
+    for (const Notch& n : pieces[p].notches) ticks += n.ticks.size();
+    EXPECT_EQ(block["notches"].size(), ticks);
+    // The grain line, then two strokes of each of its two arrow heads.
+    ASSERT_EQ(block["grain"].size(), 5u);
+    EXPECT_NEAR(block["grain"][0][0].get<double>(), pieces[p].grain_start.x(), 1e-6);
+    EXPECT_NEAR(block["grain"][0][3].get<double>(), pieces[p].grain_end.y(), 1e-6);
     EXPECT_TRUE(block["other_layers"].empty()) << block["other_layers"];
     const auto& texts = block["texts"];
     ASSERT_EQ(texts.size(), 3u);

@@ -23,6 +23,7 @@ void run_layout(const std::string& scene_file, const std::string& out_dir, bool 
   RunState state =
       make_run_state("layout", scene->spec, g, {g.embedding, scene->body.volume.vertices});
   nlohmann::json& report = state.result;
+  report["run"] = run_identity_json("layout");  // its date is the pattern files' date
   report["scene"] = scene_file;
   report["pieces"] = g.pattern.pieces.size();
   report["seams"] = g.pattern.seams.size();

@@ -9,6 +9,7 @@
 #include "tightfit/io/ease_json.hpp"
 #include "tightfit/io/ease_outputs.hpp"
 #include "tightfit/io/pattern_outputs.hpp"
+#include "tightfit/io/pattern_scene_options.hpp"
 #include "tightfit/io/pose_outputs.hpp"
 #include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/io/run_state.hpp"
@@ -17,6 +18,22 @@
 #include "tightfit/io/simulation_outputs.hpp"
 
 namespace tightfit::app {
+namespace {
+
+/// The date on the pattern labels: the run's (result "run"/"date", UTC), so that
+/// `tightfit export` of a run redraws its pattern files byte for byte; today's for a
+/// state without one.
+std::string pattern_date(const RunState& state) {
+  const auto run = state.result.find("run");
+  if (run != state.result.end() && run->is_object()) {
+    const auto date = run->find("date");
+    if (date != run->end() && date->is_string() && date->get<std::string>().size() >= 10)
+      return date->get<std::string>().substr(0, 10);
+  }
+  return utc_timestamp().substr(0, 10);
+}
+
+}  // namespace
 
 std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& folder,
                                                const GarmentSimulation& sim,
@@ -26,10 +43,13 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
                                                const Pattern* initial_pattern) {
   std::vector<std::string> files = {"garment.ply", "body.ply"};
   write_fit_meshes(folder, sim, fit, pressure_operator);
+  const SceneSpec scene = run_state_scene(state, state.scene_file);
   if (sim.garment().pattern.pieces.size() <= kMaxPatternPieces) {
     const std::vector<SeamStatistics> seams =
         fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
-    for (const auto& f : write_pattern_files(folder, sim.garment().pattern, {}, &seams))
+    const PatternExportOptions options = scene_pattern_export_options(
+        scene, sim.garment(), sim.garment_positions(), pattern_date(state));
+    for (const auto& f : write_pattern_files(folder, sim.garment().pattern, options, &seams))
       files.push_back(f);
   }
   {
@@ -41,7 +61,6 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
                               {"youngs_modulus_pa_simulated", simulated},
                               {"youngs_modulus_pa_new", simulated / (1.0 - relaxation)}};
   }
-  const SceneSpec scene = run_state_scene(state, state.scene_file);
   const std::vector<FitRegion> regions = resolve_fit_regions(
       sim, {scene.pressure_regions, scene.pressure_rig.get(), scene.pressure_rig_radius},
       state.scene_file);
@@ -120,10 +139,12 @@ std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& f
                                                   const LimitSurface& surface,
                                                   const Points3& control,
                                                   const RunState& state) {
-  std::vector<std::string> files = write_pattern_files(folder, garment.pattern);
   Points3 x(garment.num_garment_vertices, 3);
   for (int i = 0; i < garment.num_garment_vertices; ++i)
     x.row(i) = surface.position(garment.embedding[i], control).transpose();
+  const SceneSpec scene = run_state_scene(state, state.scene_file);
+  std::vector<std::string> files = write_pattern_files(
+      folder, garment.pattern, scene_pattern_export_options(scene, garment, x, pattern_date(state)));
   write_ply(folder / "garment_embedded.ply", TriMesh{x, garment.garment_triangles});
   write_json_atomically(folder / "layout.json", state.result, 2);
   write_run_state(folder / "state.json", state);

@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <unordered_map>
 
+#include "tightfit/io/pattern_piece_texts.hpp"
+#include "tightfit/io/pattern_truing.hpp"
 #include "tightfit/io/pattern_validate.hpp"
 
 namespace tightfit {
@@ -12,6 +13,11 @@ namespace {
 
 constexpr double kMmPerM = 1000.0;
 constexpr double kArcToleranceMm = 0.05;
+/// Turning angle (rad) above which a boundary vertex is a corner even when the pattern
+/// does not list it.
+constexpr double kSharpTurn = 0.5235987755982988;  // 30°
+/// Largest spacing (mm) of the points sampled on a trued curve.
+constexpr double kTruedSpacingMm = 2.0;
 
 /// Cumulative arc length along an open polyline.
 std::vector<double> arc_lengths(const std::vector<Vec2>& line) {
@@ -56,14 +62,22 @@ void apply_allowance(std::vector<double>& allowance, const BoundaryIndex& index,
   }
 }
 
-std::string format_mm(double mm) {
-  std::ostringstream out;
-  out << std::round(mm * 10.0) / 10.0;
-  return out.str();
-}
+
+/// A notch before truing: where it sits on the piece's boundary loop.
+struct PendingNotch {
+  Notch notch;
+  int edge = 0;        ///< loop edge (loop point edge → edge+1)
+  double t = 0.0;      ///< parameter along the loop edge, 0 … 1
+  Vec2 direction;      ///< unit direction of the loop edge (counter-clockwise)
+  /// At the seam's ends: the unit direction along the edge into the seam (a double
+  /// notch starts at the end and runs inward so that both ticks stay on the seam);
+  /// zero elsewhere (the ticks are centred on the notch).
+  Vec2 into_seam = Vec2::Zero();
+};
 
 void add_notches(const Pattern& pattern, const Seam& seam, const PatternExportOptions& options,
-                 const std::vector<BoundaryIndex>& indices, std::vector<PieceDrawing>& drawings) {
+                 const std::vector<BoundaryIndex>& indices,
+                 std::vector<std::vector<PendingNotch>>& pending) {
   const SeamSide* sides[2] = {&seam.a, &seam.b};
   std::vector<Vec2> points[2];
   for (int s = 0; s < 2; ++s) {
@@ -72,22 +86,127 @@ void add_notches(const Pattern& pattern, const Seam& seam, const PatternExportOp
   }
   const SeamNotchParameters params =
       seam_notch_parameters(points[0], points[1], options.notch_spacing * kMmPerM);
+  const auto style_it = options.seam_notch_styles.find(seam.name);
+  const NotchStyle style = style_it == options.seam_notch_styles.end() ? NotchStyle::Single : style_it->second;
   for (int s = 0; s < 2; ++s) {
     const int p = sides[s]->piece;
-    PieceDrawing& drawing = drawings[static_cast<size_t>(p)];
     const auto& vertices = sides[s]->vertices;
     for (size_t k = 0; k < params.t.size(); ++k) {
       const auto i = static_cast<size_t>(params.segment[k]);
-      const Vec2 a = points[s][i];
-      const Vec2 b = points[s][i + 1];
       const LoopEdge edge = indices[static_cast<size_t>(p)].edge(vertices[i], vertices[i + 1]);
-      Vec2 dir = (b - a).normalized();
-      if (!edge.forward) dir = -dir;
-      const Vec2 outward(dir.y(), -dir.x());
-      const Vec2 sew = a + (b - a) * params.t[k];
-      const double allowance = drawing.allowance[static_cast<size_t>(edge.edge)];
-      drawing.notches.push_back({seam.name, s, static_cast<int>(k), sew, sew + outward * allowance});
+      // In loop order, so that the point equals the one inserted into the outline.
+      const Vec2 a = edge.forward ? points[s][i] : points[s][i + 1];
+      const Vec2 b = edge.forward ? points[s][i + 1] : points[s][i];
+      double t = edge.forward ? params.t[k] : 1.0 - params.t[k];
+      if (t < 1e-9) t = 0.0;
+      if (t > 1.0 - 1e-9) t = 1.0;
+      const Vec2 sew = t == 0.0 ? a : t == 1.0 ? b : Vec2(a + (b - a) * t);
+      PendingNotch n;
+      n.notch.seam = seam.name;
+      n.notch.side = s;
+      n.notch.index = static_cast<int>(k);
+      n.notch.sew = sew;
+      n.notch.style = style;
+      n.edge = edge.edge;
+      n.t = t;
+      n.direction = (b - a).normalized();
+      const Vec2 along_side = edge.forward ? n.direction : Vec2(-n.direction);
+      if (k == 0) n.into_seam = along_side;
+      if (k + 1 == params.t.size()) n.into_seam = -along_side;
+      pending[static_cast<size_t>(p)].push_back(std::move(n));
     }
+  }
+}
+
+/// The notch's ticks, `depth` mm long, outward from the sew line.
+void cut_notch(PendingNotch& pending, double depth, const PatternExportOptions& options) {
+  Notch& n = pending.notch;
+  const Vec2 dir = pending.direction;
+  const Vec2 outward(dir.y(), -dir.x());
+  n.cut = n.sew + outward * depth;
+  if (n.style == NotchStyle::Single) {
+    n.ticks.push_back({n.sew, n.cut});
+    return;
+  }
+  const double gap = options.double_notch_gap * kMmPerM;
+  const std::array<Vec2, 2> starts =
+      pending.into_seam.isZero() ? std::array<Vec2, 2>{n.sew - dir * (0.5 * gap), n.sew + dir * (0.5 * gap)}
+                                 : std::array<Vec2, 2>{n.sew, n.sew + pending.into_seam * gap};
+  for (const Vec2& start : starts) n.ticks.push_back({start, start + outward * depth});
+}
+
+/// Trues the sew line of piece `p` through its kept points (corners, sharp turns, ends
+/// of seams and pinned boundaries, notch positions), offsets it by the allowances into
+/// the cut line and cuts the notches.
+void true_piece(const Pattern& pattern, size_t p, const PatternExportOptions& options,
+                std::vector<PendingNotch>& notches, PieceDrawing& d) {
+  const PatternPiece& piece = pattern.pieces[p];
+  const size_t n = d.sew_line.size();
+  std::unordered_map<int, size_t> position;
+  for (size_t k = 0; k < n; ++k) position[piece.boundary[k]] = k;
+  std::vector<bool> corner(n, false);
+  std::vector<bool> end(n, false);
+  for (int c : piece.corners)
+    if (const auto it = position.find(c); it != position.end()) corner[it->second] = true;
+  for (size_t k = 0; k < n; ++k)
+    if (turning_angle(d.sew_line, k) > kSharpTurn) corner[k] = true;
+  auto mark_ends = [&](int piece_index, const std::vector<int>& vertices) {
+    if (static_cast<size_t>(piece_index) != p) return;
+    for (int v : {vertices.front(), vertices.back()})
+      if (const auto it = position.find(v); it != position.end()) end[it->second] = true;
+  };
+  for (const Seam& seam : pattern.seams) {
+    mark_ends(seam.a.piece, seam.a.vertices);
+    mark_ends(seam.b.piece, seam.b.vertices);
+  }
+  for (const PinnedBoundary& pin : pattern.pinned) mark_ends(pin.piece, pin.vertices);
+
+  // The outline with the notch positions inserted (kept points).
+  std::vector<std::vector<const PendingNotch*>> on_edge(n);
+  std::vector<bool> vertex_notch(n, false);
+  for (const PendingNotch& pn : notches) {
+    const auto e = static_cast<size_t>(pn.edge);
+    if (pn.t == 0.0) {
+      vertex_notch[e] = true;
+    } else if (pn.t == 1.0) {
+      vertex_notch[(e + 1) % n] = true;
+    } else {
+      on_edge[e].push_back(&pn);
+    }
+  }
+  Polygon2 outline;
+  std::vector<int> outline_edge;
+  std::vector<bool> keep;
+  std::vector<bool> sharp;
+  for (size_t k = 0; k < n; ++k) {
+    outline.push_back(d.sew_line[k]);
+    outline_edge.push_back(static_cast<int>(k));
+    keep.push_back(corner[k] || end[k] || vertex_notch[k]);
+    sharp.push_back(corner[k]);
+    std::sort(on_edge[k].begin(), on_edge[k].end(),
+              [](const PendingNotch* a, const PendingNotch* b) { return a->t < b->t; });
+    for (const PendingNotch* pn : on_edge[k]) {
+      if (pn->notch.sew == outline.back()) continue;
+      outline.push_back(pn->notch.sew);
+      outline_edge.push_back(static_cast<int>(k));
+      keep.push_back(true);
+      sharp.push_back(false);
+    }
+  }
+  const TruedOutline trued =
+      true_outline(outline, keep, sharp, options.true_tolerance * kMmPerM, kTruedSpacingMm);
+  d.trued_sew_line = trued.points;
+  std::vector<double> allowance;
+  for (size_t k = 0; k < trued.points.size(); ++k) {
+    const auto edge = static_cast<size_t>(outline_edge[static_cast<size_t>(trued.edge_source[k])]);
+    allowance.push_back(d.allowance[edge]);
+  }
+  d.cut_line = offset_polygon(d.trued_sew_line, allowance, options.corner_style, options.mitre_limit,
+                              kArcToleranceMm);
+  for (PendingNotch& pn : notches) {
+    const double depth = std::min(options.notch_depth * kMmPerM, d.allowance[static_cast<size_t>(pn.edge)]);
+    cut_notch(pn, depth, options);
+    d.notches.push_back(pn.notch);
   }
 }
 
@@ -154,7 +273,7 @@ std::vector<PieceDrawing> draw_pattern_pieces(const Pattern& pattern,
     const auto annotation = options.annotations.find(piece.name);
     d.annotation = annotation != options.annotations.end()
                        ? annotation->second
-                       : "Seam allowance " + format_mm(options.seam_allowance * kMmPerM) +
+                       : "Seam allowance " + label_number(options.seam_allowance * kMmPerM, 1) +
                              " mm included";
     for (int v : piece.boundary) d.sew_line.push_back(rest_mm(piece, v));
     for (const std::vector<int>& hole : piece.holes) {
@@ -179,14 +298,19 @@ std::vector<PieceDrawing> draw_pattern_pieces(const Pattern& pattern,
                       allowance_of(seam.name));
     }
   }
+  std::vector<std::vector<PendingNotch>> pending(drawings.size());
+  for (const Seam& seam : pattern.seams) add_notches(pattern, seam, options, indices, pending);
   for (size_t p = 0; p < drawings.size(); ++p) {
     PieceDrawing& d = drawings[p];
-    d.cut_line = offset_polygon(d.sew_line, d.allowance, options.corner_style, options.mitre_limit,
-                                kArcToleranceMm);
+    true_piece(pattern, p, options, pending[p], d);
     d.centroid = area_centroid(d.sew_line);
     add_grain(d, pattern.pieces[p].grain);
   }
-  for (const Seam& seam : pattern.seams) add_notches(pattern, seam, options, indices, drawings);
+  if (options.seam_labels) add_seam_texts(pattern, options, drawings);
+  for (PieceDrawing& d : drawings) {
+    d.label_lines = piece_label_lines(d, options);
+    d.label = place_text_block(d.trued_sew_line, d.label_lines, d.centroid, d.holes);
+  }
   return drawings;
 }
 

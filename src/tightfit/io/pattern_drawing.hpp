@@ -1,25 +1,35 @@
 #pragma once
 /// What is drawn for each pattern piece, in millimetres in the piece's own plane
-/// (x right, y up, like PatternPiece::rest × 1000): sew line, cut line, notches,
-/// grain line. All pattern writers draw from this.
+/// (x right, y up, like PatternPiece::rest × 1000): sew line (as given and trued), cut
+/// line, notches (single or double ticks), grain line, seam and boundary names, "top"
+/// marks and the piece label. All pattern writers draw from this.
+#include <array>
 #include <string>
 #include <vector>
 
 #include "tightfit/garment/pattern.hpp"
 #include "tightfit/io/pattern_export_options.hpp"
+#include "tightfit/io/pattern_labels.hpp"
 #include "tightfit/io/pattern_offset.hpp"
 
 namespace tightfit {
 
-/// A notch: a short tick perpendicular to the sew line, from the sew line outward to
-/// the cut line. Notches with the same `seam` and `index` on the two sides of a seam
-/// are sewn together.
+/// A notch: a short tick (or two, NotchStyle::Double) perpendicular to the sew line,
+/// from the sew line outward, `depth` = min(notch depth, the edge's allowance) long.
+/// Notches with the same `seam` and `index` on the two sides of a seam are sewn
+/// together.
 struct Notch {
   std::string seam;  ///< name of the seam
   int side = 0;      ///< 0: on seam side a, 1: on side b
   int index = 0;     ///< 0 at the first vertex of the seam sides, count−1 at the last
-  Vec2 sew;          ///< mm, on the sew line
-  Vec2 cut;          ///< mm, outer end (sew + allowance × outward normal)
+  Vec2 sew;          ///< mm, on the sew line (and exactly on the trued sew line)
+  Vec2 cut;          ///< mm, outer end of the notch centre (sew + depth × outward normal)
+  NotchStyle style = NotchStyle::Single;
+  /// mm, the ticks to cut, each from the sew line outward: one through `sew` (Single)
+  /// or two, ± double_notch_gap / 2 along the sew line (Double) — at the seam's first
+  /// and last notch one at `sew` and one double_notch_gap further into the seam, so
+  /// that both stay on the seam.
+  std::vector<std::array<Vec2, 2>> ticks;
 };
 
 struct PieceDrawing {
@@ -30,7 +40,12 @@ struct PieceDrawing {
   Polygon2 sew_line;
   /// mm, allowance of sew-line edge k (point k → point k+1).
   std::vector<double> allowance;
-  /// mm, counter-clockwise, outward offset of the sew line by the allowances.
+  /// mm, counter-clockwise: the sew line the writers draw, trued (io/pattern_truing.hpp,
+  /// tolerance `true_tolerance`) through the kept points: corners, sharp turns, seam and
+  /// pinned-boundary ends and notch positions. Equals sew_line plus the notch points
+  /// when truing is off.
+  Polygon2 trued_sew_line;
+  /// mm, counter-clockwise, outward offset of the trued sew line by the allowances.
   Polygon2 cut_line;
   /// mm, clockwise: the openings (rest vertices holes[h][k]); cut on their sew line,
   /// without allowance (finished with binding, as the trade finishes mask openings).
@@ -41,7 +56,16 @@ struct PieceDrawing {
   Vec2 grain_end = Vec2::Zero();
   /// mm, area centroid of the sew line (labels are placed here).
   Vec2 centroid = Vec2::Zero();
+  /// The piece label's lines: style, piece name, "cut N", fabric, size, date,
+  /// annotation, then options.piece_notes of this piece (lines with no content left out).
+  std::vector<TextLine> label_lines;
+  /// label_lines placed inside trued_sew_line (place_text_block).
+  std::vector<PlacedText> label;
+  /// Seam names along both sides of each seam, pinned-boundary names along theirs and
+  /// "top" at the upper end of seam sides (options.seam_last_end_up), inside the piece.
+  std::vector<PlacedText> seam_texts;
 };
+
 
 /// Arc-length positions of notches along one seam: for k = 0..m the notch k sits at
 /// segment `segment[k]` (between side vertices segment and segment+1) at local

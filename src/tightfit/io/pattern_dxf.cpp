@@ -1,5 +1,6 @@
 #include "tightfit/io/pattern_dxf.hpp"
 
+#include <cmath>
 #include <ostream>
 #include <set>
 
@@ -7,11 +8,18 @@
 #include "tightfit/io/pattern_drawing.hpp"
 #include "tightfit/io/pattern_layout.hpp"
 #include "tightfit/io/pattern_text.hpp"
+#include "tightfit/io/pattern_truing.hpp"
 
 namespace tightfit {
 namespace {
 
 constexpr int kDecimals = 9;
+/// Style text: height and line pitch (mm); it is written below the layout (y < 0).
+constexpr double kStyleTextMm = 4.0;
+constexpr double kStyleTextPitchMm = 6.0;
+constexpr double kStyleTextBlockMm = 6.0 * kStyleTextPitchMm + 4.0;
+/// Boundary vertices turning more than this (rad) are turn points, the others curve points.
+constexpr double kTurnPointAngle = 0.5235987755982988;  // 30°
 
 /// Writes DXF group-code/value pairs.
 class DxfWriter {
@@ -25,13 +33,23 @@ class DxfWriter {
     number(code + 10, q.y());
     number(code + 20, 0.0);
   }
-  void text(const std::string& layer, const Vec2& at, double height, const std::string& content) {
+  void text(const std::string& layer, const Vec2& at, double height, const std::string& content,
+            double angle_deg = 0.0) {
     pair(0, "TEXT");
     pair(8, layer);
     point(10, at);
     number(40, height);
     pair(1, ascii_escape(content).substr(0, 250));
+    if (angle_deg != 0.0) number(50, angle_deg);
     pair(7, "STANDARD");
+  }
+  void text(const std::string& layer, const PlacedText& t) {
+    text(layer, t.at, t.height, t.text, std::atan2(t.direction.y(), t.direction.x()) * 180.0 / 3.141592653589793);
+  }
+  void point_entity(const std::string& layer, const Vec2& q) {
+    pair(0, "POINT");
+    pair(8, layer);
+    point(10, q);
   }
   void line(const std::string& layer, const Vec2& a, const Vec2& b) {
     pair(0, "LINE");
@@ -68,7 +86,7 @@ void write_header(DxfWriter& dxf, const PatternLayout& layout) {
   dxf.pair(9, "$INSBASE");
   dxf.point(10, Vec2::Zero());
   dxf.pair(9, "$EXTMIN");
-  dxf.point(10, Vec2::Zero());
+  dxf.point(10, Vec2(0.0, -kStyleTextBlockMm));
   dxf.pair(9, "$EXTMAX");
   dxf.point(10, Vec2(layout.width_mm, layout.height_mm));
   dxf.pair(9, "$INSUNITS");
@@ -108,11 +126,9 @@ void write_tables(DxfWriter& dxf) {
     int colour;
     const char* linetype;
   };
-  const Layer layers[] = {{"0", 7, "CONTINUOUS"},
-                          {"1", 7, "CONTINUOUS"},
-                          {"4", 1, "CONTINUOUS"},
-                          {"7", 3, "CONTINUOUS"},
-                          {"14", 5, "DASHED"}};
+  const Layer layers[] = {{"0", 7, "CONTINUOUS"},  {"1", 7, "CONTINUOUS"}, {"2", 2, "CONTINUOUS"},
+                          {"3", 4, "CONTINUOUS"},  {"4", 1, "CONTINUOUS"}, {"7", 3, "CONTINUOUS"},
+                          {"14", 5, "DASHED"},     {"15", 6, "CONTINUOUS"}};
   dxf.pair(0, "TABLE");
   dxf.pair(2, "LAYER");
   dxf.pair(70, static_cast<int>(std::size(layers)));
@@ -141,7 +157,28 @@ void write_tables(DxfWriter& dxf) {
   dxf.pair(0, "ENDSEC");
 }
 
-void write_block(DxfWriter& dxf, const PieceDrawing& piece, const std::string& name) {
+/// The piece's text: AAMA system text on layer 1 ("Piece Name:", "Quantity:",
+/// "Annotation:", "Size:") and the other label lines on layer 15, as one block inside
+/// the sew line.
+void write_piece_text(DxfWriter& dxf, const PieceDrawing& piece, const PatternExportOptions& options) {
+  std::vector<TextLine> lines = {{"Piece Name: " + piece.name, 5.0, false},
+                                 {"Quantity: " + std::to_string(piece.quantity), 4.0, false},
+                                 {"Annotation: " + piece.annotation, 3.0, false}};
+  if (!options.label.size.empty()) lines.push_back({"Size: " + options.label.size, 3.0, false});
+  const size_t system = lines.size();
+  // The label's own lines except the name, quantity and annotation said above.
+  for (const TextLine& line : piece.label_lines) {
+    if (line.text == piece.name || line.text == piece.annotation ||
+        line.text == "cut " + std::to_string(piece.quantity) || line.text == "size " + options.label.size)
+      continue;
+    lines.push_back({line.text, 3.0, false});
+  }
+  const std::vector<PlacedText> placed = place_text_block(piece.trued_sew_line, lines, piece.centroid, piece.holes);
+  for (size_t k = 0; k < placed.size(); ++k) dxf.text(k < system ? "1" : "15", placed[k]);
+}
+
+void write_block(DxfWriter& dxf, const PieceDrawing& piece, const std::string& name,
+                 const PatternExportOptions& options) {
   dxf.pair(0, "BLOCK");
   dxf.pair(8, "0");
   dxf.pair(2, name);
@@ -150,15 +187,41 @@ void write_block(DxfWriter& dxf, const PieceDrawing& piece, const std::string& n
   dxf.pair(3, name);
   dxf.closed_polyline("1", piece.cut_line);
   for (const Polygon2& hole : piece.holes) dxf.closed_polyline("1", hole);
-  dxf.closed_polyline("14", piece.sew_line);
-  for (const Notch& n : piece.notches) dxf.line("4", n.sew, n.cut);
+  for (size_t k = 0; k < piece.cut_line.size(); ++k) {
+    dxf.point_entity(turning_angle(piece.cut_line, k) > kTurnPointAngle ? "2" : "3", piece.cut_line[k]);
+  }
+  dxf.closed_polyline("14", piece.trued_sew_line);
+  for (const Notch& n : piece.notches)
+    for (const auto& tick : n.ticks) dxf.line("4", tick[0], tick[1]);
   dxf.line("7", piece.grain_start, piece.grain_end);
-  const Vec2 at = piece.centroid + Vec2(3.0, 0.0);
-  dxf.text("1", at, 5.0, "Piece Name: " + piece.name);
-  dxf.text("1", at - Vec2(0.0, 7.0), 4.0, "Quantity: " + std::to_string(piece.quantity));
-  dxf.text("1", at - Vec2(0.0, 13.0), 3.0, "Annotation: " + piece.annotation);
+  // Arrow heads at both ends (no nap), after the grain line itself.
+  const Vec2 g = piece.grain_end - piece.grain_start;
+  if (g.norm() > 0.0) {
+    for (const auto& [tip, from] : {std::pair{piece.grain_end, piece.grain_start}, std::pair{piece.grain_start, piece.grain_end}}) {
+      const Vec2 back = (from - tip).normalized() * 6.0;
+      const Vec2 side(-back.y() * 0.4, back.x() * 0.4);
+      dxf.line("7", tip, tip + back + side);
+      dxf.line("7", tip, tip + back - side);
+    }
+  }
+  write_piece_text(dxf, piece, options);
+  for (const PlacedText& t : piece.seam_texts) dxf.text("15", t);
   dxf.pair(0, "ENDBLK");
   dxf.pair(8, "0");
+}
+
+/// AAMA style system text, in ENTITIES below the layout.
+void write_style_text(DxfWriter& dxf, const PatternExportOptions& options) {
+  const PatternLabelInfo& info = options.label;
+  std::vector<std::string> lines = {"Style Name: " + (info.style.empty() ? std::string("tightfit pattern") : info.style)};
+  if (!info.date.empty()) lines.push_back("Creation Date: " + info.date);
+  lines.push_back("Author: tightfit");
+  if (!info.size.empty()) lines.push_back("Sample Size: " + info.size);
+  lines.push_back("Units: METRIC");
+  for (size_t k = 0; k < lines.size(); ++k) {
+    dxf.text("1", Vec2(options.layout_gap * 1000.0, -kStyleTextPitchMm * static_cast<double>(k + 1)), kStyleTextMm,
+             lines[k]);
+  }
 }
 
 }  // namespace
@@ -178,10 +241,11 @@ void write_pattern_dxf(const Pattern& pattern, const PatternExportOptions& optio
     write_tables(dxf);
     dxf.pair(0, "SECTION");
     dxf.pair(2, "BLOCKS");
-    for (size_t p = 0; p < pieces.size(); ++p) write_block(dxf, pieces[p], names[p]);
+    for (size_t p = 0; p < pieces.size(); ++p) write_block(dxf, pieces[p], names[p], options);
     dxf.pair(0, "ENDSEC");
     dxf.pair(0, "SECTION");
     dxf.pair(2, "ENTITIES");
+    write_style_text(dxf, options);
     for (size_t p = 0; p < pieces.size(); ++p) {
       dxf.pair(0, "INSERT");
       dxf.pair(8, "0");

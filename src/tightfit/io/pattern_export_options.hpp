@@ -24,6 +24,30 @@ enum class CornerStyle {
   Round,  ///< circular arc of radius = allowance around every convex corner
 };
 
+/// How the notches of a seam are cut: the trade marks front seams with one tick and
+/// back seams with two, so that a front piece cannot be sewn to a back one.
+enum class NotchStyle {
+  Single,  ///< one tick
+  Double,  ///< two parallel ticks `double_notch_gap` apart, centred on the notch position
+};
+
+/// What the piece and style labels say besides the piece's own name and quantity.
+struct PatternLabelInfo {
+  /// Style (design) name; empty: no style line.
+  std::string style;
+  /// Size or body the pattern was made for; empty: no size line.
+  std::string size;
+  /// Creation date, UTC, "YYYY-MM-DD"; empty: no date line.
+  std::string date;
+  /// Fabric Young's modulus (Pa) and thickness (m); 0: no fabric line.
+  double youngs_modulus = 0.0;
+  double thickness = 0.0;
+  /// Stretch range (stretched / rest length) the pattern was designed for; 0: not
+  /// given (only a minimum: "stretch from min").
+  double stretch_min = 0.0;
+  double stretch_max = 0.0;
+};
+
 struct PatternExportOptions {
   /// Seam allowance (m) between sew line and cut line on every boundary edge.
   double seam_allowance = 0.010;
@@ -39,11 +63,35 @@ struct PatternExportOptions {
   /// Notch spacing (m) along seams: a seam of mean length L gets notches at its two
   /// ends and at fractions k/m, m = max(1, round(L / spacing)); 0 = ends only.
   double notch_spacing = 0.10;
+  /// Notch depth (m) from the sew line outward (the trade cuts 3–6 mm). At an edge
+  /// whose allowance is smaller the notch stops at the cut line: depth = min(notch_depth,
+  /// allowance of that edge).
+  double notch_depth = 0.004;
+  /// Distance (m) between the two ticks of a double notch.
+  double double_notch_gap = 0.003;
+  /// Notch style by seam name; seams not named get Single. Unknown names are an
+  /// InputError.
+  std::map<std::string, NotchStyle> seam_notch_styles;
+  /// Which end of a seam is higher on the body, by seam name: true when the seams'
+  /// last side vertices (a.vertices.back() ↔ b.vertices.back()) are the upper end,
+  /// false when the first are. Seams not named get no "up" mark.
+  std::map<std::string, bool> seam_last_end_up;
+  /// Truing tolerance (m): the drawn sew and cut lines follow a smooth curve through
+  /// the boundary within this distance of it (io/pattern_truing.hpp); 0 draws the
+  /// boundary polyline itself. pieces.json keeps the untrued outline.
+  double true_tolerance = 0.0003;
 
   /// Draw piece names (and annotation text) in SVG and PDF.
   bool piece_labels = true;
   /// Annotation text per piece name (DXF `Annotation:` text, SVG/PDF label line).
   std::map<std::string, std::string> annotations;
+  /// Label seam sides with the seam's name, pinned boundaries with theirs, and mark
+  /// the upper end of seams (SVG, PDF, DXF).
+  bool seam_labels = true;
+  /// Style, size, date and fabric lines of the piece labels and the DXF style text.
+  PatternLabelInfo label;
+  /// Extra label lines per piece name, drawn below the piece label.
+  std::map<std::string, std::vector<std::string>> piece_notes;
   /// Number of times each piece is cut (DXF `Quantity:`), by piece name; default 1.
   std::map<std::string, int> quantities;
 

@@ -52,7 +52,8 @@ json piece_json(const PatternPiece& piece, const PieceDrawing& drawing) {
                        {"side", n.side == 0 ? "a" : "b"},
                        {"index", n.index},
                        {"sew", point(n.sew)},
-                       {"cut", point(n.cut)}});
+                       {"cut", point(n.cut)},
+                       {"style", n.style == NotchStyle::Double ? "double" : "single"}});
   }
   return {{"name", piece.name},
           {"quantity", drawing.quantity},

@@ -20,10 +20,13 @@ namespace tightfit {
 ///       "boundary": [...]               (counter-clockwise loop of vertex indices),
 ///       "corners": [...], "grain": [gx, gy],
 ///       "sew_line_mm": [[x, y], ...]   (= rest[boundary] × 1000),
-///       "cut_line_mm": [[x, y], ...]   (counter-clockwise),
+///       "cut_line_mm": [[x, y], ...]   (counter-clockwise; around the trued sew line the
+///                                       writers draw, io/pattern_truing.hpp),
 ///       "allowance_mm": [...]          (per sew-line edge boundary[k] → boundary[k+1]),
 ///       "grain_line_mm": [[x, y], [x, y]] (tail, head),
-///       "notches_mm": [{"seam", "side": "a"|"b", "index", "sew": [x, y], "cut": [x, y]}] }],
+///       "notches_mm": [{"seam", "side": "a"|"b", "index", "sew": [x, y], "cut": [x, y],
+///                       "style": "single"|"double"}] }],
+///     ("cut": the outer end of the notch, notch depth from "sew")
 ///   "seams": [{"name", "a": {"piece", "piece_name", "vertices"}, "b": {...},
 ///              "length_a_mm", "length_b_mm", "mismatch_mm",   (sewing lengths of the sides)
 ///              "fit": {"sewn_length_mm", "stretch_a", "stretch_b", "traction_mean_n_per_m",

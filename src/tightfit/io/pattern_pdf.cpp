@@ -3,6 +3,7 @@
 #include <cairo-pdf.h>
 #include <cairo.h>
 
+#include <cmath>
 #include <memory>
 
 #include "tightfit/common/atomic_file.hpp"
@@ -44,6 +45,24 @@ void show_text(cairo_t* cr, const Vec2& at, double size_mm, const std::string& t
   cairo_show_text(cr, text.c_str());
 }
 
+/// A placed text (piece plane) at its place in the layout, rotated along its direction.
+void show_placed(cairo_t* cr, const PatternLayout& layout, size_t p, const PlacedText& t) {
+  const Vec2 at = layout.to_layout(p, t.at);
+  cairo_save(cr);
+  cairo_translate(cr, at.x(), at.y());
+  cairo_rotate(cr, std::atan2(-t.direction.y(), t.direction.x()));
+  show_text(cr, Vec2::Zero(), t.height, t.text, t.bold);
+  cairo_restore(cr);
+}
+
+/// An open arrow head at `tip`, pointing away from `from`.
+void arrow_head(cairo_t* cr, const Vec2& tip, const Vec2& from) {
+  const Vec2 back = (from - tip).normalized() * 6.0;
+  const Vec2 side(-back.y() * 0.4, back.x() * 0.4);
+  segment(cr, tip + back + side, tip);
+  cairo_line_to(cr, (tip + back - side).x(), (tip + back - side).y());
+}
+
 /// Draws the whole layout in layout mm (the current matrix maps mm to the page).
 void draw_layout(cairo_t* cr, const std::vector<PieceDrawing>& pieces, const PatternLayout& layout,
                  const PatternExportOptions& options) {
@@ -73,13 +92,13 @@ void draw_layout(cairo_t* cr, const std::vector<PieceDrawing>& pieces, const Pat
     cairo_set_dash(cr, dash, 2, 0.0);
     cairo_set_source_rgb(cr, 0.1, 0.31, 0.82);
     cairo_set_line_width(cr, 0.25);
-    polygon_path(cr, layout, p, piece.sew_line);
+    polygon_path(cr, layout, p, piece.trued_sew_line);
     cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0.0);
     cairo_set_source_rgb(cr, 0.75, 0, 0);
     cairo_set_line_width(cr, 0.4);
     for (const Notch& n : piece.notches) {
-      segment(cr, layout.to_layout(p, n.sew), layout.to_layout(p, n.cut));
+      for (const auto& tick : n.ticks) segment(cr, layout.to_layout(p, tick[0]), layout.to_layout(p, tick[1]));
     }
     cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0, 0.48, 0.18);
@@ -88,18 +107,15 @@ void draw_layout(cairo_t* cr, const std::vector<PieceDrawing>& pieces, const Pat
     const Vec2 b = layout.to_layout(p, piece.grain_end);
     segment(cr, a, b);
     if ((b - a).norm() > 0.0) {
-      const Vec2 back = (a - b).normalized() * 6.0;
-      const Vec2 side(-back.y() * 0.4, back.x() * 0.4);
-      segment(cr, b + back + side, b);
-      cairo_line_to(cr, (b + back - side).x(), (b + back - side).y());
+      arrow_head(cr, b, a);
+      arrow_head(cr, a, b);
     }
     cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0.1, 0.31, 0.82);
+    for (const PlacedText& t : piece.seam_texts) show_placed(cr, layout, p, t);
     if (options.piece_labels) {
       cairo_set_source_rgb(cr, 0, 0, 0);
-      const Vec2 c = layout.to_layout(p, piece.centroid);
-      show_text(cr, c + Vec2(3.0, 0.0), 6.0, piece.name, true);
-      show_text(cr, c + Vec2(3.0, 6.0), 4.0, "Cut " + std::to_string(piece.quantity));
-      show_text(cr, c + Vec2(3.0, 11.0), 3.0, piece.annotation);
+      for (const PlacedText& t : piece.label) show_placed(cr, layout, p, t);
     }
   }
 }

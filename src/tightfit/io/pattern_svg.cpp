@@ -1,5 +1,6 @@
 #include "tightfit/io/pattern_svg.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "tightfit/common/atomic_file.hpp"
@@ -32,33 +33,55 @@ std::string text(const Vec2& at, double size_mm, const std::string& content,
          "</text>";
 }
 
+/// A placed text (piece plane) in layout coordinates, rotated along its direction.
+std::string placed_text(const PatternLayout& layout, size_t piece, const PlacedText& t,
+                        const std::string& css_class) {
+  const Vec2 at = layout.to_layout(piece, t.at);
+  std::string out = "<text class=\"" + css_class + "\" x=\"" + fixed(at.x(), 3) + "\" y=\"" +
+                    fixed(at.y(), 3) + "\" font-size=\"" + fixed(t.height, 2) + "\"";
+  if (t.bold) out += " font-weight=\"bold\"";
+  // Layout y points down: the piece direction (x, y) is (x, −y) there.
+  const double angle = std::atan2(-t.direction.y(), t.direction.x()) * 180.0 / 3.141592653589793;
+  if (std::abs(angle) > 1e-9) {
+    out += " transform=\"rotate(" + fixed(angle, 3) + " " + fixed(at.x(), 3) + " " + fixed(at.y(), 3) + ")\"";
+  }
+  return out + ">" + xml_escape(t.text) + "</text>";
+}
+
+/// An open arrow head at `tip`, pointing away from `from`.
+std::string arrow_head(const Vec2& tip, const Vec2& from) {
+  const Vec2 back = (from - tip).normalized() * 6.0;
+  const Vec2 side(-back.y() * 0.4, back.x() * 0.4);
+  return "<path d=\"M" + point(tip + back + side) + " L" + point(tip) + " L" + point(tip + back - side) +
+         "\"/>";
+}
+
 void write_piece(std::ostream& out, const PieceDrawing& piece, const PatternLayout& layout,
                  size_t p, const std::string& id, const PatternExportOptions& options) {
   out << "<g id=\"" << id << "\">\n<title>" << xml_escape(piece.name) << "</title>\n";
   out << "<path class=\"cut\" d=\"" << path_data(layout, p, piece.cut_line) << "\"/>\n";
   for (const Polygon2& hole : piece.holes)
     out << "<path class=\"cut opening\" d=\"" << path_data(layout, p, hole) << "\"/>\n";
-  out << "<path class=\"sew\" d=\"" << path_data(layout, p, piece.sew_line) << "\"/>\n";
+  out << "<path class=\"sew\" d=\"" << path_data(layout, p, piece.trued_sew_line) << "\"/>\n";
   out << "<g class=\"notches\">\n";
   for (const Notch& n : piece.notches) {
-    out << line(layout.to_layout(p, n.sew), layout.to_layout(p, n.cut)) << "\n";
+    for (const auto& tick : n.ticks) out << line(layout.to_layout(p, tick[0]), layout.to_layout(p, tick[1])) << "\n";
   }
   out << "</g>\n<g class=\"grain\">\n";
   const Vec2 a = layout.to_layout(p, piece.grain_start);
   const Vec2 b = layout.to_layout(p, piece.grain_end);
   out << line(a, b) << "\n";
-  if ((b - a).norm() > 0.0) {
-    const Vec2 back = (a - b).normalized() * 6.0;
-    const Vec2 side(-back.y() * 0.4, back.x() * 0.4);
-    out << "<path d=\"M" << point(b + back + side) << " L" << point(b) << " L"
-        << point(b + back - side) << "\"/>\n";
-  }
+  if ((b - a).norm() > 0.0) out << arrow_head(b, a) << "\n" << arrow_head(a, b) << "\n";
   out << "</g>\n";
+  if (!piece.seam_texts.empty()) {
+    out << "<g class=\"seams\">\n";
+    for (const PlacedText& t : piece.seam_texts) out << placed_text(layout, p, t, "seam") << "\n";
+    out << "</g>\n";
+  }
   if (options.piece_labels) {
-    const Vec2 c = layout.to_layout(p, piece.centroid);
-    out << text(c + Vec2(3.0, 0.0), 6.0, piece.name, "label") << "\n";
-    out << text(c + Vec2(3.0, 6.0), 4.0, "Cut " + std::to_string(piece.quantity), "note") << "\n";
-    out << text(c + Vec2(3.0, 11.0), 3.0, piece.annotation, "note") << "\n";
+    out << "<g class=\"piece-label\">\n";
+    for (const PlacedText& t : piece.label) out << placed_text(layout, p, t, t.bold ? "label" : "note") << "\n";
+    out << "</g>\n";
   }
   out << "</g>\n";
 }
@@ -77,8 +100,8 @@ void write_pattern_svg(const Pattern& pattern, const PatternExportOptions& optio
         << "mm\" height=\"" << h << "mm\" viewBox=\"0 0 " << w << " " << h << "\">\n"
         << "<title>tightfit pattern</title>\n"
         << "<desc>Scale 1:1, user units are millimetres. Cut on the solid line, sew on the "
-           "dashed line; match the notches of each seam; grain line arrow parallel to the "
-           "selvage.</desc>\n"
+           "dashed line; match the notches of each seam (single notches: front seams, double: "
+           "back seams); grain line (arrows at both ends: no nap) parallel to the selvage.</desc>\n"
         << "<style>\n"
         << "path, line { fill: none; stroke: #000; stroke-linecap: round; "
            "stroke-linejoin: round; }\n"
@@ -87,6 +110,7 @@ void write_pattern_svg(const Pattern& pattern, const PatternExportOptions& optio
         << ".notches line { stroke-width: 0.4; stroke: #c00000; }\n"
         << ".grain line, .grain path { stroke-width: 0.35; stroke: #007a2e; }\n"
         << "text { font-family: sans-serif; fill: #000; }\n"
+        << "text.seam { fill: #1a4fd0; }\n"
         << "#test-square rect { fill: none; stroke: #000; stroke-width: 0.3; }\n"
         << "</style>\n";
     if (layout.has_test_square) {

@@ -1,7 +1,8 @@
 #pragma once
 /// SVG export of a pattern at 1:1: the root is sized in mm (width="…mm", viewBox in
-/// mm), one group per piece with cut line (solid), sew line (dashed), notches, grain
-/// line arrow and labels, plus a 10 cm test square.
+/// mm), one group per piece with cut line (solid), trued sew line (dashed), notches,
+/// double-headed grain line, seam names (class "seam") and the piece label, plus a 10 cm
+/// test square.
 #include <filesystem>
 
 #include "tightfit/garment/pattern.hpp"

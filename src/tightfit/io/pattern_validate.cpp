@@ -149,6 +149,11 @@ void validate_export_options(const Pattern& pattern, const PatternExportOptions&
   }
   if (!(options.mitre_limit >= 1.0)) fail("mitre limit must be >= 1");
   if (!(options.notch_spacing >= 0.0)) fail("notch spacing must be >= 0");
+  if (!(options.notch_depth >= 0.0) || !std::isfinite(options.notch_depth)) fail("notch depth must be >= 0");
+  if (!(options.double_notch_gap >= 0.0) || !std::isfinite(options.double_notch_gap))
+    fail("double notch gap must be >= 0");
+  if (!(options.true_tolerance >= 0.0) || !std::isfinite(options.true_tolerance))
+    fail("truing tolerance must be >= 0");
   if (!(options.tile_overlap >= 0.0) || !(options.page_margin >= 0.0)) {
     fail("tile overlap and page margin must be >= 0");
   }
@@ -170,6 +175,16 @@ void validate_export_options(const Pattern& pattern, const PatternExportOptions&
       fail("seam allowance of '" + name + "' must be >= 0");
     }
   }
+  std::set<std::string> seams;
+  for (const Seam& seam : pattern.seams) seams.insert(seam.name);
+  for (const auto& entry : options.seam_notch_styles)
+    if (!seams.count(entry.first)) fail("notch style given for unknown seam '" + entry.first + "'");
+  for (const auto& entry : options.seam_last_end_up)
+    if (!seams.count(entry.first)) fail("upper end given for unknown seam '" + entry.first + "'");
+  std::set<std::string> pieces;
+  for (const PatternPiece& piece : pattern.pieces) pieces.insert(piece.name);
+  for (const auto& entry : options.piece_notes)
+    if (!pieces.count(entry.first)) fail("notes given for unknown piece '" + entry.first + "'");
   for (const auto& [name, quantity] : options.quantities) {
     if (quantity < 1) fail("quantity of '" + name + "' must be >= 1");
   }

@@ -19,7 +19,9 @@ void validate_pattern(const Pattern& pattern, const std::string& source);
 
 /// Throws InputError(source, ...) for bad options: negative allowance, mitre limit
 /// < 1, negative notch spacing, overlap/margin not leaving room on the page,
-/// non-positive quantities, or `seam_allowances` naming no seam/pinned boundary.
+/// non-positive quantities, negative notch depth, double-notch gap or truing tolerance,
+/// `seam_allowances` naming no seam/pinned boundary, `seam_notch_styles` or
+/// `seam_last_end_up` naming no seam, or `piece_notes` naming no piece.
 void validate_export_options(const Pattern& pattern, const PatternExportOptions& options,
                              const std::string& source);
 

@@ -183,6 +183,9 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
     s.measurements = parse_measurement_levels(
         root, "measurements", s.skeleton ? SkeletonRef{s.skeleton.get(), s.skeleton_source} : SkeletonRef{});
   }
+  s.patterns.file = file;
+  s.patterns.json_path = "/patterns";
+  if (auto f = root.object("patterns")) s.patterns = parse_pattern_export_spec(*f);
   if (root.has("optimize")) {
     s.optimize = root.raw("optimize");
     if (!s.optimize.is_object()) root.fail("expected an object", "optimize");

@@ -28,6 +28,7 @@
 ///     "rig": {...}, "poses": [...],    // io/scene_poses.hpp
 ///     "measurements": [{"name": "calf", "point": {"bone": "lowerleg01.L", "at": 0.45},
 ///                       "normal": "along_bone"}]   // garment/measurement_levels.hpp
+///     "patterns": {...}                // io/pattern_export_spec.hpp
 ///   }
 #include <filesystem>
 #include <memory>
@@ -42,6 +43,7 @@
 #include "tightfit/garment/measurement_levels.hpp"
 #include "tightfit/garment/pattern_options.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
+#include "tightfit/io/pattern_export_spec.hpp"
 #include "tightfit/io/scene_poses.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
@@ -91,6 +93,8 @@ struct SceneSpec {
   /// without either. `skeleton_source` names it in messages.
   std::shared_ptr<const std::map<std::string, BoneSegment>> skeleton;
   std::string skeleton_source;
+  /// The "patterns" section: how the pattern files are drawn (defaults when absent).
+  PatternExportSpec patterns;
   /// The "optimize" section (objectives, regularizers, optimizer settings), validated by
   /// the design layer's parser when a command optimizes; null when absent.
   nlohmann::json optimize;
