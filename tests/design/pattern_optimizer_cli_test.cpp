@@ -236,7 +236,7 @@ TEST_F(OptimizeCli, InterruptedRunWritesItsResultsAndResumes) {
   const std::string script =
       std::string(TIGHTFIT_CLI) + " optimize " + scene.string() + " --out " + out.string() +
       " --max-iterations 100 > " + log.string() + " 2>&1 & pid=$!; " +
-      "for i in $(seq 1 600); do grep -q '^  it   1' " + log.string() +
+      "for i in $(seq 1 600); do grep -q '^ *1/100 ' " + log.string() +
       " && break; sleep 0.1; done; kill -INT $pid; wait $pid; echo $? > " + code.string();
   std::ofstream(dir_ / "interrupt.sh") << script << "\n";
   ASSERT_EQ(std::system(("bash " + (dir_ / "interrupt.sh").string()).c_str()), 0);

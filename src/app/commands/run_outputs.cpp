@@ -44,11 +44,15 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   std::vector<std::string> files = {"garment.ply", "body.ply"};
   write_fit_meshes(folder, sim, fit, pressure_operator);
   const SceneSpec scene = run_state_scene(state, state.scene_file);
+  // The ease table: body and pattern circumferences at the measurement levels (in
+  // result.json, the report and, per piece, on the piece labels).
+  EaseTable ease = fit_ease_table(sim, scene);
   if (sim.garment().pattern.pieces.size() <= kMaxPatternPieces) {
     const std::vector<SeamStatistics> seams =
         fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
-    const PatternExportOptions options = scene_pattern_export_options(
+    PatternExportOptions options = scene_pattern_export_options(
         scene, sim.garment(), sim.garment_positions(), pattern_date(state));
+    options.piece_notes = ease_label_lines(ease);
     for (const auto& f : write_pattern_files(folder, sim.garment().pattern, options, &seams))
       files.push_back(f);
   }
@@ -69,8 +73,6 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
       scene, state.scene_file, sim.garment_positions(),
       state.initial_garment ? &*state.initial_garment : nullptr);
   if (shape) state.result["fit"]["shape"] = shape_statistics_json(*shape);
-  // The ease table: body and pattern circumferences at the measurement levels.
-  EaseTable ease = fit_ease_table(sim, scene);
   state.result["measurements"] = ease_table_json(ease);
   PoseOutputs poses = write_pose_outputs(folder, sim, scene);
   if (!poses.files.empty()) {

@@ -21,6 +21,10 @@ void read_stretch(const nlohmann::json& objective, PatternLabelInfo& label) {
   label.stretch_max = objective.contains("max") && objective["max"].is_number() ? objective["max"].get<double>() : 0.0;
 }
 
+/// A seam is on the back when the garment there faces more than 60° away from the front
+/// (its outward normal · front < −cos 60°): side seams and inseams face sideways.
+constexpr double kBackFacing = 0.5;
+
 }  // namespace
 
 Vec3 body_front_direction(const BodySpec& spec) {
@@ -31,11 +35,28 @@ std::map<std::string, NotchStyle> classify_seam_notches(const Garment& garment, 
                                                         const Vec3& front) {
   std::map<std::string, NotchStyle> out;
   const Vec3 centroid = positions.rows() > 0 ? Vec3(positions.colwise().mean().transpose()) : Vec3(Vec3::Zero());
+  // Area-weighted normals of the garment surface at its vertices, turned outward: the
+  // orientation whose triangles face away from the centroid on the whole (positive
+  // signed volume, as the body's surface is oriented).
+  Points3 normals = Points3::Zero(positions.rows(), 3);
+  const Triangles& faces = garment.garment_triangles;
+  double volume = 0.0;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Vec3 a = positions.row(faces(f, 0)).transpose(), b = positions.row(faces(f, 1)).transpose(),
+               c = positions.row(faces(f, 2)).transpose();
+    const Vec3 n = (b - a).cross(c - a);
+    volume += n.dot((a + b + c) / 3.0 - centroid);
+    for (int k = 0; k < 3; ++k) normals.row(faces(f, k)) += n.transpose();
+  }
+  if (volume < 0.0) normals = -normals;
   for (const Seam& seam : garment.pattern.seams) {
-    Vec3 mid = Vec3::Zero();
-    for (int v : seam.a.vertices) mid += position_of(garment, positions, seam.a.piece, v);
-    mid /= static_cast<double>(std::max<size_t>(1, seam.a.vertices.size()));
-    const bool back = front.norm() > 0.0 && (mid - centroid).dot(front) < 0.0;
+    Vec3 normal = Vec3::Zero();
+    for (int v : seam.a.vertices) {
+      const int global = garment.piece_offset[static_cast<size_t>(seam.a.piece)] + v;
+      normal += normals.row(garment.pattern_to_garment[static_cast<size_t>(global)]).transpose();
+    }
+    const double facing = normal.norm() > 0.0 ? normal.normalized().dot(front) : 0.0;
+    const bool back = front.norm() > 0.0 && facing < -kBackFacing;
     out[seam.name] = back ? NotchStyle::Double : NotchStyle::Single;
   }
   return out;

@@ -17,9 +17,12 @@ namespace tightfit {
 /// cylinders and spheres have no front.
 Vec3 body_front_direction(const BodySpec& spec);
 
-/// Notch style per seam from 3D: Double for a seam whose 3D midpoint (mean of its
-/// vertices at `positions`, garment vertices × 3, m) lies behind the garment's centroid
-/// along `front` (a back seam), Single otherwise; all Single when `front` is zero.
+/// Notch style per seam from 3D: Double for a back seam — the garment surface along the
+/// seam (its area-weighted normal at `positions`, garment vertices × 3, m, oriented so
+/// that the garment's triangles face away from its centroid on the whole) faces more
+/// than 60° away from `front` —, Single
+/// otherwise (front seams, and side seams and inseams, which face sideways); all Single
+/// when `front` is zero.
 std::map<std::string, NotchStyle> classify_seam_notches(const Garment& garment, const Points3& positions,
                                                         const Vec3& front);
 
