@@ -49,6 +49,13 @@ TEST(EaseCli, TheLeftLegIsMeasuredAtTheSkeletonsStandardLevels) {
   for (const char* name : {"thigh.L", "mid-thigh.L", "knee.L", "calf.L"}) EXPECT_TRUE(measured.count(name)) << name;
   for (const auto& name : measured) EXPECT_TRUE(name.ends_with(".L")) << name;
   EXPECT_EQ(skipped, (std::set<std::string>{"hip"}));
+  // Each piece's label carries its lines of the table (calf.L ... ease -NN %).
+  const std::string svg = test::read_text(dir / "run" / "pattern.svg");
+  const std::string dxf = test::read_text(dir / "run" / "pattern.dxf");
+  for (const std::string& text : {svg, dxf}) {
+    EXPECT_NE(text.find("calf.L "), std::string::npos);
+    EXPECT_NE(text.find(", ease -"), std::string::npos);
+  }
 
   // The export regenerates the same table.
   const test::CliRun exported =
