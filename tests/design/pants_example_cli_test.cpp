@@ -33,12 +33,15 @@ double turning_deg(const nlohmann::json& rest, const nlohmann::json& loop, std::
   return std::abs(std::atan2(ux * vy - uy * vx, ux * vx + uy * vy)) * 180.0 / std::numbers::pi;
 }
 
-TEST(PantsExampleCli, OptimizedOutlinesHaveNoSpikesSlow) {
+TEST(PantsExampleCli, OptimizedOutlinesHaveNoSpikes) {
   const fs::path out = fs::temp_directory_path() / ("tightfit_pants_example_" + std::to_string(::getpid()));
   fs::remove_all(out);
   std::string args = "optimize ";
   args += TIGHTFIT_SOURCE_DIR;
-  args += "/examples/optimize_pants_stretch.json --terse --out ";
+  // The first 15 of its 40 iterations (about 30 s): the objective falls from 9.6e-2 to
+  // 3.4e-4 there (to 2.8e-4 by iteration 40); without corner_angle the front crotch point
+  // has closed to 47° and the side next to it kinks by 56° by then.
+  args += "/examples/optimize_pants_stretch.json --max-iterations 15 --terse --out ";
   args += out.string();
   const auto r = run_cli(args);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -55,11 +58,11 @@ TEST(PantsExampleCli, OptimizedOutlinesHaveNoSpikesSlow) {
       const double turn = turning_deg(piece["rest"], loop, k);
       if (corners.count(loop[k].get<int>()))
         // The layout squares every corner (87-101° inside); a spike is a corner that
-        // closes to a sharp point (the crotch point closed to 51° without corner_angle).
+        // closes to a sharp point (the crotch point closes to 47°).
         EXPECT_GT(180.0 - turn, 60.0) << "corner at boundary position " << k;
       else
         // Sides are smooth curves: a kink of more than 45° at one sample (25 mm apart)
-        // is a spike (74° beside the crotch point without corner_angle).
+        // is a spike (56° beside the crotch point).
         EXPECT_LT(turn, 45.0) << "boundary position " << k;
     }
   }
