@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "tightfit/design/rest_term_checks.hpp"
+
 namespace tightfit {
 namespace {
 
@@ -61,12 +63,6 @@ CompactnessRegularizer::CompactnessRegularizer(const Garment& garment, Compactne
     }
 }
 
-void CompactnessRegularizer::check(const DesignState& state) const {
-  if (state.rest.rows() != num_pattern_)
-    throw std::invalid_argument("compactness: expected " + std::to_string(num_pattern_) +
-                                " rest positions, got " + std::to_string(state.rest.rows()));
-}
-
 std::vector<double> CompactnessRegularizer::ratios(const Points2& rest) const {
   std::vector<double> out;
   for (const Loop& loop : loops_) {
@@ -79,7 +75,7 @@ std::vector<double> CompactnessRegularizer::ratios(const Points2& rest) const {
 }
 
 double CompactnessRegularizer::value(const DesignState& state) const {
-  check(state);
+  check_rest_rows(name(), state.rest, num_pattern_);
   const double rd = options_.min_ratio;
   double total = 0.0;
   for (double rho : ratios(state.rest))
@@ -89,9 +85,8 @@ double CompactnessRegularizer::value(const DesignState& state) const {
 
 void CompactnessRegularizer::add_gradient(const DesignState& state, VecX& /*d_x*/,
                                           VecX& d_rest) const {
-  check(state);
-  if (d_rest.size() != 2 * num_pattern_)
-    throw std::invalid_argument("compactness: rest gradient has the wrong size");
+  check_rest_rows(name(), state.rest, num_pattern_);
+  check_rest_gradient_size(name(), d_rest, num_pattern_);
   const double rd = options_.min_ratio;
   const Points2& rest = state.rest;
   for (const Loop& loop : loops_) {

@@ -56,8 +56,6 @@ class CompactnessRegularizer : public DesignTerm {
   std::vector<double> ratios(const Points2& rest) const;
 
  private:
-  void check(const DesignState& state) const;
-
   CompactnessOptions options_;
   std::vector<Loop> loops_;
   int num_pattern_ = 0;

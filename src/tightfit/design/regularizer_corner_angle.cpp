@@ -1,6 +1,5 @@
 #include "tightfit/design/regularizer_corner_angle.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -9,6 +8,7 @@
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/planar.hpp"
+#include "tightfit/design/rest_term_checks.hpp"
 
 namespace tightfit {
 namespace {
@@ -42,36 +42,19 @@ bool degenerate(const CornerEdges& e) { return !(e.in.norm() > 0.0 && e.out.norm
 CornerAngleRegularizer::CornerAngleRegularizer(const Garment& garment)
     : num_pattern_(garment.num_pattern_vertices()) {
   const Points2 rest = garment.rest_positions();
-  for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k) {
-    const PatternPiece& piece = garment.pattern.pieces[k];
-    const int o = garment.piece_offset[k];
-    for (const std::vector<int>& loop : piece.loops()) {
-      const std::size_t n = loop.size();
-      if (n < 3) continue;
-      for (std::size_t i = 0; i < n; ++i) {
-        if (std::find(piece.corners.begin(), piece.corners.end(), loop[i]) == piece.corners.end())
-          continue;
-        const std::array<int, 3> t{o + loop[(i + n - 1) % n], o + loop[i], o + loop[(i + 1) % n]};
-        const CornerEdges e = edges_at(rest, t);
-        if (degenerate(e))
-          throw std::invalid_argument("corner angle: piece '" + piece.name +
-                                      "' has a zero-length boundary edge at corner vertex " +
-                                      std::to_string(loop[i]));
-        triples_.push_back(t);
-        reference_.push_back(turning_angle(e));
-      }
-    }
+  triples_ = boundary_triples(garment, BoundaryVertices::kCorners);
+  for (const std::array<int, 3>& t : triples_) {
+    const CornerEdges e = edges_at(rest, t);
+    if (degenerate(e))
+      throw std::invalid_argument(
+          "corner angle: a zero-length boundary edge at corner (pattern vertex " +
+          std::to_string(t[1]) + ")");
+    reference_.push_back(turning_angle(e));
   }
 }
 
-void CornerAngleRegularizer::check(const DesignState& state) const {
-  if (state.rest.rows() != num_pattern_)
-    throw std::invalid_argument("corner angle: expected " + std::to_string(num_pattern_) +
-                                " rest positions, got " + std::to_string(state.rest.rows()));
-}
-
 double CornerAngleRegularizer::value(const DesignState& state) const {
-  check(state);
+  check_rest_rows(name(), state.rest, num_pattern_);
   double total = 0.0;
   for (std::size_t c = 0; c < triples_.size(); ++c) {
     const CornerEdges e = edges_at(state.rest, triples_[c]);
@@ -84,9 +67,8 @@ double CornerAngleRegularizer::value(const DesignState& state) const {
 
 void CornerAngleRegularizer::add_gradient(const DesignState& state, VecX& /*d_x*/,
                                           VecX& d_rest) const {
-  check(state);
-  if (d_rest.size() != 2 * num_pattern_)
-    throw std::invalid_argument("corner angle: rest gradient has the wrong size");
+  check_rest_rows(name(), state.rest, num_pattern_);
+  check_rest_gradient_size(name(), d_rest, num_pattern_);
   for (std::size_t c = 0; c < triples_.size(); ++c) {
     const std::array<int, 3>& t = triples_[c];
     const CornerEdges e = edges_at(state.rest, t);

@@ -42,8 +42,6 @@ class CornerAngleRegularizer : public DesignTerm {
   const std::vector<double>& reference_angles() const { return reference_; }
 
  private:
-  void check(const DesignState& state) const;
-
   std::vector<std::array<int, 3>> triples_;
   std::vector<double> reference_;
   int num_pattern_ = 0;

@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include "tightfit/design/rest_term_checks.hpp"
+
 namespace tightfit {
 namespace {
 
@@ -33,14 +35,8 @@ EdgeLengthDifferenceTerm::EdgeLengthDifferenceTerm(std::string name, std::vector
                                     " outside [0, " + std::to_string(num_pattern_) + ")");
 }
 
-void EdgeLengthDifferenceTerm::check(const DesignState& state) const {
-  if (state.rest.rows() != num_pattern_)
-    throw std::invalid_argument(name_ + ": expected " + std::to_string(num_pattern_) +
-                                " rest positions, got " + std::to_string(state.rest.rows()));
-}
-
 double EdgeLengthDifferenceTerm::value(const DesignState& state) const {
-  check(state);
+  check_rest_rows(name_, state.rest, num_pattern_);
   double total = 0.0;
   for (const EdgePair& p : pairs_) {
     const double diff = edge_length(state.rest, p.first) - edge_length(state.rest, p.second);
@@ -51,9 +47,8 @@ double EdgeLengthDifferenceTerm::value(const DesignState& state) const {
 
 void EdgeLengthDifferenceTerm::add_gradient(const DesignState& state, VecX& /*d_x*/,
                                             VecX& d_rest) const {
-  check(state);
-  if (d_rest.size() != 2 * num_pattern_)
-    throw std::invalid_argument(name_ + ": rest gradient has the wrong size");
+  check_rest_rows(name_, state.rest, num_pattern_);
+  check_rest_gradient_size(name_, d_rest, num_pattern_);
   for (const EdgePair& p : pairs_) {
     const double diff = edge_length(state.rest, p.first) - edge_length(state.rest, p.second);
     add_edge_length_gradient(state.rest, p.first, 2.0 * diff, d_rest);

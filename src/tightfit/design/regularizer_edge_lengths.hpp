@@ -37,8 +37,6 @@ class EdgeLengthDifferenceTerm : public DesignTerm {
   const std::vector<EdgePair>& pairs() const { return pairs_; }
 
  private:
-  void check(const DesignState& state) const;
-
   std::string name_;
   std::vector<EdgePair> pairs_;
   int num_pattern_ = 0;

@@ -7,6 +7,7 @@
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/planar.hpp"
+#include "tightfit/design/rest_term_checks.hpp"
 
 namespace tightfit {
 namespace {
@@ -18,29 +19,11 @@ bool folded(double l1, double l2, double den) { return !(den > 1e-14 * l1 * l2);
 
 BoundarySmoothnessRegularizer::BoundarySmoothnessRegularizer(const Garment& garment)
     : num_pattern_(garment.num_pattern_vertices()) {
-  for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k) {
-    const PatternPiece& piece = garment.pattern.pieces[k];
-    const int o = garment.piece_offset[k];
-    for (const std::vector<int>& loop : piece.loops()) {
-      const std::size_t n = loop.size();
-      if (n < 3) continue;
-      for (std::size_t i = 0; i < n; ++i) {
-        if (std::find(piece.corners.begin(), piece.corners.end(), loop[i]) != piece.corners.end())
-          continue;
-        triples_.push_back({o + loop[(i + n - 1) % n], o + loop[i], o + loop[(i + 1) % n]});
-      }
-    }
-  }
-}
-
-void BoundarySmoothnessRegularizer::check(const DesignState& state) const {
-  if (state.rest.rows() != num_pattern_)
-    throw std::invalid_argument("boundary smoothness: expected " + std::to_string(num_pattern_) +
-                                " rest positions, got " + std::to_string(state.rest.rows()));
+  triples_ = boundary_triples(garment, BoundaryVertices::kAllButCorners);
 }
 
 double BoundarySmoothnessRegularizer::value(const DesignState& state) const {
-  check(state);
+  check_rest_rows(name(), state.rest, num_pattern_);
   double total = 0.0;
   for (const auto& t : triples_) {
     const Vec2 e1 = (state.rest.row(t[1]) - state.rest.row(t[0])).transpose();
@@ -56,9 +39,8 @@ double BoundarySmoothnessRegularizer::value(const DesignState& state) const {
 
 void BoundarySmoothnessRegularizer::add_gradient(const DesignState& state, VecX& /*d_x*/,
                                                  VecX& d_rest) const {
-  check(state);
-  if (d_rest.size() != 2 * num_pattern_)
-    throw std::invalid_argument("boundary smoothness: rest gradient has the wrong size");
+  check_rest_rows(name(), state.rest, num_pattern_);
+  check_rest_gradient_size(name(), d_rest, num_pattern_);
   for (const auto& t : triples_) {
     const Vec2 e1 = (state.rest.row(t[1]) - state.rest.row(t[0])).transpose();
     const Vec2 e2 = (state.rest.row(t[2]) - state.rest.row(t[1])).transpose();

@@ -34,8 +34,6 @@ class BoundarySmoothnessRegularizer : public DesignTerm {
   const std::vector<std::array<int, 3>>& triples() const { return triples_; }
 
  private:
-  void check(const DesignState& state) const;
-
   std::vector<std::array<int, 3>> triples_;
   int num_pattern_ = 0;
 };
