@@ -148,8 +148,8 @@ TEST(PatternTrade, DoubleNotchesAreTwoParallelTicksAlikeOnBothSides) {
   EXPECT_GT(per_side[0], 2u);
   EXPECT_EQ(per_side[0], per_side[1]);
   // Without the classification: single notches.
-  for (const Notch& n : draw_pattern_pieces(s.garment.pattern, {}, "test")[0].notches)
-    EXPECT_EQ(n.ticks.size(), 1u);
+  const auto plain = draw_pattern_pieces(s.garment.pattern, {}, "test");
+  for (const Notch& n : plain[0].notches) EXPECT_EQ(n.ticks.size(), 1u);
 }
 
 TEST(PatternTrade, SvgSeamNamesOnBothPiecesBoundaryNamesAndTopMarks) {
