@@ -1,4 +1,4 @@
-/// Analytic checks of the forward simulation on rigid bodies (DESIGN.md §7): a sleeve
+/// Analytic checks of the forward simulation on rigid bodies (docs/design.md §7): a sleeve
 /// on a cylinder (p = T/R) and a cover on a sphere (p = 2T/R), with the pressure from
 /// both shape operators and, for comparison, from vertex forces over Voronoi areas.
 #include <gtest/gtest.h>

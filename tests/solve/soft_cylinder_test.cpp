@@ -1,4 +1,4 @@
-/// A sleeve on a soft cylinder with a pinned core (DESIGN.md §7): the body's radial
+/// A sleeve on a soft cylinder with a pinned core (docs/design.md §7): the body's radial
 /// compression against the plane-strain Lamé solution for a thick cylinder with zero
 /// displacement at the core radius a and the sleeve's pressure p at the outer radius b:
 ///   u(r) = A (r − a²/r),  A = −p / (2(λ+μ) + 2μ a²/b²),

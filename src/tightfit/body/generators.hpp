@@ -69,7 +69,7 @@ TriMesh sphere_surface(const SphereParams& params, LimitFitResult* fit = nullptr
 /// round caps, a cylinder shortened by twice the thickness for flat caps (which must
 /// leave a positive length), a concentric sphere. Not limit-fitted (it is not a garment
 /// surface); edge length min(h, 2π core_radius / 32) (volume within 1 %). Use it as
-/// CoreOptions::embedded_core (an exact bone for the Lamé check of DESIGN.md §7).
+/// CoreOptions::embedded_core (an exact bone for the Lamé check of docs/design.md §7).
 /// Throws std::invalid_argument for a core radius out of range.
 CylinderParams cylinder_core(const CylinderParams& body, double core_radius);
 SphereParams sphere_core(const SphereParams& body, double core_radius);

@@ -3,7 +3,7 @@
 /// control points so that the limit surface passes through a target surface at the
 /// vertices.
 ///
-/// The garment lives on the Loop limit surface of the body's surface mesh (DESIGN.md §2,
+/// The garment lives on the Loop limit surface of the body's surface mesh (docs/design.md §2,
 /// §6). That surface lies inside the control polyhedron wherever it is convex, so a
 /// control mesh sampled on an analytic cylinder gives a limit surface of smaller radius.
 /// `fit_loop_limit` corrects this by a fixed-point iteration on the control points.

@@ -1,5 +1,5 @@
 #pragma once
-/// The pinned "bone" core of a body (DESIGN.md §3, §8): volume vertices held fixed so
+/// The pinned "bone" core of a body (docs/design.md §3, §8): volume vertices held fixed so
 /// that the body does not float and its stiffness matrix is non-singular.
 #include <optional>
 #include <string>

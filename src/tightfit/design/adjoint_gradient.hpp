@@ -1,6 +1,6 @@
 #pragma once
 /// Adjoint sensitivity analysis (paper Sec. 4, Eq. 21-23 with the transposes of
-/// DESIGN.md §4): the gradient of a design term T(x(q), Xbar) with respect to the
+/// docs/design.md §4): the gradient of a design term T(x(q), Xbar) with respect to the
 /// pattern rest positions Xbar, with the equilibrium q(Xbar) of the garment simulation
 /// followed implicitly.
 ///

@@ -8,7 +8,7 @@
 ///          garment vertex (Garment::pattern_to_garment), flat (x0, y0, z0, x1, ...);
 ///  * Xbar: the 2D rest positions of all pattern vertices, n_p×2 (m), stacked piece
 ///          after piece (Garment::piece_offset); as a flat vector its DOF is 2·v + k.
-/// The adjoint gradient (DESIGN.md §4, Eq. 23) needs ∂T/∂x and ∂T/∂Xbar; the chain to
+/// The adjoint gradient (docs/design.md §4, Eq. 23) needs ∂T/∂x and ∂T/∂Xbar; the chain to
 /// the design parameters p goes through the biharmonic coordinates, ∂T/∂p = Wᵀ ∂T/∂Xbar
 /// (biharmonic_coordinates.hpp).
 ///

@@ -1,7 +1,7 @@
 #pragma once
 /// Edge and face adjacency of a triangle mesh (topology only, no positions).
 ///
-/// Conventions (shared with the limit surface, DESIGN.md §6): face edge i runs from
+/// Conventions (shared with the limit surface, docs/design.md §6): face edge i runs from
 /// corner i to corner (i+1)%3. Edges are undirected; their ids are dense in
 /// [0, num_edges()) and ordered by their sorted vertex pair (lo, hi).
 ///

@@ -4,7 +4,7 @@
 /// the share of the region's area inside its target range, the lift-off share and the
 /// compression class its median reaches.
 ///
-/// Classes (DESIGN.md §5, public sources): RAL-GZ 387 (the German/Austrian/Swiss
+/// Classes (docs/design.md §5, public sources): RAL-GZ 387 (the German/Austrian/Swiss
 /// quality mark for medical compression stockings, pressure at the ankle): class I
 /// 18–21, II 23–32, III 34–46, IV >= 49 mmHg; burn-scar pressure therapy 15–25 mmHg
 /// (meta-analysis of 12 trials); face masks 20–32 mmHg. UK (BS 661210) and French

@@ -1,6 +1,6 @@
 #pragma once
 /// Implicit moving least squares (IMLS) distance to a target surface given as oriented
-/// points (paper Eq. 28-29 as corrected in DESIGN.md §4; Öztireli et al. 2009 style):
+/// points (paper Eq. 28-29 as corrected in docs/design.md §4; Öztireli et al. 2009 style):
 ///   f(x) = Σ_k n_k·(x − c_k) φ(‖x − c_k‖) / Σ_k φ(‖x − c_k‖),
 ///   φ(r) = (1 − r²/h²)⁴ for r < h, 0 otherwise,
 /// with c_k the target points (m), n_k their unit normals (outward) and h the cut-off

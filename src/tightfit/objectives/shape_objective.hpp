@@ -1,5 +1,5 @@
 #pragma once
-/// Shape objective (paper Sec. 5.1, Eq. 28 as corrected in DESIGN.md §4): how far the
+/// Shape objective (paper Sec. 5.1, Eq. 28 as corrected in docs/design.md §4): how far the
 /// garment is from a target surface, measured with the IMLS signed distance f of
 /// imls_surface.hpp (with its documented fallback far from the target):
 ///   T_shape = Σ_{i ∈ V} f(x_i)²        (m²)

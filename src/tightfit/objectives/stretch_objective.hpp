@@ -6,7 +6,7 @@
 /// (SQUARED principal stretches), F = Ds Dm⁻¹ as in ClothEnergy, and A_e the element's
 /// rest area (m²). T is in m² (area × squared-stretch²).
 ///
-/// Bounds are given as principal STRETCHES s (DESIGN.md §4): "30 % stretch" is s = 1.3,
+/// Bounds are given as principal STRETCHES s (docs/design.md §4): "30 % stretch" is s = 1.3,
 /// i.e. λ = s² = 1.69. StretchBounds holds s_min and s_max; λ_min = s_min², λ_max = s_max².
 /// s_max = +infinity disables the upper bound.
 ///

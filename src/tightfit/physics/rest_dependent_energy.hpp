@@ -1,7 +1,7 @@
 #pragma once
 /// An energy U(x, Xbar) that also depends on the 2D rest positions Xbar of the pattern
 /// vertices (cloth and seam springs). Xbar is n_p×2 (m); as a flat vector its DOF index
-/// is 2·p + k. These derivatives feed the adjoint design gradient (DESIGN.md §4:
+/// is 2·p + k. These derivatives feed the adjoint design gradient (docs/design.md §4:
 /// ∂g/∂p = (∂²U/∂q∂Xbar) W).
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-/// Closest points on a LimitSurface (DESIGN.md §6 items 3-5).
+/// Closest points on a LimitSurface (docs/design.md §6 items 3-5).
 ///
 /// A start point comes from a kd-tree over a few limit samples per face (or from a
 /// caller's hint); Newton's method on E(u,v) = ½|x(u,v) - p|² then refines it, stepping

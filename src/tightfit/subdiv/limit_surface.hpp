@@ -1,5 +1,5 @@
 #pragma once
-/// The Loop limit surface of a closed triangle control mesh (DESIGN.md §3, §6; paper
+/// The Loop limit surface of a closed triangle control mesh (docs/design.md §3, §6; paper
 /// Sec. 3.1 and Eq. 18-20), evaluated with OpenSubdiv's Bfr as stencils: weights over
 /// control vertices that depend on topology and (face, u, v) only. The same object
 /// therefore serves a deforming body: positions are passed to every call.
@@ -38,7 +38,7 @@ struct LimitSurfaceOptions {
   /// Bfr refinement depth for sharp features (≥ approx_level_smooth, ≤ 10). Our meshes
   /// have no creases, so it only has to be at least the smooth level.
   int approx_level_sharp = 8;
-  /// Detect OpenSubdiv's second-derivative sign bug (DESIGN.md §6 item 2) with a
+  /// Detect OpenSubdiv's second-derivative sign bug (docs/design.md §6 item 2) with a
   /// finite-difference self-test at construction and correct it when present. Turning
   /// it off returns OpenSubdiv's raw second derivatives (for inspection and tests only:
   /// they may have the wrong sign on rotated sub-triangles of irregular faces).

@@ -1,5 +1,5 @@
 #pragma once
-/// Where OpenSubdiv's second-derivative sign bug strikes (DESIGN.md §6 item 2).
+/// Where OpenSubdiv's second-derivative sign bug strikes (docs/design.md §6 item 2).
 ///
 /// Bfr evaluates an irregular triangle (a corner of valence ≠ 6) through a patch tree:
 /// the face is split 1-to-4 recursively; a sub-triangle that touches no extraordinary
