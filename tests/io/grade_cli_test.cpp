@@ -170,8 +170,29 @@ TEST_F(GradeCli, ThreeBodiesThroughGnuParallelWithTwoJobsThenGathered) {
   EXPECT_LT(total["medium"], total["large"]);
   EXPECT_NEAR(total["large"] / total["small"], 1.08 / 0.92, 0.06)
       << total["small"] << " " << total["medium"] << " " << total["large"];
+  // Girths at the skeleton's standard levels grow with the body (scaled 0.92 / 1.0 / 1.08),
+  // the ease (one design, one fabric) stays about the same.
+  std::map<std::string, std::map<std::string, double>> girth, ease;  // level -> body -> value
+  for (const auto& body : grade["bodies"]) {
+    ASSERT_FALSE(body["measurements"].empty()) << body.dump();
+    for (const auto& m : body["measurements"]) {
+      girth[m["name"].get<std::string>()][body["name"].get<std::string>()] =
+          m["body_circumference_m"].get<double>();
+      ease[m["name"].get<std::string>()][body["name"].get<std::string>()] =
+          m["ease_percent"].get<double>();
+    }
+  }
+  int compared = 0;
+  for (const auto& [level, by_body] : girth) {
+    if (by_body.size() != 3) continue;
+    ++compared;
+    EXPECT_NEAR(by_body.at("large") / by_body.at("small"), 1.08 / 0.92, 0.05) << level;
+    EXPECT_NEAR(ease[level].at("large"), ease[level].at("small"), 5.0) << level;
+  }
+  EXPECT_GT(compared, 0);
   const std::string html = test::read_text(out / "grade.html");
-  for (const char* text : {"small", "medium", "large", "Nest", "thigh_front", "<svg"})
+  for (const char* text : {"small", "medium", "large", "Nest", "thigh_front", "<svg",
+                           "Girths and negative ease", " cm, -"})
     EXPECT_NE(html.find(text), std::string::npos) << text;
   // Every exported nest holds the four pieces of the three sizes.
   const std::string svg = test::read_text(out / "nest.svg"),

@@ -123,6 +123,39 @@ void write_grade_report(const std::filesystem::path& file, const GradeSummary& s
        "pressure: on the body under the garment, both area-weighted medians over the "
        "garment.</p>\n";
 
+  // Girths and negative ease at the measurement levels, size by size.
+  std::vector<std::string> levels;  // in the order of the first body that has them
+  for (const GradedBody& b : summary.bodies)
+    if (b.status == "done" && b.entry.contains("measurements"))
+      for (const auto& m : b.entry["measurements"])
+        if (m["name"].is_string() &&
+            std::find(levels.begin(), levels.end(), m["name"].get<std::string>()) == levels.end())
+          levels.push_back(m["name"].get<std::string>());
+  if (!levels.empty()) {
+    h << "<h2>Girths and negative ease</h2>\n<table><tr><th>level</th>";
+    for (const GradedBody& b : summary.bodies)
+      if (b.status == "done") h << "<th>" << xml_escape(b.name) << "</th>";
+    h << "</tr>\n";
+    for (const std::string& level : levels) {
+      h << "<tr><td>" << xml_escape(level) << "</td>";
+      for (const GradedBody& b : summary.bodies) {
+        if (b.status != "done") continue;
+        h << "<td>";
+        for (const auto& m : b.entry["measurements"])
+          if (m["name"] == level && m["body_circumference_m"].is_number() &&
+              m["ease_percent"].is_number())
+            h << fixed(100.0 * m["body_circumference_m"].get<double>(), 1) << " cm, "
+              << fixed(m["ease_percent"].get<double>(), 0) << " %";
+        h << "</td>";
+      }
+      h << "</tr>\n";
+    }
+    h << "</table>\n<p>Body circumference at each level (cm, on the body before the garment "
+         "presses it) and the pattern's negative ease there, (pattern − body) / body; the "
+         "levels are those of each body's measurement table (README, \"Measurements and "
+         "negative ease\").</p>\n";
+  }
+
   // Seam lengths and their size-to-size change.
   h << "<h2>Seam lengths (mm) and change from the size before</h2>\n<table><tr><th>seam</th>";
   std::vector<std::string> done;

@@ -54,6 +54,15 @@ void read_done_body(GradedBody& body, const fs::path& folder) {
   for (const auto& piece : member(fit, "pieces"))
     e["pieces"].push_back(
         {{"name", member(piece, "name")}, {"pressure_mmhg", member(piece, "pressure_mmhg")}});
+  // The measured levels of the ease table (garment/ease_table.hpp): girths and ease.
+  e["measurements"] = nlohmann::json::array();
+  for (const auto& level : member(result, "measurements"))
+    if (level.is_object() && level.value("status", std::string()) == "measured")
+      e["measurements"].push_back(
+          {{"name", member(level, "name")},
+           {"body_circumference_m", member(level, "body_circumference_m")},
+           {"pattern_circumference_m", member(level, "pattern_circumference_m")},
+           {"ease_percent", member(level, "ease_percent")}});
   e["seams_mm"] = nlohmann::json::object();
   for (const auto& seam : member(pieces, "seams"))
     if (seam.contains("name") && seam["name"].is_string())
