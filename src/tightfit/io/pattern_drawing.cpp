@@ -11,7 +11,6 @@
 namespace tightfit {
 namespace {
 
-constexpr double kMmPerM = 1000.0;
 constexpr double kArcToleranceMm = 0.05;
 /// Turning angle (rad) above which a boundary vertex is a corner even when the pattern
 /// does not list it.
@@ -24,10 +23,6 @@ std::vector<double> arc_lengths(const std::vector<Vec2>& line) {
   std::vector<double> s(line.size(), 0.0);
   for (size_t i = 1; i < line.size(); ++i) s[i] = s[i - 1] + (line[i] - line[i - 1]).norm();
   return s;
-}
-
-Vec2 rest_mm(const PatternPiece& piece, int v) {
-  return piece.rest.row(v).transpose() * kMmPerM;
 }
 
 /// Loop edge index of the boundary edge between consecutive boundary vertices u → w,

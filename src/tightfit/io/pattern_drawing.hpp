@@ -14,6 +14,14 @@
 
 namespace tightfit {
 
+/// Millimetres per metre: pattern files are drawn in mm, tightfit computes in m.
+inline constexpr double kMmPerM = 1000.0;
+
+/// Rest position (mm) of vertex `v` of `piece`.
+inline Vec2 rest_mm(const PatternPiece& piece, int v) {
+  return piece.rest.row(v).transpose() * kMmPerM;
+}
+
 /// A notch: a short tick (or two, NotchStyle::Double) perpendicular to the sew line,
 /// from the sew line outward, `depth` = min(notch depth, the edge's allowance) long.
 /// Notches with the same `seam` and `index` on the two sides of a seam are sewn

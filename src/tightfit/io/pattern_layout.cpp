@@ -28,8 +28,8 @@ int tiles(double length, double content, double overlap) {
 
 PatternLayout layout_pattern(const std::vector<PieceDrawing>& pieces,
                              const PatternExportOptions& options) {
-  const double gap = options.layout_gap * 1000.0;
-  const double row_limit = options.layout_width * 1000.0;
+  const double gap = options.layout_gap * kMmPerM;
+  const double row_limit = options.layout_width * kMmPerM;
   PatternLayout layout;
   layout.offsets.resize(pieces.size());
   layout.piece_boxes.resize(pieces.size());

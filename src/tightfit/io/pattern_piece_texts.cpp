@@ -7,7 +7,6 @@
 namespace tightfit {
 namespace {
 
-constexpr double kMmPerM = 1000.0;
 /// Seam labels: height (mm) and gap (mm) between the sew line and the text box.
 constexpr double kSeamTextMm = 3.0;
 constexpr double kSeamTextGapMm = 1.5;
@@ -17,7 +16,7 @@ constexpr double kTopMarkFromEndMm = 8.0;
 /// Points (mm) of a boundary polyline of a piece, in the polyline's order.
 std::vector<Vec2> polyline_mm(const PatternPiece& piece, const std::vector<int>& vertices) {
   std::vector<Vec2> out;
-  for (int v : vertices) out.push_back(piece.rest.row(v).transpose() * kMmPerM);
+  for (int v : vertices) out.push_back(rest_mm(piece, v));
   return out;
 }
 
