@@ -12,7 +12,7 @@ GENERATOR ?= Ninja
 configure = if [ -f $(1)/CMakeCache.txt ] && ! grep -qx 'CMAKE_GENERATOR:INTERNAL=$(GENERATOR)' $(1)/CMakeCache.txt; \
 	  then rm -rf $(1)/CMakeCache.txt $(1)/CMakeFiles; fi; cmake -S . -B $(1) -G '$(GENERATOR)'
 
-.PHONY: deps build build-asan test test-asan test-memcheck demo bench fuzz clean format
+.PHONY: deps build build-asan test test-asan test-memcheck demo bench fuzz clean format format-check check-naming
 
 deps:
 	bash scripts/install-deps.sh
@@ -52,8 +52,17 @@ fuzz: build
 bench: build
 	bash scripts/bench.sh $(BUILD)
 
+# clang-format (.clang-format) over every C++ file in git; format-check fails on any
+# file it would change (CI), check-naming runs clang-tidy's naming rules (.clang-tidy)
+# over the sources of the Release build (scripts/check_naming.py; CONTRIBUTING.md).
 format:
-	find src tests bench -name '*.[ch]pp' | xargs clang-format -i
+	git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
+
+format-check: deps
+	git ls-files '*.cpp' '*.hpp' | xargs clang-format --dry-run -Werror
+
+check-naming: build
+	python3 scripts/check_naming.py $(BUILD) --jobs $(JOBS)
 
 clean:
 	rm -rf build out

@@ -31,8 +31,8 @@ double peak_rss_mb() {
 void LegsBody(benchmark::State& state) {
   const double edge = static_cast<double>(state.range(0)) * 1e-3;
   const tightfit::BodySpec spec = tightfit::parse_body_spec(
-      nlohmann::json{{"mesh", TIGHTFIT_DATA_DIR "/bodies/mh_legs_male.obj"}, {"edge_length", edge}}, "", ".",
-      "bench");
+      nlohmann::json{{"mesh", TIGHTFIT_DATA_DIR "/bodies/mh_legs_male.obj"}, {"edge_length", edge}},
+      "", ".", "bench");
   tightfit::Body body;
   tightfit::BuildReport report;
   for (auto _ : state) {

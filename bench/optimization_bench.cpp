@@ -132,7 +132,8 @@ void report(benchmark::State& state, DesignProblem& problem, const PatternOptimi
   cholesky.factorize(H);  // symbolic analysis + numeric
   const auto t0 = std::chrono::steady_clock::now();
   const bool ok = cholesky.factorize(H);
-  const double factorization = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double factorization =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double d = std::max(1, n);
   state.counters["threads"] = thread_count();
   state.counters["garment_triangles"] = static_cast<double>(sim.garment().garment_triangles.rows());
@@ -192,9 +193,12 @@ void BM_OptimizeStretchSleeve(benchmark::State& state) {
     auto scene = stretch_scene(static_cast<double>(state.range(0)) * 1e-4);
     GarmentSimulation& sim = *scene->sim;
     auto objective = std::make_shared<DesignTermSum>();
-    objective->add(std::make_shared<StretchObjective>(sim.garment(), StretchBounds{1.02, 1.06}), 1.0);
-    objective->add(std::make_shared<EdgeLengthDifferenceTerm>(seam_length_regularizer(sim.garment())), 1.0);
-    objective->add(std::make_shared<EdgeLengthDifferenceTerm>(even_spacing_regularizer(sim.garment())), 0.1);
+    objective->add(std::make_shared<StretchObjective>(sim.garment(), StretchBounds{1.02, 1.06}),
+                   1.0);
+    objective->add(
+        std::make_shared<EdgeLengthDifferenceTerm>(seam_length_regularizer(sim.garment())), 1.0);
+    objective->add(
+        std::make_shared<EdgeLengthDifferenceTerm>(even_spacing_regularizer(sim.garment())), 0.1);
     DesignProblem problem(sim, objective);
     PatternOptimizerOptions o;
     o.max_iterations = static_cast<int>(state.range(1));
@@ -209,8 +213,11 @@ void BM_OptimizeSoftSleeveShape(benchmark::State& state) {
     auto scene = soft_scene(static_cast<double>(state.range(0)) * 1e-4);
     GarmentSimulation& sim = *scene->sim;
     auto objective = std::make_shared<DesignTermSum>();
-    objective->add(std::make_shared<ShapeObjective>(tapered_target(), sim.garment().num_garment_vertices), 1.0);
-    objective->add(std::make_shared<EdgeLengthDifferenceTerm>(seam_length_regularizer(sim.garment())), 1.0);
+    objective->add(
+        std::make_shared<ShapeObjective>(tapered_target(), sim.garment().num_garment_vertices),
+        1.0);
+    objective->add(
+        std::make_shared<EdgeLengthDifferenceTerm>(seam_length_regularizer(sim.garment())), 1.0);
     DesignProblem problem(sim, objective);
     PatternOptimizerOptions o;
     o.max_iterations = static_cast<int>(state.range(1));
@@ -221,8 +228,16 @@ void BM_OptimizeSoftSleeveShape(benchmark::State& state) {
 }
 
 // Args: garment edge length in 0.1 mm, L-BFGS iterations.
-BENCHMARK(BM_OptimizeStretchSleeve)->Args({120, 10})->Args({60, 10})->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK(BM_OptimizeSoftSleeveShape)->Args({140, 5})->Args({100, 5})->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_OptimizeStretchSleeve)
+    ->Args({120, 10})
+    ->Args({60, 10})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+BENCHMARK(BM_OptimizeSoftSleeveShape)
+    ->Args({140, 5})
+    ->Args({100, 5})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 // Arg: L-BFGS iterations.
 BENCHMARK(BM_OptimizeExampleTaperedCylinder)->Arg(20)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_OptimizeExamplePantsStretch)->Arg(10)->Unit(benchmark::kSecond)->Iterations(1);

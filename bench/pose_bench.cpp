@@ -41,8 +41,8 @@ PoseScene& pose_scene() {
     p.sim->solve();
     p.weights = body_skin_weights(p.scene->body, p.spec.scene.rig->weights);
     for (const auto& [name, bones] : p.spec.optimization.poses.bone_motions)
-      p.poses.push_back({name, pose_body(p.scene->body, p.scene->body.volume.vertices, p.weights, bones,
-                                         p.spec.optimization.poses.skinning)
+      p.poses.push_back({name, pose_body(p.scene->body, p.scene->body.volume.vertices, p.weights,
+                                         bones, p.spec.optimization.poses.skinning)
                                    .motions});
     return p;
   }();
@@ -59,19 +59,19 @@ void PoseBody(benchmark::State& state) {
 
 void SlidingValue(benchmark::State& state) {
   PoseScene& p = pose_scene();
-  const SlidingObjective term(p.sim->garment(), p.sim->materials(), p.sim->surface(), p.scene->body.num_vertices(),
-                              {p.poses.front()}, 0.3);
+  const SlidingObjective term(p.sim->garment(), p.sim->materials(), p.sim->surface(),
+                              p.scene->body.num_vertices(), {p.poses.front()}, 0.3);
   const SimulationDesignState ds(*p.sim);
   for (auto _ : state) benchmark::DoNotOptimize(term.value(ds.view()));
 }
 
 void SlidingGradient(benchmark::State& state) {
   PoseScene& p = pose_scene();
-  const SlidingObjective term(p.sim->garment(), p.sim->materials(), p.sim->surface(), p.scene->body.num_vertices(),
-                              {p.poses.front()}, 0.3);
+  const SlidingObjective term(p.sim->garment(), p.sim->materials(), p.sim->surface(),
+                              p.scene->body.num_vertices(), {p.poses.front()}, 0.3);
   const SimulationDesignState ds(*p.sim);
-  VecX dx(ds.x.size()), dr(2 * ds.rest.rows()), dsv(2 * static_cast<Eigen::Index>(ds.garment.size())),
-      dy(ds.body.size());
+  VecX dx(ds.x.size()), dr(2 * ds.rest.rows()),
+      dsv(2 * static_cast<Eigen::Index>(ds.garment.size())), dy(ds.body.size());
   for (auto _ : state) {
     dx.setZero();
     dr.setZero();

@@ -54,7 +54,8 @@ void report(benchmark::State& state, const SleeveScene& s, const NewtonReport& r
   state.counters["assembly_s_per_it"] = assembly / n;
   state.counters["factorization_s_per_it"] = factorization / n;
   state.counters["solve_s_per_it"] = solve / n;
-  state.counters["it_over_factorization"] = (assembly + factorization + solve) / std::max(factorization, 1e-12);
+  state.counters["it_over_factorization"] =
+      (assembly + factorization + solve) / std::max(factorization, 1e-12);
   state.counters["hessian_nnz"] = static_cast<double>(r.hessian_nonzeros);
   state.counters["factor_nnz"] = static_cast<double>(r.factor_nonzeros);
 }

@@ -80,7 +80,8 @@ void BM_Walk(benchmark::State& state) {
   const Fixture& f = fixture();
   std::size_t k = 0;
   for (auto _ : state) {
-    const LimitSurface::Walk w = f.surface->walk(f.all[k & 4095], Vec2(0.7, -0.4 + 0.0001 * (k & 255)));
+    const LimitSurface::Walk w =
+        f.surface->walk(f.all[k & 4095], Vec2(0.7, -0.4 + 0.0001 * (k & 255)));
     ++k;
     benchmark::DoNotOptimize(w.end.u);
   }
@@ -102,7 +103,8 @@ BENCHMARK(BM_ProjectWithKdTree);
 void BM_ProjectFromNearbyHint(benchmark::State& state) {
   const Fixture& f = fixture();
   std::vector<SurfacePoint> hints;
-  for (std::size_t k = 0; k < 4096; ++k) hints.push_back(f.surface->walk(f.all[k], Vec2(0.05, 0.03)).end);
+  for (std::size_t k = 0; k < 4096; ++k)
+    hints.push_back(f.surface->walk(f.all[k], Vec2(0.05, 0.03)).end);
   std::size_t k = 0;
   for (auto _ : state) {
     const std::size_t i = k++ & 4095;

@@ -13,20 +13,20 @@
 #include "tightfit/common/error.hpp"
 
 /// Defines LLVMFuzzerTestOneInput for the reader called `name` (readers.hpp).
-#define TIGHTFIT_FUZZ_READER(name)                                                           \
-  extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {        \
-    static const tightfit::fuzz::Reader& reader = tightfit::fuzz::readers().at(name);        \
-    const char* tmp = std::getenv("TMPDIR");                                                 \
-    static const std::filesystem::path path =                                                \
-        std::filesystem::path(tmp ? tmp : "/tmp") /                                          \
-        ("tightfit_fuzz_" + std::to_string(::getpid()) + reader.extension);                   \
-    {                                                                                        \
-      std::ofstream out(path, std::ios::binary | std::ios::trunc);                           \
-      out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));    \
-    }                                                                                        \
-    try {                                                                                    \
-      reader.read(path);                                                                     \
-    } catch (const tightfit::InputError&) {                                                  \
-    }                                                                                        \
-    return 0;                                                                                \
+#define TIGHTFIT_FUZZ_READER(name)                                                        \
+  extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {     \
+    static const tightfit::fuzz::Reader& reader = tightfit::fuzz::readers().at(name);     \
+    const char* tmp = std::getenv("TMPDIR");                                              \
+    static const std::filesystem::path path =                                             \
+        std::filesystem::path(tmp ? tmp : "/tmp") /                                       \
+        ("tightfit_fuzz_" + std::to_string(::getpid()) + reader.extension);               \
+    {                                                                                     \
+      std::ofstream out(path, std::ios::binary | std::ios::trunc);                        \
+      out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size)); \
+    }                                                                                     \
+    try {                                                                                 \
+      reader.read(path);                                                                  \
+    } catch (const tightfit::InputError&) {                                               \
+    }                                                                                     \
+    return 0;                                                                             \
   }

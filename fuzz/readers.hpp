@@ -38,7 +38,8 @@ inline std::filesystem::path small_mesh() {
   const auto path = std::filesystem::temp_directory_path() /
                     ("tightfit_fuzz_mesh_" + std::to_string(::getpid()) + ".obj");
   if (!std::filesystem::exists(path))
-    std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
+    std::ofstream(path)
+        << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
   return path;
 }
 
@@ -52,16 +53,20 @@ inline const std::map<std::string, Reader>& readers() {
       {"off", {".off", [](const auto& f) { read_off(f); }}},
       {"stl", {".stl", [](const auto& f) { read_stl(f); }}},
       {"vtu", {".vtu", [](const auto& f) { read_vtu(f); }}},
-      {"scene", {".json", [](const auto& f) {
-         parse_scene(read_json_file(f.string()), f.string(), f.parent_path());
-       }}},
-      {"state", {".json", [](const auto& f) {
-         run_state_from_json(read_json_file(f.string()), f.string());
-       }}},
-      {"checkpoint", {".json", [](const auto& f) {
-         static const std::vector<std::string> names{"stretch", "seam length", "boundary spacing"};
-         checkpoint_from_json(read_json_file(f.string()), names, f.string());
-       }}},
+      {"scene",
+       {".json",
+        [](const auto& f) {
+          parse_scene(read_json_file(f.string()), f.string(), f.parent_path());
+        }}},
+      {"state",
+       {".json",
+        [](const auto& f) { run_state_from_json(read_json_file(f.string()), f.string()); }}},
+      {"checkpoint",
+       {".json",
+        [](const auto& f) {
+          static const std::vector<std::string> names{"stretch", "seam length", "boundary spacing"};
+          checkpoint_from_json(read_json_file(f.string()), names, f.string());
+        }}},
       {"pieces", {".json", [](const auto& f) { read_pieces_json(f); }}},
       {"skeleton", {".json", [](const auto& f) { read_skeleton(f); }}},
       {"skin_weights", {".mhw", [](const auto& f) { read_skin_weights(small_mesh(), f); }}},

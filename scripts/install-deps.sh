@@ -13,12 +13,14 @@ BUILD_PKGS=(
 )
 # Clients used by the tests to check exports with real third-party readers, and valgrind
 # (memcheck of the reader and physics tests, scripts/memcheck.sh), and GNU parallel
-# (`tightfit grade` through a batch engine, tests/io/grade_cli_test.cpp).
+# (`tightfit grade` through a batch engine, tests/io/grade_cli_test.cpp), clang-format and
+# clang-tidy (make format-check, make check-naming: CONTRIBUTING.md).
 CHECK_PKGS=(
   python3 python3-ezdxf python3-meshio python3-numpy python3-jsonschema librsvg2-bin poppler-utils librecad
   chromium
   valgrind
   parallel
+  clang-format clang-tidy
 )
 # Node runs the report's npm packages (three.js, gltf-validator, playwright-core); a
 # machine that already has npm (e.g. a newer Node) keeps it. playwright-core is pinned

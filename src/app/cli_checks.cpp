@@ -54,12 +54,13 @@ std::string parse_error_message(const CLI::App& root, const CLI::ParseError& e,
       if (args[i].starts_with("-")) continue;
       const std::string near = nearest_word(args[i], commands);
       message = "unknown command '" + args[i] + "'" +
-                (near.empty() ? "" : "; did you mean '" + near + "'?") +
-                " (commands: " + [&] {
+                (near.empty() ? "" : "; did you mean '" + near + "'?") + " (commands: " +
+                [&] {
                   std::string list;
                   for (const std::string& c : commands) list += (list.empty() ? "" : ", ") + c;
                   return list;
-                }() + ")";
+                }() +
+                ")";
       return message;
     }
     return message;

@@ -52,7 +52,8 @@ std::string wrap_help_text(const std::string& text, std::size_t width, std::size
   std::size_t begin = 0;
   while (begin <= text.size()) {
     const std::size_t end = text.find('\n', begin);
-    const std::string line = text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    const std::string line =
+        text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
     wrap_line(line, width, column, out);
     if (end == std::string::npos) break;
     out += '\n';

@@ -52,9 +52,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return root.exit(e);  // --help, --version
     // Every command-line mistake is bad input: exit 2, with a suggestion for a typo.
-    std::fprintf(stderr, "error: %s\nRun 'tightfit --help' or 'tightfit COMMAND --help'.\n",
-                 app::parse_error_message(root, e, std::vector<std::string>(argv + 1, argv + argc))
-                     .c_str());
+    std::fprintf(
+        stderr, "error: %s\nRun 'tightfit --help' or 'tightfit COMMAND --help'.\n",
+        app::parse_error_message(root, e, std::vector<std::string>(argv + 1, argv + argc)).c_str());
     return 2;
   } catch (const Interrupted& e) {
     return 128 + e.signal;

@@ -24,8 +24,9 @@ using test::run_cli;
 class BodyCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("tightfit_body_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("tightfit_body_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -39,7 +40,8 @@ class BodyCli : public ::testing::Test {
 
 TEST_F(BodyCli, SpecFileWritesSurfaceVolumeAndSummary) {
   const fs::path spec = write_spec(
-      "sphere.json", R"({"generator": "sphere", "radius": 0.05, "edge_length": 0.01, "core": {"soft_tissue": 0.01}})");
+      "sphere.json",
+      R"({"generator": "sphere", "radius": 0.05, "edge_length": 0.01, "core": {"soft_tissue": 0.01}})");
   const fs::path out = dir_ / "out";
   const CliRun r = run_cli("body " + spec.string() + " --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -66,17 +68,20 @@ TEST_F(BodyCli, SpecFileWritesSurfaceVolumeAndSummary) {
 
 TEST_F(BodyCli, FlagsWithoutSpec) {
   const fs::path out = dir_ / "flags";
-  const CliRun r = run_cli("body --generator cylinder --radius 0.03 --length 0.06 --edge-length 0.01 --soft-tissue 0.01 --out " +
-                    out.string());
+  const CliRun r = run_cli(
+      "body --generator cylinder --radius 0.03 --length 0.06 --edge-length 0.01 --soft-tissue 0.01 "
+      "--out " +
+      out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "body.json"));
 }
 
 TEST_F(BodyCli, MeshFlagIsRelativeToTheCurrentFolder) {
   const fs::path out = dir_ / "head";
-  const CliRun r = run_cli("body --mesh bodies/mh_head_neutral.obj --edge-length 0.02 --soft-tissue 0.02 --out " +
-                           out.string(),
-                           TIGHTFIT_DATA_DIR);
+  const CliRun r = run_cli(
+      "body --mesh bodies/mh_head_neutral.obj --edge-length 0.02 --soft-tissue 0.02 --out " +
+          out.string(),
+      TIGHTFIT_DATA_DIR);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream in(out / "body.json");
   const nlohmann::json summary = nlohmann::json::parse(in);
@@ -85,7 +90,8 @@ TEST_F(BodyCli, MeshFlagIsRelativeToTheCurrentFolder) {
 }
 
 TEST_F(BodyCli, BadSpecExitsWithTwoNamingTheFileAndWritesNothing) {
-  const fs::path spec = write_spec("bad.json", R"({"generator": "cylinder", "radius": "wide", "length": 0.1})");
+  const fs::path spec =
+      write_spec("bad.json", R"({"generator": "cylinder", "radius": "wide", "length": 0.1})");
   const fs::path out = dir_ / "out";
   const CliRun r = run_cli("body " + spec.string() + " --out " + out.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -93,7 +99,9 @@ TEST_F(BodyCli, BadSpecExitsWithTwoNamingTheFileAndWritesNothing) {
   EXPECT_NE(r.output.find("/radius"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
 
-  const fs::path thick = write_spec("thick.json", R"({"generator": "sphere", "radius": 0.02, "edge_length": 0.01, "core": {"soft_tissue": 0.03}})");
+  const fs::path thick = write_spec(
+      "thick.json",
+      R"({"generator": "sphere", "radius": 0.02, "edge_length": 0.01, "core": {"soft_tissue": 0.03}})");
   const CliRun r2 = run_cli("body " + thick.string() + " --out " + out.string());
   EXPECT_EQ(r2.exit_code, 2) << r2.output;
   EXPECT_NE(r2.output.find(thick.string()), std::string::npos) << r2.output;

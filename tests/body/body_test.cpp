@@ -69,16 +69,18 @@ TEST(BodyAcceptance, CylinderWithAnExactCoreForTheLameCheck) {
   for (int t = 0; t < body.volume.num_tets(); ++t) {
     bool all = true;
     for (int c = 0; c < 4; ++c) all = all && pinned[body.volume.tets(t, c)];
-    if (all) pinned_volume += tet_volume(body.volume.vertices.row(body.volume.tets(t, 0)),
-                                         body.volume.vertices.row(body.volume.tets(t, 1)),
-                                         body.volume.vertices.row(body.volume.tets(t, 2)),
-                                         body.volume.vertices.row(body.volume.tets(t, 3)));
+    if (all)
+      pinned_volume += tet_volume(body.volume.vertices.row(body.volume.tets(t, 0)),
+                                  body.volume.vertices.row(body.volume.tets(t, 1)),
+                                  body.volume.vertices.row(body.volume.tets(t, 2)),
+                                  body.volume.vertices.row(body.volume.tets(t, 3)));
   }
   EXPECT_NEAR(pinned_volume, signed_volume(core), 1e-12);
   EXPECT_NEAR(signed_volume(core) / cylinder_volume(core_params), 1.0, 0.01);
   const SurfaceDistance core_distance(core);
   for (int v = n; v < body.num_vertices(); ++v) {
-    const bool on_or_in = v < n + core.num_vertices() || core_distance.contains(body.volume.vertices.row(v));
+    const bool on_or_in =
+        v < n + core.num_vertices() || core_distance.contains(body.volume.vertices.row(v));
     EXPECT_EQ(pinned[v] != 0, on_or_in) << v;
   }
 }
@@ -87,9 +89,10 @@ TEST(BodyAcceptance, CylinderWithAnExactCoreForTheLameCheck) {
 /// threshold: every dihedral angle ≥ 7° (TetGen's target is 12°; the fixed boundary
 /// keeps it from reaching that everywhere: 9.3° measured).
 TEST(BodyAcceptance, MaleLegsAt15mm) {
-  const BodySpec spec = parse_body_spec(
-      nlohmann::json{{"mesh", TIGHTFIT_DATA_DIR "/bodies/mh_legs_male.obj"}, {"edge_length", 0.015}},
-      "", ".", "test");
+  const BodySpec spec =
+      parse_body_spec(nlohmann::json{{"mesh", TIGHTFIT_DATA_DIR "/bodies/mh_legs_male.obj"},
+                                     {"edge_length", 0.015}},
+                      "", ".", "test");
   BuildReport report;
   const Body body = build_body(spec, &report);
   expect_valid_body(body);
@@ -97,7 +100,8 @@ TEST(BodyAcceptance, MaleLegsAt15mm) {
   EXPECT_EQ(stats.inverted_tets, 0);
   EXPECT_GE(stats.min_dihedral_deg, 7.0);
   EXPECT_NEAR(stats.mean_surface_edge, 0.015, 0.003);
-  const double input_volume = signed_volume(read_tri_mesh(TIGHTFIT_DATA_DIR "/bodies/mh_legs_male.obj"));
+  const double input_volume =
+      signed_volume(read_tri_mesh(TIGHTFIT_DATA_DIR "/bodies/mh_legs_male.obj"));
   EXPECT_NEAR(report.input_volume, input_volume, 1e-15);
   EXPECT_NEAR(stats.tet_volume / input_volume, 1.0, 0.02);
   EXPECT_GT(report.feature_edges, 0);  // the rim of the waist cap

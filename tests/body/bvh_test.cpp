@@ -118,7 +118,8 @@ TEST(Bvh, ReadsHierarchyChannelsAndFrames) {
   EXPECT_EQ(motion.joints[1].offset, Vec3(0, 5.5, -1));
   EXPECT_EQ(motion.joints[1].first_channel, 6);
   EXPECT_EQ(motion.joints[1].channels,
-            (std::vector<BvhChannel>{BvhChannel::kZrotation, BvhChannel::kXrotation, BvhChannel::kYrotation}));
+            (std::vector<BvhChannel>{BvhChannel::kZrotation, BvhChannel::kXrotation,
+                                     BvhChannel::kYrotation}));
   EXPECT_EQ(motion.num_channels, 9);
   EXPECT_DOUBLE_EQ(motion.frame_time, 0.05);
   ASSERT_EQ(motion.frames.rows(), 2);
@@ -129,10 +130,11 @@ TEST(Bvh, ReadsHierarchyChannelsAndFrames) {
 }
 
 TEST(Bvh, LocalRotationIsTheProductOfTheChannelsInFileOrder) {
-  const BvhMotion motion =
-      parse_bvh(bvh_one_joint("3 Zrotation Xrotation Yrotation", "Frames: 1\nFrame Time: 0.1\n30 45 60\n"),
-                "one.bvh");
-  const Mat3 expected = bvh_axis(Vec3::UnitZ(), 30) * bvh_axis(Vec3::UnitX(), 45) * bvh_axis(Vec3::UnitY(), 60);
+  const BvhMotion motion = parse_bvh(
+      bvh_one_joint("3 Zrotation Xrotation Yrotation", "Frames: 1\nFrame Time: 0.1\n30 45 60\n"),
+      "one.bvh");
+  const Mat3 expected =
+      bvh_axis(Vec3::UnitZ(), 30) * bvh_axis(Vec3::UnitX(), 45) * bvh_axis(Vec3::UnitY(), 60);
   const Mat3 r = motion.local_rotation(0, 0);
   EXPECT_LT((r - expected).norm(), 1e-12) << r;
   EXPECT_LT((r.transpose() * r - Mat3::Identity()).norm(), 1e-12);
@@ -145,13 +147,15 @@ TEST(Bvh, LocalRotationIsTheProductOfTheChannelsInFileOrder) {
 
 TEST(Bvh, LocalRotationSkipsPositionChannelsAndChecksIndices) {
   const BvhMotion motion = parse_bvh(bvh_two_joints(), "two.bvh");
-  const Mat3 root = bvh_axis(Vec3::UnitZ(), -10) * bvh_axis(Vec3::UnitX(), -20) * bvh_axis(Vec3::UnitY(), -30);
+  const Mat3 root =
+      bvh_axis(Vec3::UnitZ(), -10) * bvh_axis(Vec3::UnitX(), -20) * bvh_axis(Vec3::UnitY(), -30);
   EXPECT_LT((motion.local_rotation(0, 1) - root).norm(), 1e-12);
-  const Mat3 chest = bvh_axis(Vec3::UnitZ(), 40) * bvh_axis(Vec3::UnitX(), 50) * bvh_axis(Vec3::UnitY(), 60);
+  const Mat3 chest =
+      bvh_axis(Vec3::UnitZ(), 40) * bvh_axis(Vec3::UnitX(), 50) * bvh_axis(Vec3::UnitY(), 60);
   EXPECT_LT((motion.local_rotation(1, 0) - chest).norm(), 1e-12);
-  const BvhMotion still = parse_bvh(bvh_one_joint("3 Xposition Yposition Zposition",
-                                                  "Frames: 1\nFrame Time: 0.1\n1 2 3\n"),
-                                    "still.bvh");
+  const BvhMotion still = parse_bvh(
+      bvh_one_joint("3 Xposition Yposition Zposition", "Frames: 1\nFrame Time: 0.1\n1 2 3\n"),
+      "still.bvh");
   EXPECT_EQ(still.local_rotation(0, 0), Mat3::Identity());
   EXPECT_THROW(motion.local_rotation(2, 0), std::out_of_range);
   EXPECT_THROW(motion.local_rotation(-1, 0), std::out_of_range);
@@ -161,22 +165,25 @@ TEST(Bvh, LocalRotationSkipsPositionChannelsAndChecksIndices) {
 
 TEST(Bvh, AcceptsCrlfAnyChannelCaseAndValuesSplitOverLines) {
   std::string crlf;
-  for (const char c : bvh_two_joints()) crlf += (c == '\n') ? std::string("\r\n") : std::string(1, c);
+  for (const char c : bvh_two_joints())
+    crlf += (c == '\n') ? std::string("\r\n") : std::string(1, c);
   const BvhMotion a = parse_bvh(crlf, "crlf.bvh");
   const BvhMotion b = parse_bvh(bvh_two_joints(), "lf.bvh");
   EXPECT_EQ(a.frames, b.frames);
   EXPECT_EQ(a.joints.size(), 2u);
 
-  const BvhMotion split = parse_bvh(
-      bvh_one_joint("3 zROTATION xrotation YRotation", "Frames: 2\nFrame Time: 0.1\n1\n2 3 4\n\n  5\t6\n"),
-      "split.bvh");
+  const BvhMotion split =
+      parse_bvh(bvh_one_joint("3 zROTATION xrotation YRotation",
+                              "Frames: 2\nFrame Time: 0.1\n1\n2 3 4\n\n  5\t6\n"),
+                "split.bvh");
   ASSERT_EQ(split.frames.rows(), 2);
   EXPECT_EQ(split.frames(0, 0), 1.0);
   EXPECT_EQ(split.frames(1, 0), 4.0);
   EXPECT_EQ(split.frames(1, 2), 6.0);
   EXPECT_EQ(split.joints[0].channels[1], BvhChannel::kXrotation);
 
-  const BvhMotion empty = parse_bvh(bvh_one_joint("0", "Frames: 0\nFrame Time: 0.1\n"), "empty.bvh");
+  const BvhMotion empty =
+      parse_bvh(bvh_one_joint("0", "Frames: 0\nFrame Time: 0.1\n"), "empty.bvh");
   EXPECT_EQ(empty.num_frames(), 0);
   EXPECT_EQ(empty.num_channels, 0);
 }
@@ -185,29 +192,38 @@ TEST(Bvh, ReportsMalformedHierarchiesWithTheirLine) {
   const std::string motion = "Frames: 1\nFrame Time: 0.1\n0 0 0\n";
   bvh_expect_error(bvh_one_joint("3 Zrotation Xrotation Wrotation", motion), "unknown channel");
   bvh_expect_error(bvh_one_joint("3 Zrotation Xrotation Zrotation", motion), "listed twice");
-  bvh_expect_error(bvh_one_joint("3 Zrotation Xrotation", motion), "CHANNELS 3 but 2 channel names");
+  bvh_expect_error(bvh_one_joint("3 Zrotation Xrotation", motion),
+                   "CHANNELS 3 but 2 channel names");
   bvh_expect_error(bvh_one_joint("3 Zrotation\nXrotation Yrotation", motion), "CHANNELS 3 but 1");
   bvh_expect_error(bvh_one_joint("7 Zrotation Xrotation Yrotation", motion), "0..6");
-  bvh_expect_error("HIERARCHY\nROOT hips\n{\n\tOFFSET 0 nan 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
-                   "not finite");
-  bvh_expect_error("HIERARCHY\nROOT hips\n{\n\tOFFSET 0 inf 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
-                   "not finite");
+  bvh_expect_error(
+      "HIERARCHY\nROOT hips\n{\n\tOFFSET 0 nan 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
+      "not finite");
+  bvh_expect_error(
+      "HIERARCHY\nROOT hips\n{\n\tOFFSET 0 inf 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
+      "not finite");
   bvh_expect_error("HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
                    "OFFSET needs 3 numbers, found 2");
-  bvh_expect_error("HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
-                   "found 4");
-  bvh_expect_error("HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0\n\tROTATE 1\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
-                   "unknown keyword \"ROTATE\"");
-  bvh_expect_error("HIERARCHY\nROOT\n{\n\tOFFSET 0 0 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n", "without a name");
-  bvh_expect_error("HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0\n\tJOINT\n\t{\n\t\tOFFSET 0 0 0\n\t}\n}\n"
-                   "MOTION\nFrames: 0\nFrame Time: 1\n",
-                   "JOINT without a name");
-  bvh_expect_error("HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0\n\tJOINT hips\n\t{\n\t\tOFFSET 0 0 0\n\t}\n}\n"
-                   "MOTION\nFrames: 0\nFrame Time: 1\n",
-                   "duplicate joint name \"hips\"");
-  bvh_expect_error("HIERARCHY\nROOT a\n{\n\tOFFSET 0 0 0\n}\nROOT b\n{\n\tOFFSET 0 0 0\n}\n"
-                   "MOTION\nFrames: 0\nFrame Time: 1\n",
-                   "second ROOT");
+  bvh_expect_error(
+      "HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
+      "found 4");
+  bvh_expect_error(
+      "HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0\n\tROTATE 1\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
+      "unknown keyword \"ROTATE\"");
+  bvh_expect_error("HIERARCHY\nROOT\n{\n\tOFFSET 0 0 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
+                   "without a name");
+  bvh_expect_error(
+      "HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0\n\tJOINT\n\t{\n\t\tOFFSET 0 0 0\n\t}\n}\n"
+      "MOTION\nFrames: 0\nFrame Time: 1\n",
+      "JOINT without a name");
+  bvh_expect_error(
+      "HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0\n\tJOINT hips\n\t{\n\t\tOFFSET 0 0 0\n\t}\n}\n"
+      "MOTION\nFrames: 0\nFrame Time: 1\n",
+      "duplicate joint name \"hips\"");
+  bvh_expect_error(
+      "HIERARCHY\nROOT a\n{\n\tOFFSET 0 0 0\n}\nROOT b\n{\n\tOFFSET 0 0 0\n}\n"
+      "MOTION\nFrames: 0\nFrame Time: 1\n",
+      "second ROOT");
   bvh_expect_error("HIERARCHY\nROOT hips\n\tOFFSET 0 0 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n",
                    "expected '{' after ROOT \"hips\"");
   bvh_expect_error("HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0\nMOTION\nFrames: 0\nFrame Time: 1\n",
@@ -223,8 +239,10 @@ TEST(Bvh, ReportsMalformedHierarchiesWithTheirLine) {
 TEST(Bvh, ReportsMalformedMotionWithTheirLine) {
   const std::string channels = "3 Zrotation Xrotation Yrotation";
   bvh_expect_error(bvh_one_joint(channels, "Frames: -1\nFrame Time: 0.1\n"), "negative");
-  bvh_expect_error(bvh_one_joint(channels, "Frames: 1.5\nFrame Time: 0.1\n0 0 0\n"), "not an integer");
-  bvh_expect_error(bvh_one_joint(channels, "Frames: many\nFrame Time: 0.1\n0 0 0\n"), "not an integer");
+  bvh_expect_error(bvh_one_joint(channels, "Frames: 1.5\nFrame Time: 0.1\n0 0 0\n"),
+                   "not an integer");
+  bvh_expect_error(bvh_one_joint(channels, "Frames: many\nFrame Time: 0.1\n0 0 0\n"),
+                   "not an integer");
   bvh_expect_error(bvh_one_joint(channels, "Frames: 99999999999\nFrame Time: 0.1\n"), "too many");
   bvh_expect_error(bvh_one_joint(channels, "Frames: 1\nFrame Time: 0\n0 0 0\n"), "must be > 0");
   bvh_expect_error(bvh_one_joint(channels, "Frames: 1\nFrame Time: -0.1\n0 0 0\n"), "must be > 0");
@@ -232,16 +250,20 @@ TEST(Bvh, ReportsMalformedMotionWithTheirLine) {
   bvh_expect_error(bvh_one_joint(channels, "Frames: 1\nFrame Time: inf\n0 0 0\n"), "not finite");
   bvh_expect_error(bvh_one_joint(channels, "Frames: 1\n0 0 0\n"), "expected \"Frame Time:\"");
   bvh_expect_error(bvh_one_joint(channels, "Frame Time: 0.1\n0 0 0\n"), "expected \"Frames:\"");
-  bvh_expect_error(bvh_one_joint(channels, "Frames: 2\nFrame Time: 0.1\n0 0 0\n0 0 0 0\n"), "extra data");
+  bvh_expect_error(bvh_one_joint(channels, "Frames: 2\nFrame Time: 0.1\n0 0 0\n0 0 0 0\n"),
+                   "extra data");
   bvh_expect_error(bvh_one_joint(channels, "Frames: 2\nFrame Time: 0.1\n0 0 0\n0 nan 0\n"),
                    "frame 2: \"nan\" is not finite");
-  bvh_expect_error(bvh_one_joint(channels, "Frames: 1\nFrame Time: 0.1\n0 x 0\n"), "\"x\" is not a number");
+  bvh_expect_error(bvh_one_joint(channels, "Frames: 1\nFrame Time: 0.1\n0 x 0\n"),
+                   "\"x\" is not a number");
   // Truncated: the first check (the file cannot hold them) and the one while reading.
   bvh_expect_error(bvh_one_joint(channels, "Frames: 3\nFrame Time: 0.1\n0 0 0\n0 0\n"),
                    "expected 9 values (3 frames x 3 channels), found 5");
-  bvh_expect_error(bvh_one_joint(channels, "Frames: 3\nFrame Time: 0.1\n0 0 0\n0 0                   \n"),
-                   "expected 9 values (3 frames x 3 channels), found 5");
-  const std::string line = bvh_error(bvh_one_joint(channels, "Frames: 3\nFrame Time: 0.1\n0 0 0\n0 0\n"));
+  bvh_expect_error(
+      bvh_one_joint(channels, "Frames: 3\nFrame Time: 0.1\n0 0 0\n0 0                   \n"),
+      "expected 9 values (3 frames x 3 channels), found 5");
+  const std::string line =
+      bvh_error(bvh_one_joint(channels, "Frames: 3\nFrame Time: 0.1\n0 0 0\n0 0\n"));
   EXPECT_NE(line.find("line 12: "), std::string::npos) << line;  // Frames: 3
 }
 
@@ -249,7 +271,8 @@ TEST(Bvh, AHugeFrameCountFailsWithoutAllocating) {
   std::string joints;
   std::string closes;
   for (int i = 0; i < 33; ++i) {
-    joints += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n";
+    joints += "JOINT j" + std::to_string(i) +
+              "\n{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n";
     closes += "}\n";
   }
   const std::string text = "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 0\n" + joints + closes +

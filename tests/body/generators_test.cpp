@@ -20,7 +20,8 @@ double min_triangle_angle_deg(const TriMesh& m) {
     for (int i = 0; i < 3; ++i) {
       const Vec3 a = m.vertices.row(m.faces(f, i)), b = m.vertices.row(m.faces(f, (i + 1) % 3)),
                  c = m.vertices.row(m.faces(f, (i + 2) % 3));
-      min_angle = std::min(min_angle, std::acos((b - a).normalized().dot((c - a).normalized())) * 180.0 / M_PI);
+      min_angle = std::min(
+          min_angle, std::acos((b - a).normalized().dot((c - a).normalized())) * 180.0 / M_PI);
     }
   return min_angle;
 }
@@ -54,7 +55,7 @@ TEST(Generators, FlatCappedCylinderAlongAnotherAxis) {
   CylinderParams p;
   p.radius = 0.03;
   p.length = 0.1;
-  p.caps = CapStyle::Flat;
+  p.caps = CapStyle::kFlat;
   p.axis = Vec3(1, 1, 0);
   p.center = Vec3(0.1, -0.2, 0.3);
   p.fit_limit = false;
@@ -127,7 +128,7 @@ TEST(Generators, RejectsBadParameters) {
   c.radius = -1.0;
   EXPECT_THROW(cylinder_surface(c), std::invalid_argument);
   c = CylinderParams();
-  c.caps = CapStyle::Flat;
+  c.caps = CapStyle::kFlat;
   c.length = 0.0;
   EXPECT_THROW(cylinder_surface(c), std::invalid_argument);
   c = CylinderParams();

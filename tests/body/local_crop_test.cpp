@@ -45,7 +45,8 @@ struct RigBody {
   /// The plane across the left forearm 85 % down it, keeping the elbow's side.
   CropPlane left_wrist(bool local) const {
     const BoneSegment& forearm = skeleton.at("lowerarm02.L");
-    return {forearm.head + 0.85 * (forearm.tail - forearm.head), -(forearm.tail - forearm.head).normalized(), local};
+    return {forearm.head + 0.85 * (forearm.tail - forearm.head),
+            -(forearm.tail - forearm.head).normalized(), local};
   }
 };
 
@@ -53,7 +54,8 @@ TEST(LocalCrop, TakesOffTheHandAndLeavesTheLegsBehindTheSamePlane) {
   const RigBody body;
   const CropPlane plane = body.left_wrist(true);
   const TriMesh cropped = crop_beyond_nearest_loop(body.surface, plane, "wrist");
-  EXPECT_TRUE(surface_problems(cropped).empty());  // closed, manifold, outward, no self-intersection
+  EXPECT_TRUE(
+      surface_problems(cropped).empty());  // closed, manifold, outward, no self-intersection
 
   // In an A-pose the plane across the wrist also passes behind the feet: a plain crop
   // takes them too, the local one only the hand.
@@ -74,7 +76,8 @@ TEST(LocalCrop, TakesOffTheHandAndLeavesTheLegsBehindTheSamePlane) {
     const Vec3 x = body.surface.vertices.row(v).transpose();
     if (n.dot(x - plane.point) >= 0.0) continue;
     bool kept = false;
-    for (int w = 0; w < cropped.num_vertices() && !kept; ++w) kept = (cropped.vertices.row(w).transpose() - x).norm() == 0.0;
+    for (int w = 0; w < cropped.num_vertices() && !kept; ++w)
+      kept = (cropped.vertices.row(w).transpose() - x).norm() == 0.0;
     if (!kept) {
       ++removed;
       EXPECT_LT((x - plane.point).norm(), 0.25);
@@ -86,7 +89,8 @@ TEST(LocalCrop, TakesOffTheHandAndLeavesTheLegsBehindTheSamePlane) {
   for (int f = 0; f < cropped.num_faces(); ++f) {
     bool on_plane = true;
     for (int c = 0; c < 3; ++c)
-      on_plane = on_plane && std::abs(n.dot(cropped.vertices.row(cropped.faces(f, c)).transpose() - plane.point)) < 1e-12;
+      on_plane = on_plane && std::abs(n.dot(cropped.vertices.row(cropped.faces(f, c)).transpose() -
+                                            plane.point)) < 1e-12;
     if (on_plane) cap_area += areas[f];
   }
   EXPECT_GT(cap_area, 5e-4);  // a wrist's cross-section, about 2 cm by 3 cm or more
@@ -131,8 +135,10 @@ TEST(LocalCrop, ALoopAroundAHandleOrAPlaneThatMissesIsAnError) {
     crop_beyond_nearest_loop(ring, {Vec3(0.2, 0, 0), Vec3::UnitZ(), true}, "crop plane 0");
     FAIL() << "cut through a handle accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("crop plane 0: the cut loop nearest the point does not separate"),
-              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(
+                  "crop plane 0: the cut loop nearest the point does not separate"),
+              std::string::npos)
+        << e.what();
   }
   try {
     crop_beyond_nearest_loop(ring, {Vec3(0, 1, 0), Vec3::UnitY(), true}, "crop plane 0");
@@ -147,15 +153,18 @@ TEST(LocalCrop, ThePartBeyondTheNearestLoopGoesWholeEvenWhereThePlaneCrossesItAg
   // x = ±0.2. The plane z = 0.1 crosses both arms (x ≈ ±0.17); keeping z < 0.1 with the
   // point on the right arm, the surface beyond the right loop is the arc over the top
   // and the whole left arm, which hangs on it: only the right arm's lower end stays.
-  const TriMesh u = crop_and_cap(torus(0.2, 0.05, 48, 16), {CropPlane{Vec3(0, 0, -0.01), Vec3::UnitZ(), false}});
+  const TriMesh u =
+      crop_and_cap(torus(0.2, 0.05, 48, 16), {CropPlane{Vec3(0, 0, -0.01), Vec3::UnitZ(), false}});
   ASSERT_TRUE(surface_problems(u).empty());
   for (const double side : {1.0, -1.0}) {
     SCOPED_TRACE(side);
-    const TriMesh one = crop_beyond_nearest_loop(u, {Vec3(side * 0.18, 0, 0.1), -Vec3::UnitZ(), true}, "crop");
+    const TriMesh one =
+        crop_beyond_nearest_loop(u, {Vec3(side * 0.18, 0, 0.1), -Vec3::UnitZ(), true}, "crop");
     EXPECT_TRUE(surface_problems(one).empty());
     EXPECT_NEAR(one.vertices.col(2).maxCoeff(), 0.1, 1e-9);  // cut and capped at z = 0.1
     // Every vertex left is on the point's arm, at least 0.1 m off the ring's axis.
-    const double off_axis = side > 0 ? one.vertices.col(0).minCoeff() : -one.vertices.col(0).maxCoeff();
+    const double off_axis =
+        side > 0 ? one.vertices.col(0).minCoeff() : -one.vertices.col(0).maxCoeff();
     EXPECT_GT(off_axis, 0.1);
   }
 }

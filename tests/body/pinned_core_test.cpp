@@ -84,8 +84,8 @@ TEST(PinnedCore, BoneSamplesBecomePinnedVertices) {
   EXPECT_LE(samples.col(2).cwiseAbs().maxCoeff(), 0.14 + 1e-12);
   const Cylinder c = make_cylinder(samples);
   const SurfaceDistance distance(c.surface);
-  const std::vector<int> pinned =
-      pinned_core(c.volume, c.surface.num_vertices(), distance, o, static_cast<int>(samples.rows()));
+  const std::vector<int> pinned = pinned_core(c.volume, c.surface.num_vertices(), distance, o,
+                                              static_cast<int>(samples.rows()));
   std::vector<int> expected;
   for (int i = 0; i < samples.rows(); ++i) expected.push_back(c.surface.num_vertices() + i);
   EXPECT_EQ(pinned, expected);

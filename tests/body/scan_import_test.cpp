@@ -38,14 +38,16 @@ TriMesh join(const std::vector<TriMesh>& parts) {
 }
 
 TEST(ScanImport, ComponentsAreSplitAndRenumbered) {
-  const TriMesh big = test::sphere_mesh(0.1, Vec3::Zero(), 0.03), small = test::sphere_mesh(0.02, Vec3(1, 0, 0), 0.01);
+  const TriMesh big = test::sphere_mesh(0.1, Vec3::Zero(), 0.03),
+                small = test::sphere_mesh(0.02, Vec3(1, 0, 0), 0.01);
   const std::vector<MeshComponent> parts = connected_components(join({small, big}));
   ASSERT_EQ(parts.size(), 2u);
   EXPECT_EQ(parts[0].mesh.num_faces(), std::max(big.num_faces(), small.num_faces()));
   for (const MeshComponent& c : parts) {
     EXPECT_EQ(c.mesh.faces.maxCoeff() + 1, c.mesh.num_vertices());
     EXPECT_NEAR(std::abs(signed_volume(c.mesh)),
-                std::abs(signed_volume(c.mesh.num_faces() == big.num_faces() ? big : small)), 1e-15);
+                std::abs(signed_volume(c.mesh.num_faces() == big.num_faces() ? big : small)),
+                1e-15);
   }
 }
 
@@ -56,7 +58,8 @@ TEST(ScanImport, KeepsTheLargestClosedPartWithAWarning) {
   TriMesh sheet = test::sphere_mesh(0.3, Vec3(0, -2, 0), 0.01);
   sheet.faces.conservativeResize(sheet.num_faces() - 1, 3);
   std::vector<std::string> warnings;
-  const TriMesh kept = keep_largest_closed_component(join({blob, sheet, body}), "scan.obj", warnings);
+  const TriMesh kept =
+      keep_largest_closed_component(join({blob, sheet, body}), "scan.obj", warnings);
   EXPECT_EQ(kept.num_faces(), body.num_faces());
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("scan.obj: the mesh has 3 separate parts"), std::string::npos)
@@ -71,7 +74,8 @@ TEST(ScanImport, KeepsTheLargestClosedPartWithAWarning) {
 }
 
 TEST(ScanImport, UnitsAreGuessedFromTheBodySize) {
-  TriMesh legs = read_tri_mesh(std::filesystem::path(TIGHTFIT_DATA_DIR) / "bodies/mh_legs_male.obj");
+  TriMesh legs =
+      read_tri_mesh(std::filesystem::path(TIGHTFIT_DATA_DIR) / "bodies/mh_legs_male.obj");
   std::vector<std::string> warnings;
   EXPECT_EQ(guess_units_to_metres(legs, "legs.obj", warnings), 1.0);
   EXPECT_TRUE(warnings.empty());

@@ -222,7 +222,8 @@ TEST(ScanRepair, AHoleTooLargeToFillIsAnError) {
       << message;
   EXPECT_TRUE(contains(message, "holes are filled up to a boundary of 0.2")) << message;
   // A small ball whose top third is missing: no closed part is kept in its place.
-  const TriMesh cap = without_faces(test::sphere_mesh(0.1, Vec3::Zero(), 0.02), [](const Vec3& p) { return p.z() > 0.05; });
+  const TriMesh cap = without_faces(test::sphere_mesh(0.1, Vec3::Zero(), 0.02),
+                                    [](const Vec3& p) { return p.z() > 0.05; });
   EXPECT_THROW(import_scan(cap, "x", 0.0, warnings), InputError);
 }
 

@@ -13,8 +13,8 @@ namespace {
 const std::filesystem::path kData = TIGHTFIT_DATA_DIR;
 
 TEST(SkinWeights, MakeHumanWeightsOnTheRegularBody) {
-  const SkinWeights rig = read_skin_weights(kData / "bodies/mh_male_regular.obj",
-                                            kData / "rig/default_weights.mhw");
+  const SkinWeights rig =
+      read_skin_weights(kData / "bodies/mh_male_regular.obj", kData / "rig/default_weights.mhw");
   EXPECT_EQ(rig.vertices.rows(), 13380);
   EXPECT_GT(rig.bones.size(), 100u);
   ASSERT_TRUE(rig.bones.count("upperleg01.L"));
@@ -61,7 +61,8 @@ TEST(SkinWeights, MalformedFilesAreInputErrorsNamingThePath) {
   EXPECT_NE(error_of(R"({"weights": {"a": [[1, -0.5]]}})").find("/weights/a/0"), std::string::npos);
   EXPECT_NE(error_of(R"({"weights": {"a": [[-1, 0.5]]}})").find("negative vertex"),
             std::string::npos);
-  EXPECT_NE(error_of(R"({"weights": {"a": [1, 0.5]}})").find("[vertex, weight]"), std::string::npos);
+  EXPECT_NE(error_of(R"({"weights": {"a": [1, 0.5]}})").find("[vertex, weight]"),
+            std::string::npos);
   EXPECT_EQ(error_of(R"({"weights": {"a": [[1, 0.5], [99999999, 1]]}})"), "");
   std::filesystem::remove_all(dir);
 }

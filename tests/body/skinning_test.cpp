@@ -53,8 +53,10 @@ const KneeBand& knee_band() {
 TEST(SkeletonPose, EulerAnglesComposeInTheOrderNamed) {
   const Vec3 a(30, 45, 60);
   const auto rad = [](double d) { return d * EIGEN_PI / 180.0; };
-  const Mat3 expected = (Eigen::AngleAxisd(rad(45), Vec3::UnitY()) * Eigen::AngleAxisd(rad(30), Vec3::UnitZ()) *
-                         Eigen::AngleAxisd(rad(60), Vec3::UnitX())).toRotationMatrix();
+  const Mat3 expected =
+      (Eigen::AngleAxisd(rad(45), Vec3::UnitY()) * Eigen::AngleAxisd(rad(30), Vec3::UnitZ()) *
+       Eigen::AngleAxisd(rad(60), Vec3::UnitX()))
+          .toRotationMatrix();
   EXPECT_LT((euler_rotation(Vec3(45, 30, 60), "YZX") - expected).norm(), 1e-14);
   EXPECT_LT((euler_rotation(a, "XYZ").determinant() - 1.0), 1e-14);
   EXPECT_THROW(euler_rotation(a, "XXZ"), std::invalid_argument);
@@ -93,20 +95,27 @@ TEST(Skinning, TheRestPoseReproducesTheMeshAndWeightsSumToOne) {
     ASSERT_NEAR(total, 1.0, 1e-12) << i;
   }
   const auto rest = pose_skeleton(skinning_skeleton(), {}, "test");
-  EXPECT_EQ(apply_motions(blend_motions(w, rest, SkinningMethod::kDualQuaternion), rig.vertices), rig.vertices);
-  EXPECT_LT((apply_motions(blend_motions(w, rest, SkinningMethod::kLinearBlend), rig.vertices) - rig.vertices)
-                .cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_EQ(apply_motions(blend_motions(w, rest, SkinningMethod::kDualQuaternion), rig.vertices),
+            rig.vertices);
+  EXPECT_LT((apply_motions(blend_motions(w, rest, SkinningMethod::kLinearBlend), rig.vertices) -
+             rig.vertices)
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-14);
 }
 
 TEST(Skinning, CroppedBodiesGetWeightsOnTheSurfaceAndHarmonicOnesInside) {
   const KneeBand& band = knee_band();
   ASSERT_EQ(band.weights.num_points(), band.body.num_vertices());
-  const VecX leg = band.weights.summed({"upperleg01.L", "upperleg02.L", "lowerleg01.L", "lowerleg02.L"});
+  const VecX leg =
+      band.weights.summed({"upperleg01.L", "upperleg02.L", "lowerleg01.L", "lowerleg02.L"});
   for (int v = 0; v < band.body.num_vertices(); ++v) {
     double total = 0.0;
-    for (int k = band.weights.offsets[v]; k < band.weights.offsets[v + 1]; ++k) total += band.weights.weight[k];
+    for (int k = band.weights.offsets[v]; k < band.weights.offsets[v + 1]; ++k)
+      total += band.weights.weight[k];
     ASSERT_NEAR(total, 1.0, 1e-12) << v;
-    EXPECT_GT(leg[v], 0.9) << "vertex " << v << " of the left knee band is not moved by the left leg";
+    EXPECT_GT(leg[v], 0.9) << "vertex " << v
+                           << " of the left knee band is not moved by the left leg";
   }
   // The knee's weights blend thigh and shin across the joint.
   const VecX shin = band.weights.summed({"lowerleg01.L"});
@@ -116,9 +125,12 @@ TEST(Skinning, CroppedBodiesGetWeightsOnTheSurfaceAndHarmonicOnesInside) {
 
 TEST(Skinning, DualQuaternionsKeepTheKneesVolumeAt90DegreesWhereLinearBlendLosesIt) {
   const KneeBand& band = knee_band();
-  const auto knee = pose_skeleton(skinning_skeleton(), {{"lowerleg01.L", euler_rotation(Vec3(90, 0, 0), "XYZ")}}, "test");
-  const PosedBody dqs = pose_body(band.body, band.body.volume.vertices, band.weights, knee, SkinningMethod::kDualQuaternion);
-  const PosedBody lbs = pose_body(band.body, band.body.volume.vertices, band.weights, knee, SkinningMethod::kLinearBlend);
+  const auto knee = pose_skeleton(
+      skinning_skeleton(), {{"lowerleg01.L", euler_rotation(Vec3(90, 0, 0), "XYZ")}}, "test");
+  const PosedBody dqs = pose_body(band.body, band.body.volume.vertices, band.weights, knee,
+                                  SkinningMethod::kDualQuaternion);
+  const PosedBody lbs = pose_body(band.body, band.body.volume.vertices, band.weights, knee,
+                                  SkinningMethod::kLinearBlend);
   EXPECT_NEAR(dqs.volume_ratio, 1.0, 0.05);
   EXPECT_GT(std::abs(lbs.volume_ratio - 1.0), std::abs(dqs.volume_ratio - 1.0));
   // The ankle end of the band (0.17 m below the knee) swung backwards (−z) by about that.
@@ -137,8 +149,10 @@ TEST(Skinning, AKneeBentBy45DegreesInvertsNoTet) {
   // At 90° the back of the knee folds into itself (a few surface tets there invert: the
   // skinned tissue interpenetrates, as real tissue would be squashed); at 45° it does not.
   const KneeBand& band = knee_band();
-  const auto knee = pose_skeleton(skinning_skeleton(), {{"lowerleg01.L", euler_rotation(Vec3(45, 0, 0), "XYZ")}}, "test");
-  const PosedBody dqs = pose_body(band.body, band.body.volume.vertices, band.weights, knee, SkinningMethod::kDualQuaternion);
+  const auto knee = pose_skeleton(
+      skinning_skeleton(), {{"lowerleg01.L", euler_rotation(Vec3(45, 0, 0), "XYZ")}}, "test");
+  const PosedBody dqs = pose_body(band.body, band.body.volume.vertices, band.weights, knee,
+                                  SkinningMethod::kDualQuaternion);
   EXPECT_EQ(dqs.inverted_tets, 0);
   EXPECT_GT(dqs.min_volume_ratio, 0.2);
   EXPECT_NO_THROW(check_posed_body(dqs, band.body, "knee", "test"));
@@ -146,8 +160,10 @@ TEST(Skinning, AKneeBentBy45DegreesInvertsNoTet) {
 
 TEST(Skinning, LinearBlendCollapsesAHalfTurnTwistAndThePoseCheckSaysSo) {
   const KneeBand& band = knee_band();
-  const auto twist = pose_skeleton(skinning_skeleton(), {{"lowerleg01.L", euler_rotation(Vec3(0, 180, 0), "XYZ")}}, "test");
-  const PosedBody lbs = pose_body(band.body, band.body.volume.vertices, band.weights, twist, SkinningMethod::kLinearBlend);
+  const auto twist = pose_skeleton(
+      skinning_skeleton(), {{"lowerleg01.L", euler_rotation(Vec3(0, 180, 0), "XYZ")}}, "test");
+  const PosedBody lbs = pose_body(band.body, band.body.volume.vertices, band.weights, twist,
+                                  SkinningMethod::kLinearBlend);
   EXPECT_GT(lbs.inverted_tets, 0);
   try {
     check_posed_body(lbs, band.body, "twist", "scene.json");
@@ -156,7 +172,6 @@ TEST(Skinning, LinearBlendCollapsesAHalfTurnTwistAndThePoseCheckSaysSo) {
     EXPECT_NE(std::string(e.what()).find("pose \"twist\" inverts"), std::string::npos) << e.what();
   }
 }
-
 
 TEST(BvhPose, TheTPoseFileLiftsTheArmsOfTheBodysSkeletonToTheHorizontal) {
   const auto& skeleton = skinning_skeleton();
@@ -184,12 +199,14 @@ TEST(BvhPose, AFileOfAnotherSkeletonIsRefused) {
   const BvhMotion bench = read_bvh(TIGHTFIT_DATA_DIR "/rig/benchmark.bvh");
   std::map<std::string, BoneSegment> renamed;
   int k = 0;
-  for (const auto& [name, bone] : skinning_skeleton()) renamed[k++ % 3 == 0 ? name : "other." + name] = bone;
+  for (const auto& [name, bone] : skinning_skeleton())
+    renamed[k++ % 3 == 0 ? name : "other." + name] = bone;
   try {
     fit_bvh_frame(bench, renamed);
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("are not bones of the skeleton"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("are not bones of the skeleton"), std::string::npos)
+        << e.what();
   }
   // The same joint names on a skeleton of other proportions: the fit is refused.
   auto stretched = skinning_skeleton();

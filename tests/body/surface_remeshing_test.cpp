@@ -64,7 +64,8 @@ TEST(RemeshIsotropic, ReachesTheTargetEdgeLengthOnTheInputSurface) {
   EXPECT_GT(e.min, 0.3 * o.edge_length);
   EXPECT_LT(e.max, 1.5 * o.edge_length);
   const SurfaceDistance input(coarse);
-  for (int v = 0; v < r.mesh.num_vertices(); ++v) EXPECT_LT(input.distance(r.mesh.vertices.row(v)), 1e-9);
+  for (int v = 0; v < r.mesh.num_vertices(); ++v)
+    EXPECT_LT(input.distance(r.mesh.vertices.row(v)), 1e-9);
   EXPECT_NEAR(signed_volume(r.mesh) / signed_volume(coarse), 1.0, 0.02);
 }
 
@@ -84,7 +85,7 @@ TEST(RemeshIsotropic, CapBorderAndCapStayInTheirPlane) {
 
 TEST(RemeshIsotropic, ClosedCreaseLoopsAreKept) {
   CylinderParams p;
-  p.caps = CapStyle::Flat;
+  p.caps = CapStyle::kFlat;
   p.radius = 0.05;
   p.length = 0.2;
   p.edge_length = 0.02;
@@ -93,7 +94,8 @@ TEST(RemeshIsotropic, ClosedCreaseLoopsAreKept) {
   RemeshOptions o;
   o.edge_length = 0.01;
   const RemeshResult r = remesh_isotropic(cyl, o);
-  EXPECT_EQ(r.feature_edges, 2 * static_cast<int>(std::lround(2 * M_PI * p.radius / p.edge_length)));
+  EXPECT_EQ(r.feature_edges,
+            2 * static_cast<int>(std::lround(2 * M_PI * p.radius / p.edge_length)));
   // The rims stay sharp: every vertex is on the cylinder or on a cap disc, and the caps
   // stay at z = ±L/2.
   int on_rim = 0;
@@ -102,7 +104,9 @@ TEST(RemeshIsotropic, ClosedCreaseLoopsAreKept) {
     const double rho = std::hypot(x.x(), x.y());
     EXPECT_LE(std::abs(x.z()), 0.5 * p.length + 1e-12);
     EXPECT_LE(rho, p.radius + 1e-12);
-    if (std::abs(std::abs(x.z()) - 0.5 * p.length) < 1e-12 && rho > p.radius * std::cos(M_PI / 16) - 1e-12) ++on_rim;
+    if (std::abs(std::abs(x.z()) - 0.5 * p.length) < 1e-12 &&
+        rho > p.radius * std::cos(M_PI / 16) - 1e-12)
+      ++on_rim;
   }
   EXPECT_GT(on_rim, 2 * 16);
   EXPECT_NEAR(signed_volume(r.mesh) / signed_volume(cyl), 1.0, 0.01);

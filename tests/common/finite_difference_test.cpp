@@ -57,4 +57,3 @@ TEST(AtomicFile, LeavesNoPartialFileOnFailure) {
 
 }  // namespace
 }  // namespace tightfit::test
-

@@ -66,8 +66,9 @@ std::string finite_output_error(Write write) {
 }
 
 TEST_F(FiniteOutput, JsonWithANaNIsRefusedNamingTheFileAndThePathAndLeavesNoFile) {
-  nlohmann::json doc = {{"history", nlohmann::json::array({{{"value", 1.5}}, {{"value", kOutNaN}}})},
-                        {"name", "run"}};
+  nlohmann::json doc = {
+      {"history", nlohmann::json::array({{{"value", 1.5}}, {{"value", kOutNaN}}})},
+      {"name", "run"}};
   const fs::path file = dir_ / "history.json";
   const std::string what = finite_output_error([&] { write_json_atomically(file, doc, 2); });
   EXPECT_NE(what.find(file.string() + ": not written: non-finite number (nan) at /history/1/value"),
@@ -81,8 +82,9 @@ TEST_F(FiniteOutput, AFileAlreadyThereStaysAsItWas) {
   write_json_atomically(file, {{"objective", 0.25}}, 2);
   const std::string before = read_output_file(file);
   EXPECT_EQ(nlohmann::json::parse(before)["objective"].get<double>(), 0.25);
-  const std::string what =
-      finite_output_error([&] { write_json_atomically(file, {{"objective", -kOutInf}}, 2); });
+  const std::string what = finite_output_error([&] {
+    write_json_atomically(file, {{"objective", -kOutInf}}, 2);
+  });
   EXPECT_NE(what.find("(-inf) at /objective"), std::string::npos) << what;
   EXPECT_EQ(read_output_file(file), before);
   EXPECT_EQ(listing(), "result.json ");
@@ -93,7 +95,8 @@ TEST_F(FiniteOutput, JsonPointersEscapeKeysAndNameTheRoot) {
     write_json_atomically(dir_ / "a.json", {{"a/b~c", {{"x", kOutInf}}}});
   });
   EXPECT_NE(what.find("(inf) at /a~1b~0c/x"), std::string::npos) << what;
-  what = finite_output_error([&] { write_json_atomically(dir_ / "b.json", nlohmann::json(kOutNaN)); });
+  what =
+      finite_output_error([&] { write_json_atomically(dir_ / "b.json", nlohmann::json(kOutNaN)); });
   EXPECT_NE(what.find("(nan) at /"), std::string::npos) << what;
   EXPECT_EQ(listing(), "");
 }

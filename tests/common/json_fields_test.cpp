@@ -10,7 +10,8 @@ namespace tightfit {
 namespace {
 
 TEST(JsonFields, ReadsTypedFieldsWithDefaults) {
-  const auto j = nlohmann::json::parse(R"({"a": 2.5, "n": 3, "s": "x", "v": [1,2,3], "o": {"b": true}})");
+  const auto j =
+      nlohmann::json::parse(R"({"a": 2.5, "n": 3, "s": "x", "v": [1,2,3], "o": {"b": true}})");
   JsonFields f(j, "scene.json", "");
   EXPECT_EQ(f.number("a"), 2.5);
   EXPECT_EQ(f.integer("n"), 3);

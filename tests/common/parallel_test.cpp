@@ -22,7 +22,8 @@ class ThreadCountGuard {
 
 std::vector<double> squares(std::int64_t n) {
   std::vector<double> out(static_cast<size_t>(n));
-  parallel_for(n, [&](std::int64_t i) { out[static_cast<size_t>(i)] = 0.5 * double(i) * double(i); });
+  parallel_for(n,
+               [&](std::int64_t i) { out[static_cast<size_t>(i)] = 0.5 * double(i) * double(i); });
   return out;
 }
 

@@ -97,8 +97,8 @@ TEST(FactorizeShifted, ShiftsAnIndefiniteMatrixUntilItFactorizes) {
   EXPECT_EQ(none, 1);
   // Starting from a shift (Newton's hint after a shifted iteration): A itself is skipped.
   int from_hint = 0;
-  const auto hinted =
-      factorize_shifted(chol, laplacian_1d(20, 0.1), ShiftSequence{1e-4, 10.0, 30, false}, from_hint);
+  const auto hinted = factorize_shifted(chol, laplacian_1d(20, 0.1),
+                                        ShiftSequence{1e-4, 10.0, 30, false}, from_hint);
   ASSERT_TRUE(hinted.has_value());
   EXPECT_GT(*hinted, 0.0);
   EXPECT_EQ(from_hint, 1);
@@ -122,8 +122,8 @@ TEST(FactorizeShifted, ShiftsEachDofInProportionToItsStiffness) {
   ASSERT_TRUE(shift_a && shift_b);
   EXPECT_GT(count_a, 2);
   EXPECT_EQ(count_a, count_b);
-  EXPECT_NEAR(*shift_a / A.diagonal().cwiseAbs().mean(),
-              *shift_b / B.diagonal().cwiseAbs().mean(), 1e-12 * *shift_a / A.diagonal().cwiseAbs().mean());
+  EXPECT_NEAR(*shift_a / A.diagonal().cwiseAbs().mean(), *shift_b / B.diagonal().cwiseAbs().mean(),
+              1e-12 * *shift_a / A.diagonal().cwiseAbs().mean());
 }
 
 }  // namespace

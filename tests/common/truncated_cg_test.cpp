@@ -18,8 +18,7 @@ TEST(TruncatedCg, ReachesTheToleranceOnAPositiveDefiniteSystem) {
   const SparseMatrix A = laplacian_1d(60, 0.05);
   const VecX b = VecX::LinSpaced(60, -1.0, 2.0);
   TruncatedCgReport r;
-  const VecX x = truncated_cg(product(A), [](const VecX& v) { return v; }, b, r,
-                              {1e-8, 200});
+  const VecX x = truncated_cg(product(A), [](const VecX& v) { return v; }, b, r, {1e-8, 200});
   EXPECT_TRUE(r.converged);
   EXPECT_FALSE(r.negative_curvature);
   EXPECT_GT(r.iterations, 1);
@@ -33,7 +32,8 @@ TEST(TruncatedCg, AnExactPreconditionerConvergesInOneProduct) {
   ASSERT_TRUE(chol.factorize(A));
   const VecX b = VecX::LinSpaced(60, -1.0, 2.0);
   TruncatedCgReport r;
-  const VecX x = truncated_cg(product(A), [&](const VecX& v) { return chol.solve(v); }, b, r);
+  const VecX x = truncated_cg(
+      product(A), [&](const VecX& v) { return chol.solve(v); }, b, r);
   EXPECT_TRUE(r.converged);
   EXPECT_EQ(r.iterations, 1);
   EXPECT_LE((A * x - b).norm(), 1e-10 * b.norm());
@@ -49,8 +49,8 @@ TEST(TruncatedCg, StopsOnNegativeCurvatureWithADescentDirection) {
   ASSERT_TRUE(chol.factorize(M));
   const VecX b = VecX::LinSpaced(40, 1.0, 2.0);
   TruncatedCgReport r;
-  const VecX x = truncated_cg(product(A), [&](const VecX& v) { return chol.solve(v); }, b, r,
-                              {1e-10, 100});
+  const VecX x =
+      truncated_cg(product(A), [&](const VecX& v) { return chol.solve(v); }, b, r, {1e-10, 100});
   EXPECT_TRUE(r.negative_curvature);
   EXPECT_FALSE(r.converged);
   EXPECT_GT(b.dot(x), 0.0);
@@ -62,7 +62,8 @@ TEST(TruncatedCg, NegativeCurvatureAtOnceGivesThePreconditionedDirection) {
   A *= -1.0;
   const VecX b = VecX::Constant(3, 2.0);
   TruncatedCgReport r;
-  const VecX x = truncated_cg(product(A), [](const VecX& v) { return VecX(0.5 * v); }, b, r);
+  const VecX x = truncated_cg(
+      product(A), [](const VecX& v) { return VecX(0.5 * v); }, b, r);
   EXPECT_TRUE(r.negative_curvature);
   EXPECT_LT((x - VecX::Constant(3, 1.0)).norm(), 1e-15);
 }

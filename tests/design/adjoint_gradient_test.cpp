@@ -167,8 +167,8 @@ TEST_P(AdjointPipeline, MatchesFiniteDifferencesOfSimulateThenEvaluate) {
 
 INSTANTIATE_TEST_SUITE_P(Terms, AdjointPipeline,
                          ::testing::Values("all", "target", "cloth", "seam length",
-                                           "boundary spacing", "boundary smoothness",
-                                           "compactness", "corner angle"),
+                                           "boundary spacing", "boundary smoothness", "compactness",
+                                           "corner angle"),
                          [](const ::testing::TestParamInfo<std::string>& term) {
                            std::string n = term.param;
                            for (char& c : n)

@@ -107,9 +107,10 @@ TEST(NonFiniteRun, ANonFiniteStateEndsTheRunAndNoOutputHoldsANaN) {
     write_checkpoint(checkpoint_file, bad, names);
     ADD_FAILURE() << "a NaN checkpoint was written";
   } catch (const SolverError& e) {
-    EXPECT_NE(std::string(e.what()).find(checkpoint_file.string() +
-                                         ": not written: non-finite number (nan) at /state/body/0/1"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find(checkpoint_file.string() +
+                                   ": not written: non-finite number (nan) at /state/body/0/1"),
+        std::string::npos)
         << e.what();
   }
   EXPECT_EQ(read_whole_file(checkpoint_file), good);

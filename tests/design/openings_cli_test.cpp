@@ -69,7 +69,8 @@ TEST_F(OpeningsCli, AFailedBuildKeepsTheLayoutsWarnings) {
   nlohmann::json scene = nlohmann::json::parse(in);
   scene["body"]["mesh"] = std::string(TIGHTFIT_SOURCE_DIR) + "/data/bodies/mh_head_neutral.obj";
   scene["garment"]["layout"]["area_tolerance"] = 1e-9;
-  const auto r = test::run_cli("layout " + write_scene(scene).string() + " --out " + (dir_ / "out").string());
+  const auto r =
+      test::run_cli("layout " + write_scene(scene).string() + " --out " + (dir_ / "out").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("area_tolerance"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("after the warning: "), std::string::npos) << r.output;
@@ -88,7 +89,8 @@ TEST_F(OpeningsCli, AdjointGradientAgreesWithFiniteDifferencesWithTheRimAsParame
                                        " --directions 2 --perturb 0.1 --max-error 1e-5");
   std::printf("%s", r.output.c_str());
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  for (const char* term : {"stretch", "pressure", "boundary spacing", "boundary smoothness", "compactness"})
+  for (const char* term :
+       {"stretch", "pressure", "boundary spacing", "boundary smoothness", "compactness"})
     EXPECT_NE(r.output.find(std::string("  ") + term + " "), std::string::npos) << term;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(r.output, m, std::regex("largest relative error: ([0-9.e+-]+)")));
@@ -100,11 +102,13 @@ TEST_F(OpeningsCli, ARemeshedRunKeepsTheOpeningInEveryOutput) {
   // triangles flatten and they are remeshed (as in OptimizeCli's remesh scene).
   nlohmann::json s = sleeve_with_opening_scene();
   s["optimize"]["objectives"] = {
-      {"directional_stretch", {{"weight", 1}, {"min", 1.6}, {"max", 1.7}, {"direction", "across_grain"}}}};
+      {"directional_stretch",
+       {{"weight", 1}, {"min", 1.6}, {"max", 1.7}, {"direction", "across_grain"}}}};
   s["optimize"]["max_iterations"] = 4;
   s["optimize"]["remesh"] = {{"min_angle_deg", 40}};
   const fs::path out = dir_ / "out";
-  const test::CliRun r = test::run_cli("optimize " + write_scene(s).string() + " --out " + out.string());
+  const test::CliRun r =
+      test::run_cli("optimize " + write_scene(s).string() + " --out " + out.string());
   std::printf("%s", r.output.c_str());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream history_file(out / "history.json");
@@ -129,16 +133,19 @@ TEST_F(OpeningsCli, ARemeshedRunKeepsTheOpeningInEveryOutput) {
   for (size_t i = 0; i < rim.size(); ++i) {
     const auto& a = front["rest"][rim[i].get<size_t>()];
     const auto& b = front["rest"][rim[(i + 1) % rim.size()].get<size_t>()];
-    const double d = std::hypot(a[0].get<double>() - b[0].get<double>(), a[1].get<double>() - b[1].get<double>());
+    const double d = std::hypot(a[0].get<double>() - b[0].get<double>(),
+                                a[1].get<double>() - b[1].get<double>());
     shortest = std::min(shortest, d);
     longest = std::max(longest, d);
   }
   EXPECT_LT(longest, 2.0 * shortest);
   std::ifstream svg_file(out / "pattern.svg");
-  const std::string svg((std::istreambuf_iterator<char>(svg_file)), std::istreambuf_iterator<char>());
+  const std::string svg((std::istreambuf_iterator<char>(svg_file)),
+                        std::istreambuf_iterator<char>());
   EXPECT_NE(svg.find("class=\"cut opening\""), std::string::npos);
   // The saved state reads back: export regenerates the outputs from it.
-  const test::CliRun e = test::run_cli("export " + out.string() + " --out " + (dir_ / "again").string());
+  const test::CliRun e =
+      test::run_cli("export " + out.string() + " --out " + (dir_ / "again").string());
   EXPECT_EQ(e.exit_code, 0) << e.output;
   std::ifstream again_file(dir_ / "again" / "pieces.json");
   const nlohmann::json again = nlohmann::json::parse(again_file);

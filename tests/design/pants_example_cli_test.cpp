@@ -34,7 +34,8 @@ double turning_deg(const nlohmann::json& rest, const nlohmann::json& loop, std::
 }
 
 TEST(PantsExampleCli, OptimizedOutlinesHaveNoSpikes) {
-  const fs::path out = fs::temp_directory_path() / ("tightfit_pants_example_" + std::to_string(::getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("tightfit_pants_example_" + std::to_string(::getpid()));
   fs::remove_all(out);
   std::string args = "optimize ";
   args += TIGHTFIT_SOURCE_DIR;

@@ -151,7 +151,9 @@ TEST_P(PatternOptimizerResume, ContinuesExactlyLikeAnUninterruptedRun) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Body, PatternOptimizerResume, ::testing::Values(false, true),
-                         [](const auto& param_info) { return param_info.param ? "soft" : "rigid"; });
+                         [](const auto& param_info) {
+                           return param_info.param ? "soft" : "rigid";
+                         });
 
 }  // namespace
 }  // namespace tightfit

@@ -6,8 +6,8 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -56,11 +56,9 @@ nlohmann::json stretch_scene(int max_iterations) {
 nlohmann::json remesh_scene(int max_iterations) {
   nlohmann::json scene = stretch_scene(max_iterations);
   scene["garment"]["sleeve"]["jitter"] = 0.0;
-  scene["optimize"]["objectives"] = {{"directional_stretch",
-                                      {{"weight", 1},
-                                       {"min", 1.6},
-                                       {"max", 1.7},
-                                       {"direction", "across_grain"}}}};
+  scene["optimize"]["objectives"] = {
+      {"directional_stretch",
+       {{"weight", 1}, {"min", 1.6}, {"max", 1.7}, {"direction", "across_grain"}}}};
   scene["optimize"].erase("regularizers");
   scene["optimize"]["remesh"] = {{"min_angle_deg", 40}};
   return scene;
@@ -141,7 +139,8 @@ TEST_F(OptimizeCli, CommandLineMistakesExitTwoWithASuggestion) {
   for (const Case& c : std::vector<Case>{
            {"optimze " + scene.string(), "unknown command 'optimze'; did you mean 'optimize'?"},
            {"--threads 2 simulte x", "did you mean 'simulate'?"},
-           {"optimize " + scene.string() + " --outt x", "unknown option '--outt' for 'optimize'; did you mean '--out'?"},
+           {"optimize " + scene.string() + " --outt x",
+            "unknown option '--outt' for 'optimize'; did you mean '--out'?"},
            {"optimize " + scene.string() + " --out x --max-iterations -3",
             "--max-iterations: must be a number >= 0, got -3"},
            {"", "A subcommand is required"}}) {
@@ -186,8 +185,8 @@ TEST_F(OptimizeCli, ResumeContinuesFromTheCheckpoint) {
 
   // A checkpoint whose garment state names a face the body does not have, or a point
   // outside its face: an input error at that point, before any solve.
-  for (const nlohmann::json& point : {nlohmann::json::array({1000000, 0.2, 0.2}),
-                                      nlohmann::json::array({0, 0.7, 0.7})}) {
+  for (const nlohmann::json& point :
+       {nlohmann::json::array({1000000, 0.2, 0.2}), nlohmann::json::array({0, 0.7, 0.7})}) {
     nlohmann::json checkpoint = read_json(out / "checkpoint.json");
     checkpoint["state"]["garment"][3] = point;
     const fs::path bad = dir_ / "bad";
@@ -204,7 +203,8 @@ TEST_F(OptimizeCli, AFailedInitialEquilibriumIsKeptWhereTheUserAsked) {
   // A force tolerance no solve reaches: the initial equilibrium fails (exit 3, naming the
   // stage), and --keep-failed holds its last state with the unbalanced force per vertex.
   nlohmann::json s = stretch_scene(2);
-  s["solver"] = {{"max_iterations", 2}, {"relative_force_tolerance", 1e-30},
+  s["solver"] = {{"max_iterations", 2},
+                 {"relative_force_tolerance", 1e-30},
                  {"absolute_force_tolerance", 1e-30}};
   const fs::path scene = write_scene("failing.json", s);
   const fs::path out = dir_ / "out", kept = dir_ / "kept";
@@ -213,8 +213,8 @@ TEST_F(OptimizeCli, AFailedInitialEquilibriumIsKeptWhereTheUserAsked) {
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("optimize failed during the start of the run"), std::string::npos)
       << r.output;
-  for (const char* name : {"garment_residual.ply", "body_residual.ply", "report.html",
-                           "result.json", "state.json"})
+  for (const char* name :
+       {"garment_residual.ply", "body_residual.ply", "report.html", "result.json", "state.json"})
     EXPECT_TRUE(fs::exists(kept / name)) << name;
   const nlohmann::json result = read_json(kept / "result.json");
   EXPECT_FALSE(result["newton"]["converged"].get<bool>());
@@ -263,7 +263,8 @@ TEST_F(OptimizeCli, InterruptedRunWritesItsResultsAndResumes) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto its = read_json(dir_ / "resumed" / "history.json")["iterations"];
   EXPECT_EQ(its.size(), static_cast<size_t>(iterations + 2));
-  EXPECT_FALSE(read_json(dir_ / "resumed" / "result.json")["optimization"]["interrupted"].get<bool>());
+  EXPECT_FALSE(
+      read_json(dir_ / "resumed" / "result.json")["optimization"]["interrupted"].get<bool>());
 }
 
 TEST_F(OptimizeCli, KilledTwelveTimesEndsBitIdenticalToAnUninterruptedRunSlow) {
@@ -305,7 +306,8 @@ TEST_F(OptimizeCli, KilledTwelveTimesEndsBitIdenticalToAnUninterruptedRunSlow) {
   const auto b = read_json(part / "history.json")["iterations"];
   ASSERT_EQ(a.size(), b.size());
   for (size_t k = 0; k < a.size(); ++k)
-    EXPECT_EQ(a[k]["objective"].get<double>(), b[k]["objective"].get<double>()) << "iteration " << k;
+    EXPECT_EQ(a[k]["objective"].get<double>(), b[k]["objective"].get<double>())
+        << "iteration " << k;
   EXPECT_EQ(read_json(full / "pieces.json")["pieces"], read_json(part / "pieces.json")["pieces"]);
   // No unfinished file of a killed run is left behind.
   for (const fs::directory_entry& e : fs::directory_iterator(part)) {
@@ -317,8 +319,8 @@ TEST_F(OptimizeCli, KilledTwelveTimesEndsBitIdenticalToAnUninterruptedRunSlow) {
 
 TEST_F(OptimizeCli, ResumeAfterARemeshingEndsLikeTheUninterruptedRun) {
   const fs::path full = dir_ / "full";
-  CliRun r = run_cli("optimize " + write_scene("full.json", remesh_scene(10)).string() +
-                     " --out " + full.string());
+  CliRun r = run_cli("optimize " + write_scene("full.json", remesh_scene(10)).string() + " --out " +
+                     full.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // Interrupted after iteration 5 (both remeshings done), then resumed up to 10.
   const fs::path part = dir_ / "part";
@@ -364,16 +366,16 @@ TEST_F(OptimizeCli, ResumeAfterARemeshingEndsLikeTheUninterruptedRun) {
   const fs::path bad = dir_ / "bad";
   fs::create_directories(bad);
   std::ofstream(bad / "checkpoint.json") << broken.dump();
-  r = run_cli("optimize " + second.string() + " --out " + (dir_ / "out3").string() +
-              " --resume " + bad.string());
+  r = run_cli("optimize " + second.string() + " --out " + (dir_ / "out3").string() + " --resume " +
+              bad.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("checkpoint.json: /remeshed/pattern/seams/0"), std::string::npos)
       << r.output;
   broken = checkpoint;
   broken["remeshed"]["pattern"]["pieces"][0]["name"] = "other";
   std::ofstream(bad / "checkpoint.json") << broken.dump();
-  r = run_cli("optimize " + second.string() + " --out " + (dir_ / "out3").string() +
-              " --resume " + bad.string());
+  r = run_cli("optimize " + second.string() + " --out " + (dir_ / "out3").string() + " --resume " +
+              bad.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("checkpoint.json: /remeshed/pattern/pieces/0/name"), std::string::npos)
       << r.output;
@@ -495,7 +497,8 @@ TEST_F(OptimizeCli, CheckGradientOfSeamTractionWithStiffSeams) {
       std::string term;
       int direction = -1;
       double adjoint = 0.0;
-      if (words >> term >> direction >> adjoint && term == "total" && direction == 0) return adjoint;
+      if (words >> term >> direction >> adjoint && term == "total" && direction == 0)
+        return adjoint;
     }
     ADD_FAILURE() << "no total row in: " << r.output;
     return 0.0;
@@ -511,17 +514,17 @@ TEST_F(OptimizeCli, CheckGradientOfPressureRegions) {
   // z = 0, plus a whole-piece region; the targets sit above and below the sleeve's
   // pressure (about 24 mmHg), so every region is active.
   nlohmann::json s = stretch_scene(1);
-  s["pressure"] = {{"regions",
-                    {{{"name", "lower"},
-                      {"below", {{"point", {0, 0, 0.005}}, {"normal", {0, 0, 1}}}},
-                      {"min_mmhg", 40},
-                      {"max_mmhg", 50}},
-                     {{"name", "upper"},
-                      {"above", {{"point", {0, 0, -0.005}}, {"normal", {0, 0, 1}}}},
-                      {"min_mmhg", 5},
-                      {"max_mmhg", 10}},
-                     {{"name", "whole sleeve"}, {"pieces", {"sleeve"}}, {"min_mmhg", 30},
-                      {"max_mmhg", 32}}}}};
+  s["pressure"] = {
+      {"regions",
+       {{{"name", "lower"},
+         {"below", {{"point", {0, 0, 0.005}}, {"normal", {0, 0, 1}}}},
+         {"min_mmhg", 40},
+         {"max_mmhg", 50}},
+        {{"name", "upper"},
+         {"above", {{"point", {0, 0, -0.005}}, {"normal", {0, 0, 1}}}},
+         {"min_mmhg", 5},
+         {"max_mmhg", 10}},
+        {{"name", "whole sleeve"}, {"pieces", {"sleeve"}}, {"min_mmhg", 30}, {"max_mmhg", 32}}}}};
   s["optimize"]["objectives"] = {{"pressure", {{"weight", 1e-9}}}};
   s["optimize"].erase("regularizers");
   const CliRun r = run_cli("check-gradient " + write_scene("scene.json", s).string() +
@@ -556,8 +559,7 @@ TEST_F(OptimizeCli, CheckGradientOfTheDirectionalStretch) {
     std::smatch m;
     ASSERT_TRUE(std::regex_search(r.output, m, std::regex("total +0 +([0-9.e+-]+)")));
     EXPECT_GT(std::abs(std::stod(m[1])), 0.0) << direction;
-    ASSERT_TRUE(
-        std::regex_search(r.output, m, std::regex("largest relative error: ([0-9.e+-]+)")));
+    ASSERT_TRUE(std::regex_search(r.output, m, std::regex("largest relative error: ([0-9.e+-]+)")));
     EXPECT_LT(std::stod(m[1]), 1e-5) << direction;
   }
 }
@@ -570,7 +572,8 @@ TEST_F(OptimizeCli, ShapeAndSeamOutputsOfARun) {
   for (int j = 0; j < along; ++j)
     for (int i = 0; i < around; ++i) {
       const double a = 2.0 * M_PI * i / around;
-      obj << "v " << 0.045 * std::cos(a) << " " << 0.045 * std::sin(a) << " " << -0.06 + 0.01 * j << "\n";
+      obj << "v " << 0.045 * std::cos(a) << " " << 0.045 * std::sin(a) << " " << -0.06 + 0.01 * j
+          << "\n";
     }
   for (int j = 0; j + 1 < along; ++j)
     for (int i = 0; i < around; ++i) {
@@ -679,7 +682,8 @@ void scan_json(const nlohmann::json& j, const std::string& path, std::string& fo
   if (j.is_array())
     for (size_t k = 0; k < j.size(); ++k) scan_json(j[k], path + "/" + std::to_string(k), found);
   if (j.is_object())
-    for (auto it = j.begin(); it != j.end(); ++it) scan_json(it.value(), path + "/" + it.key(), found);
+    for (auto it = j.begin(); it != j.end(); ++it)
+      scan_json(it.value(), path + "/" + it.key(), found);
 }
 
 std::uint32_t le32(const std::string& bytes, std::size_t offset) {
@@ -739,8 +743,8 @@ TEST_F(OptimizeCli, ANonFiniteResumedStateEndsWithExitThreeAndNoOutputHoldsANaN)
   // body pushed to 1e300 m: the resumed equilibrium's energy is not finite.
   const fs::path scene = fs::path(TIGHTFIT_SOURCE_DIR) / "examples/optimize_cylinder_tapered.json";
   const fs::path out = dir_ / "out";
-  CliRun r = run_cli("optimize " + scene.string() + " --out " + out.string() +
-                     " --max-iterations 2");
+  CliRun r =
+      run_cli("optimize " + scene.string() + " --out " + out.string() + " --max-iterations 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(scan_outputs(out), "");
   nlohmann::json checkpoint = read_json(out / "checkpoint.json");
@@ -753,10 +757,11 @@ TEST_F(OptimizeCli, ANonFiniteResumedStateEndsWithExitThreeAndNoOutputHoldsANaN)
   EXPECT_EQ(r.exit_code, 3) << r.output;
   for (const std::string& says : std::vector<std::string>{
            "optimize failed during the start of the run: initial equilibrium (resumed at "
-        "iteration 2): the starting pattern cannot be evaluated",
-        "not finite", "last checkpoint: " + (out / "checkpoint.json").string() +
-                          " (iteration 2, the one this run resumed from)",
-        "--resume " + out.string()})
+           "iteration 2): the starting pattern cannot be evaluated",
+           "not finite",
+           "last checkpoint: " + (out / "checkpoint.json").string() +
+               " (iteration 2, the one this run resumed from)",
+           "--resume " + out.string()})
     EXPECT_NE(r.output.find(says), std::string::npos) << says << "\n" << r.output;
   // The outputs of the good run stay, and no file of the folder holds a NaN.
   EXPECT_EQ(test::read_text(out / "result.json"), before);

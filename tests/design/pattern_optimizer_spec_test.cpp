@@ -66,8 +66,8 @@ TEST(OptimizationSpec, DefaultsAndOpenUpperStretchBound) {
 }
 
 TEST(OptimizationSpec, ShapeObjectiveCanSkipThePinnedVertices) {
-  const OptimizationSpec s = parse(
-      R"({"objectives": {"shape": {"target": "t.obj", "vertices": "unpinned"}}})");
+  const OptimizationSpec s =
+      parse(R"({"objectives": {"shape": {"target": "t.obj", "vertices": "unpinned"}}})");
   EXPECT_TRUE(s.shape->skip_pinned);
   EXPECT_NE(error_of(R"({"objectives": {"shape": {"target": "t.obj", "vertices": "some"}}})")
                 .find("/optimize/objectives/shape/vertices"),
@@ -82,8 +82,8 @@ TEST(OptimizationSpec, ReadsADirectionalStretchObjective) {
   EXPECT_EQ(s.directional_stretch->bounds.weight, 3.0);
   EXPECT_EQ(s.directional_stretch->bounds.min_stretch, 1.28);
   EXPECT_EQ(*s.directional_stretch->bounds.max_stretch, 1.32);
-  const OptimizationSpec along = parse(
-      R"({"objectives": {"directional_stretch": {"direction": "along_grain", "min": 1.1}}})");
+  const OptimizationSpec along =
+      parse(R"({"objectives": {"directional_stretch": {"direction": "along_grain", "min": 1.1}}})");
   EXPECT_FALSE(along.directional_stretch->across_grain);
   EXPECT_FALSE(along.directional_stretch->bounds.max_stretch);
   EXPECT_NE(error_of(R"({"objectives": {"directional_stretch": {"min": 1.3}}})")

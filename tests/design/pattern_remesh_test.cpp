@@ -61,7 +61,8 @@ class DipTerm : public DesignTerm {
 
 /// The 3D position of a surface point on the scene's current body.
 Vec3 position(const GarmentSimulation& sim, const SurfacePoint& s) {
-  return sim.surface().position(s, sim.body_positions().topRows(sim.surface().num_control_vertices()));
+  return sim.surface().position(s,
+                                sim.body_positions().topRows(sim.surface().num_control_vertices()));
 }
 
 TEST(PieceQuality, AnglesAtSharpCornersOfTheOutlineDoNotCountOthersDo) {
@@ -84,7 +85,8 @@ TEST(PieceQuality, AnglesAtSharpCornersOfTheOutlineDoNotCountOthersDo) {
   square.triangles.resize(4, 3);
   square.triangles << 0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4;
   square.boundary = {0, 1, 2, 3};
-  EXPECT_NEAR(piece_quality(square).min_angle_deg, std::atan2(0.02, 0.5) * 180.0 / std::numbers::pi, 1e-9);
+  EXPECT_NEAR(piece_quality(square).min_angle_deg, std::atan2(0.02, 0.5) * 180.0 / std::numbers::pi,
+              1e-9);
 }
 
 TEST(EmbeddingTransfer, IsExactAtOldVerticesAndOnTheSurfaceElsewhere) {
@@ -92,24 +94,32 @@ TEST(EmbeddingTransfer, IsExactAtOldVerticesAndOnTheSurfaceElsewhere) {
   GarmentSimulation& sim = *scene->sim;
   sim.solve();
   const Garment& g = sim.garment();
-  const EmbeddingTransfer transfer(g, sim.problem().state(), sim.garment_positions(), sim.surface());
+  const EmbeddingTransfer transfer(g, sim.problem().state(), sim.garment_positions(),
+                                   sim.surface());
   const PatternPiece& piece = g.pattern.pieces[0];
   double worst = 0.0, worst_edge = 0.0;
   for (Eigen::Index v = 0; v < piece.rest.rows(); ++v) {
     const Vec3 old = sim.garment_positions().row(g.pattern_to_garment[v]).transpose();
-    worst = std::max(worst, (position(sim, transfer.at_rest_point(0, piece.rest.row(v).transpose())) - old).norm());
-    worst_edge = std::max(worst_edge, (position(sim, transfer.on_edge(0, static_cast<int>(v), 0, 0.0)) - old).norm());
+    worst = std::max(
+        worst,
+        (position(sim, transfer.at_rest_point(0, piece.rest.row(v).transpose())) - old).norm());
+    worst_edge = std::max(
+        worst_edge, (position(sim, transfer.on_edge(0, static_cast<int>(v), 0, 0.0)) - old).norm());
   }
-  std::printf("  old vertices: max distance %.2e m (rest point), %.2e m (edge start)\n", worst, worst_edge);
+  std::printf("  old vertices: max distance %.2e m (rest point), %.2e m (edge start)\n", worst,
+              worst_edge);
   EXPECT_LT(worst, 1e-9);
   EXPECT_LT(worst_edge, 1e-9);
   // A triangle centroid: the projection of the interpolated point, which lies within the
   // chord's sag (edge² / 8R ≈ 0.6 mm here) of it.
   const Vec2 c = (piece.rest.row(piece.triangles(0, 0)) + piece.rest.row(piece.triangles(0, 1)) +
-                  piece.rest.row(piece.triangles(0, 2))).transpose() / 3.0;
+                  piece.rest.row(piece.triangles(0, 2)))
+                     .transpose() /
+                 3.0;
   Vec3 interpolated = Vec3::Zero();
   for (int k = 0; k < 3; ++k)
-    interpolated += sim.garment_positions().row(g.pattern_to_garment[piece.triangles(0, k)]).transpose() / 3.0;
+    interpolated +=
+        sim.garment_positions().row(g.pattern_to_garment[piece.triangles(0, k)]).transpose() / 3.0;
   const Vec3 x = position(sim, transfer.at_rest_point(0, c));
   EXPECT_LT((x - interpolated).norm(), 1e-3);
   EXPECT_NEAR(std::hypot(x.x(), x.y()), 0.05, 2e-3);  // on the capsule's side
@@ -121,15 +131,17 @@ TEST(RemeshGarment, ResampledSeamsWeldAndTheTransferredStateConverges) {
   sim.solve();
   const Garment old = sim.garment();
   const double h = 0.7 * mean_edge_length(old.pattern.pieces[0]);  // finer than before
-  const PatternRemeshResult r =
-      remesh_garment(old, sim.problem().state(), sim.garment_positions(), sim.surface(), {0}, {h}, 10);
+  const PatternRemeshResult r = remesh_garment(old, sim.problem().state(), sim.garment_positions(),
+                                               sim.surface(), {0}, {h}, 10);
   const Garment& g = r.garment;
   ASSERT_EQ(r.remeshed, std::vector<int>{0});
   const PatternPiece& piece = g.pattern.pieces[0];
-  std::printf("  %d -> %d pattern vertices, %d -> %d garment vertices, min angle %.1f -> %.1f deg\n",
-              old.num_pattern_vertices(), g.num_pattern_vertices(), old.num_garment_vertices,
-              g.num_garment_vertices, min_angle_deg(old.pattern.pieces[0].rest, old.pattern.pieces[0].triangles),
-              min_angle_deg(piece.rest, piece.triangles));
+  std::printf(
+      "  %d -> %d pattern vertices, %d -> %d garment vertices, min angle %.1f -> %.1f deg\n",
+      old.num_pattern_vertices(), g.num_pattern_vertices(), old.num_garment_vertices,
+      g.num_garment_vertices,
+      min_angle_deg(old.pattern.pieces[0].rest, old.pattern.pieces[0].triangles),
+      min_angle_deg(piece.rest, piece.triangles));
   EXPECT_GT(g.num_pattern_vertices(), old.num_pattern_vertices());
   // The seam: equal counts on both sides, welded pairwise, more vertices than before.
   const Seam& seam = g.pattern.seams[0];
@@ -138,7 +150,8 @@ TEST(RemeshGarment, ResampledSeamsWeldAndTheTransferredStateConverges) {
   for (size_t k = 0; k < seam.a.vertices.size(); ++k)
     EXPECT_EQ(g.pattern_to_garment[seam.a.vertices[k]], g.pattern_to_garment[seam.b.vertices[k]]);
   // Welding merged exactly the seam pairs (the corners meet the pinned rings).
-  EXPECT_EQ(g.num_garment_vertices, g.num_pattern_vertices() - static_cast<int>(seam.a.vertices.size()));
+  EXPECT_EQ(g.num_garment_vertices,
+            g.num_pattern_vertices() - static_cast<int>(seam.a.vertices.size()));
   // Corners and the pinned rings' ends are old vertices, at their old surface points.
   ASSERT_EQ(piece.corners.size(), 4u);
   for (size_t k = 0; k < 4; ++k) {
@@ -158,8 +171,8 @@ TEST(RemeshGarment, ResampledSeamsWeldAndTheTransferredStateConverges) {
   // The new garment converges from the transferred state, and its rings stayed put.
   sim.replace_garment(r.garment, r.state);
   const NewtonReport report = sim.solve();
-  std::printf("  transferred equilibrium: %d Newton iterations, residual %.2e N\n", report.iterations,
-              report.final_force_norm);
+  std::printf("  transferred equilibrium: %d Newton iterations, residual %.2e N\n",
+              report.iterations, report.final_force_norm);
   EXPECT_TRUE(report.converged);
   EXPECT_LE(report.iterations, 8);
 }
@@ -168,8 +181,9 @@ TEST(RemeshGarment, ResampledSeamsWeldAndTheTransferredStateConverges) {
 /// remeshed pattern's value.
 void expect_monotone_across_remeshes(const std::vector<OptimizationIteration>& h) {
   for (size_t k = 1; k < h.size(); ++k) {
-    const double before = h[k - 1].remesh && h[k - 1].remesh->failure.empty() ? h[k - 1].remesh->value
-                                                                               : h[k - 1].value;
+    const double before = h[k - 1].remesh && h[k - 1].remesh->failure.empty()
+                              ? h[k - 1].remesh->value
+                              : h[k - 1].value;
     EXPECT_LT(h[k].value, before) << "iteration " << h[k].iteration;
   }
 }
@@ -250,7 +264,8 @@ TEST(PatternOptimizerRemesh, ADegradingPieceIsRemeshedAndTheRunGoesOn) {
       checkpoint_written = true;
     }
   });
-  std::printf("  %s; T %.4e -> %.4e\n", result.stop_reason.c_str(), result.initial_value, result.final_value);
+  std::printf("  %s; T %.4e -> %.4e\n", result.stop_reason.c_str(), result.initial_value,
+              result.final_value);
   const auto& history = optimizer.history();
   int remeshes = 0;
   for (const OptimizationIteration& it : history)
@@ -271,7 +286,8 @@ TEST(PatternOptimizerRemesh, ADegradingPieceIsRemeshedAndTheRunGoesOn) {
   EXPECT_LT(result.final_value, 1e-3 * result.initial_value);
   // The final state: a converged equilibrium on a pattern whose seam still welds.
   EmbeddedEquilibrium& eq = sim.problem();
-  EXPECT_LE(eq.force_norm(eq.gradient()), sim.newton().options().relative_force_tolerance * sim.force_scale());
+  EXPECT_LE(eq.force_norm(eq.gradient()),
+            sim.newton().options().relative_force_tolerance * sim.force_scale());
   const Seam& seam = sim.garment().pattern.seams[0];
   ASSERT_EQ(seam.a.vertices.size(), seam.b.vertices.size());
   for (size_t k = 0; k < seam.a.vertices.size(); ++k)
@@ -311,11 +327,12 @@ TEST(PatternOptimizerRemesh, ADegradingPieceIsRemeshedAndTheRunGoesOn) {
         << "iteration " << k;
   const Garment& g1 = sim.garment();
   const Garment& g2 = fresh->sim->garment();
-  std::printf("  resumed after the remeshing: final T %.6e vs %.6e; max rest difference %.1e m, "
-              "max position difference %.1e m\n",
-              again.final_value, result.final_value,
-              (g2.rest_positions() - g1.rest_positions()).cwiseAbs().maxCoeff(),
-              (fresh->sim->garment_positions() - sim.garment_positions()).cwiseAbs().maxCoeff());
+  std::printf(
+      "  resumed after the remeshing: final T %.6e vs %.6e; max rest difference %.1e m, "
+      "max position difference %.1e m\n",
+      again.final_value, result.final_value,
+      (g2.rest_positions() - g1.rest_positions()).cwiseAbs().maxCoeff(),
+      (fresh->sim->garment_positions() - sim.garment_positions()).cwiseAbs().maxCoeff());
   ASSERT_EQ(g2.num_garment_vertices, g1.num_garment_vertices);
   ASSERT_EQ(g2.pattern_triangles, g1.pattern_triangles);
   EXPECT_LE((g2.rest_positions() - g1.rest_positions()).cwiseAbs().maxCoeff(), 1e-9);

@@ -17,9 +17,9 @@
 namespace tightfit {
 namespace ease_test {
 
-constexpr double kRadius = 0.05;    // m, body and garment
-constexpr int kBodySegments = 64;   // around the body prism
-constexpr int kColumns = 24;        // garment columns around, over both pieces
+constexpr double kRadius = 0.05;                 // m, body and garment
+constexpr int kBodySegments = 64;                // around the body prism
+constexpr int kColumns = 24;                     // garment columns around, over both pieces
 constexpr double kBottom = 0.105, kTop = 0.295;  // the garment's extent along y (m)
 
 /// A tube garment of two pieces (front, back: grid pieces of kColumns / 2 columns and
@@ -48,7 +48,8 @@ Garment tube_garment(double scale, bool closed, Points3& fitted, int rows = 9) {
     for (int j = 0; j < rows; ++j)
       for (int i = 0; i < nx; ++i) {
         const double angle = 2.0 * test::kPi * (k * (nx - 1) + i) / kColumns;
-        const int g = garment.pattern_to_garment[static_cast<size_t>(garment.piece_offset[static_cast<size_t>(k)] + j * nx + i)];
+        const int g = garment.pattern_to_garment[static_cast<size_t>(
+            garment.piece_offset[static_cast<size_t>(k)] + j * nx + i)];
         fitted.row(g) << kRadius * std::cos(angle), kBottom + (kTop - kBottom) * j / (rows - 1),
             -kRadius * std::sin(angle);
       }
@@ -111,10 +112,11 @@ TEST(EaseTable, LevelsTheGarmentDoesNotGoAroundAreSkippedWithTheReason) {
   beside.normal = Vec3::UnitX();
   MeasurementLevel outside = level_at(0.2037, "outside");
   outside.point = Vec3(0.2, 0.2037, 0.0);  // in the plane, but beside the body's cross-section
-  const EaseTable table =
-      measure_ease({level_at(0.35, "above"), beside, level_at(0.2037, "calf"), outside}, body, garment, fitted);
+  const EaseTable table = measure_ease(
+      {level_at(0.35, "above"), beside, level_at(0.2037, "calf"), outside}, body, garment, fitted);
   ASSERT_EQ(table.levels.size(), 4u);
-  EXPECT_EQ(table.levels[3].skipped, "the level's point is not inside the body's cross-section there");
+  EXPECT_EQ(table.levels[3].skipped,
+            "the level's point is not inside the body's cross-section there");
   EXPECT_FALSE(table.levels[3].reached);
   EXPECT_EQ(table.levels[0].skipped, "the garment does not reach this level");
   EXPECT_FALSE(table.levels[0].reached);
@@ -129,7 +131,8 @@ TEST(EaseTable, LevelsTheGarmentDoesNotGoAroundAreSkippedWithTheReason) {
   // Sewn on one side only, the tube is open: the level is reached but not measured.
   Points3 open_fitted;
   const Garment open = tube_garment(0.9, false, open_fitted);
-  const EaseTable partial = drop_uncovered(measure_ease({level_at(0.2037)}, body, open, open_fitted));
+  const EaseTable partial =
+      drop_uncovered(measure_ease({level_at(0.2037)}, body, open, open_fitted));
   ASSERT_EQ(partial.levels.size(), 1u);
   EXPECT_TRUE(partial.levels[0].reached);
   EXPECT_NE(partial.levels[0].skipped.find("does not go all the way around"), std::string::npos);
@@ -141,7 +144,8 @@ TEST(EaseTable, LabelLinesGivePerPieceTheBodyPieceWidthAndEase) {
   const TriMesh body = test::closed_cylinder(kRadius, 0.4, kBodySegments, 9);
   Points3 fitted;
   const Garment garment = tube_garment(0.9, true, fitted);
-  const EaseTable table = measure_ease({level_at(0.2037, "calf"), level_at(0.2537, "below-knee")}, body, garment, fitted);
+  const EaseTable table = measure_ease({level_at(0.2037, "calf"), level_at(0.2537, "below-knee")},
+                                       body, garment, fitted);
   const auto lines = ease_label_lines(table);
   ASSERT_EQ(lines.size(), 2u);
   // Body 2πr = 31.42 cm (the 64-gon: 31.39 cm), each piece 0.9 πr = 14.14 cm, ease
@@ -181,8 +185,10 @@ TEST(MeasurementLevels, PlanesAcrossTheGarmentEveryFiveCentimetres) {
 }
 
 TEST(MeasurementLevels, StandardLevelsOnTheMakeHumanBodyHaveHumanGirths) {
-  const TriMesh body = read_tri_mesh(std::string(TIGHTFIT_DATA_DIR) + "/bodies/mh_male_regular.obj");
-  const auto skeleton = read_skeleton(std::string(TIGHTFIT_DATA_DIR) + "/rig/mh_male_regular.joints.json");
+  const TriMesh body =
+      read_tri_mesh(std::string(TIGHTFIT_DATA_DIR) + "/bodies/mh_male_regular.obj");
+  const auto skeleton =
+      read_skeleton(std::string(TIGHTFIT_DATA_DIR) + "/rig/mh_male_regular.joints.json");
   const std::vector<MeasurementLevel> levels = skeleton_levels(skeleton);
   std::map<std::string, double> girth;
   for (const MeasurementLevel& level : levels) {
@@ -195,7 +201,8 @@ TEST(MeasurementLevels, StandardLevelsOnTheMakeHumanBodyHaveHumanGirths) {
   EXPECT_EQ(levels.size(), 24u);
   // The calf level lies 45 % down the left shin bone, normal along it.
   const BoneSegment& shin = skeleton.at("lowerleg01.L");
-  const auto calf = std::find_if(levels.begin(), levels.end(), [](const auto& l) { return l.name == "calf.L"; });
+  const auto calf =
+      std::find_if(levels.begin(), levels.end(), [](const auto& l) { return l.name == "calf.L"; });
   ASSERT_NE(calf, levels.end());
   EXPECT_LT((calf->point - (shin.head + 0.45 * (shin.tail - shin.head))).norm(), 1e-12);
   EXPECT_LT((calf->normal - (shin.tail - shin.head).normalized()).norm(), 1e-12);
@@ -203,7 +210,7 @@ TEST(MeasurementLevels, StandardLevelsOnTheMakeHumanBodyHaveHumanGirths) {
   // Adult male girths (cm ranges of anthropometric surveys), the leg narrowing from the
   // thigh to the ankle, and the body's two sides alike.
   const std::map<std::string, std::pair<double, double>> range = {
-      {"neck", {0.32, 0.46}},   {"chest", {0.85, 1.15}},  {"waist", {0.70, 1.10}},
+      {"neck", {0.32, 0.46}},   {"chest", {0.85, 1.15}},   {"waist", {0.70, 1.10}},
       {"hip", {0.85, 1.15}},    {"thigh.L", {0.45, 0.68}}, {"knee.L", {0.32, 0.45}},
       {"calf.L", {0.32, 0.45}}, {"ankle.L", {0.19, 0.28}}, {"bicep.L", {0.24, 0.38}},
       {"wrist.L", {0.14, 0.20}}};
@@ -216,7 +223,8 @@ TEST(MeasurementLevels, StandardLevelsOnTheMakeHumanBodyHaveHumanGirths) {
   EXPECT_GT(girth.at("calf.L"), girth.at("ankle.L"));
   EXPECT_GT(girth.at("bicep.L"), girth.at("wrist.L"));
   for (const char* limb : {"thigh", "knee", "calf", "ankle", "bicep", "wrist"}) {
-    const double left = girth.at(std::string(limb) + ".L"), right = girth.at(std::string(limb) + ".R");
+    const double left = girth.at(std::string(limb) + ".L"),
+                 right = girth.at(std::string(limb) + ".R");
     EXPECT_NEAR(left, right, 0.02 * left) << limb;
   }
 }

@@ -53,8 +53,11 @@ TEST(Flatten, LscmOnlyIsConformalOnACap) {
   TriMesh sphere = test::geodesic_sphere(0.1, 6);
   std::vector<int> keep;
   for (int f = 0; f < sphere.num_faces(); ++f) {
-    const Vec3 c = (sphere.vertices.row(sphere.faces(f, 0)) + sphere.vertices.row(sphere.faces(f, 1)) +
-                    sphere.vertices.row(sphere.faces(f, 2))).transpose() / 3.0;
+    const Vec3 c =
+        (sphere.vertices.row(sphere.faces(f, 0)) + sphere.vertices.row(sphere.faces(f, 1)) +
+         sphere.vertices.row(sphere.faces(f, 2)))
+            .transpose() /
+        3.0;
     if (c.y() > 0.05) keep.push_back(f);
   }
   TriMesh cap;
@@ -71,7 +74,8 @@ TEST(Flatten, LscmOnlyIsConformalOnACap) {
       cap.faces(static_cast<Eigen::Index>(i), c) = x;
     }
   cap.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
-  for (size_t i = 0; i < v.size(); ++i) cap.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  for (size_t i = 0; i < v.size(); ++i)
+    cap.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
 
   FlattenOptions lscm_only;
   lscm_only.max_iterations = 0;

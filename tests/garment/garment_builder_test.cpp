@@ -1,7 +1,7 @@
 #include "tightfit/garment/garment_builder.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <cstdio>
 #include <iterator>
@@ -30,14 +30,16 @@ const char* kSleeve = R"({
 
 void print_report(const GarmentBuild& b) {
   for (const auto& p : b.pieces)
-    std::printf("  piece %-12s area err %.2e  mean |J|-1 %.2e  max %.2e  angle mean %.3f max %.3f deg  "
-                "%d verts %d tris, min angle %.1f\n",
-                p.name.c_str(), p.distortion.area_error, p.distortion.mean_area_distortion,
-                p.distortion.max_area_distortion, p.distortion.mean_angle_error_deg,
-                p.distortion.max_angle_error_deg, p.vertices, p.triangles, p.min_angle_deg);
+    std::printf(
+        "  piece %-12s area err %.2e  mean |J|-1 %.2e  max %.2e  angle mean %.3f max %.3f deg  "
+        "%d verts %d tris, min angle %.1f\n",
+        p.name.c_str(), p.distortion.area_error, p.distortion.mean_area_distortion,
+        p.distortion.max_area_distortion, p.distortion.mean_angle_error_deg,
+        p.distortion.max_angle_error_deg, p.vertices, p.triangles, p.min_angle_deg);
   for (const auto& s : b.seams)
-    std::printf("  seam %-20s 3D %.4f m, sides %.4f / %.4f m (%.3f %%), %d vertices\n", s.name.c_str(),
-                s.length_3d, s.length_a, s.length_b, 100 * s.relative_difference, s.vertices);
+    std::printf("  seam %-20s 3D %.4f m, sides %.4f / %.4f m (%.3f %%), %d vertices\n",
+                s.name.c_str(), s.length_3d, s.length_a, s.length_b, 100 * s.relative_difference,
+                s.vertices);
 }
 
 /// Checks shared by every garment: seams weld, maps round-trip, embedding is close.
@@ -60,13 +62,15 @@ void check_garment(const GarmentBuild& b, double max_projection) {
     }
     // Triangles counter-clockwise.
     for (Eigen::Index f = 0; f < piece.triangles.rows(); ++f) {
-      const Vec2 a = piece.rest.row(piece.triangles(f, 0)), c1 = piece.rest.row(piece.triangles(f, 1)),
+      const Vec2 a = piece.rest.row(piece.triangles(f, 0)),
+                 c1 = piece.rest.row(piece.triangles(f, 1)),
                  c2 = piece.rest.row(piece.triangles(f, 2));
       EXPECT_GT((c1 - a).x() * (c2 - a).y() - (c1 - a).y() * (c2 - a).x(), 0.0);
     }
   }
   EXPECT_LT(worst, 1e-6);
-  const double max_dist = *std::max_element(b.projection_distance.begin(), b.projection_distance.end());
+  const double max_dist =
+      *std::max_element(b.projection_distance.begin(), b.projection_distance.end());
   EXPECT_LT(max_dist, max_projection);
   EXPECT_EQ(static_cast<int>(g.embedding.size()), g.num_garment_vertices);
 }
@@ -151,12 +155,14 @@ TEST(BuildGarment, SleeveOnTheGeneratedCapsule) {
   }
   int on_cuffs = 0;
   for (Eigen::Index v = 0; v < b.positions.rows(); ++v)
-    on_cuffs += std::min(std::abs(b.positions(v, 1) - 0.1), std::abs(b.positions(v, 1) - 0.4)) < 1e-9;
+    on_cuffs +=
+        std::min(std::abs(b.positions(v, 1) - 0.1), std::abs(b.positions(v, 1) - 0.4)) < 1e-9;
   EXPECT_EQ(on_cuffs, static_cast<int>(b.garment.pinned.size()));
   // Garment triangles face outward.
   const Triangles& t = b.garment.garment_triangles;
   for (Eigen::Index f = 0; f < t.rows(); ++f) {
-    const Vec3 p0 = b.positions.row(t(f, 0)), p1 = b.positions.row(t(f, 1)), p2 = b.positions.row(t(f, 2));
+    const Vec3 p0 = b.positions.row(t(f, 0)), p1 = b.positions.row(t(f, 1)),
+               p2 = b.positions.row(t(f, 2));
     const Vec3 c = (p0 + p1 + p2) / 3.0;
     EXPECT_GT((p1 - p0).cross(p2 - p0).dot(Vec3(c.x(), 0, c.z())), 0.0);
   }
@@ -173,8 +179,10 @@ TEST(BuildGarment, APatternEdgeTooShortToMeshIsAnErrorBeforeMeshing) {
     build_garment(body, limit, spec_from(kSphereCover, "cover.json"), options);
     ADD_FAILURE() << "no error for a 0.01 mm pattern edge";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("cover.json: pattern: an edge length of 1e-05 m would mesh the pattern pieces"),
-              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(
+                  "cover.json: pattern: an edge length of 1e-05 m would mesh the pattern pieces"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -206,8 +214,11 @@ TEST(BuildGarment, ThreePieceCoverOnSphere) {
     build_garment(body, limit, strict, options);
     ADD_FAILURE() << "no error for mismatched seams";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("cover.json: seam \"top/bottom_"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("(seam_tolerance 5 %, and more than the pattern edge length)"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("cover.json: seam \"top/bottom_"), std::string::npos)
+        << e.what();
+    EXPECT_NE(
+        std::string(e.what()).find("(seam_tolerance 5 %, and more than the pattern edge length)"),
+        std::string::npos)
         << e.what();
   }
 }
@@ -219,16 +230,19 @@ TEST(BuildGarment, RejectsPanelsTooCurvedToFlatten) {
   const LimitSurface limit(body);
   const LayoutSpec spec = spec_from(R"({
     "region": [{"name": "opening", "point": [0, -0.098, 0], "normal": [0, 1, 0]}],
-    "panels": [{"name": "bag"}]})", "bag.json");
+    "panels": [{"name": "bag"}]})",
+                                    "bag.json");
   PatternOptions options;
   options.flatten_limit_surface = false;
   try {
     build_garment(body, limit, spec, options);
     ADD_FAILURE() << "no error for a bag flattened";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("bag.json: panel \"bag\" is too curved to flatten: its flat area differs "
-                                         "from its area on the body by "),
-              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(
+                  "bag.json: panel \"bag\" is too curved to flatten: its flat area differs "
+                  "from its area on the body by "),
+              std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("(area_tolerance 50 %)"), std::string::npos) << e.what();
   }
 }
@@ -248,17 +262,21 @@ void write_blender_style_obj(const std::string& file, const Layout& layout) {
   for (size_t p = 0; p < layout.panels.size(); ++p) {
     const LayoutPanel& panel = layout.panels[p];
     const int base = static_cast<int>(v.size());
-    for (int i = 0; i < panel.mesh.num_vertices(); ++i) v.push_back(panel.mesh.vertices.row(i).transpose());
+    for (int i = 0; i < panel.mesh.num_vertices(); ++i)
+      v.push_back(panel.mesh.vertices.row(i).transpose());
     for (int t = 0; t < panel.mesh.num_faces(); ++t) {
-      f.push_back({base + panel.mesh.faces(t, 0), base + panel.mesh.faces(t, 1), base + panel.mesh.faces(t, 2)});
+      f.push_back({base + panel.mesh.faces(t, 0), base + panel.mesh.faces(t, 1),
+                   base + panel.mesh.faces(t, 2)});
       obj.face_group.push_back(static_cast<int>(p));
     }
     obj.group_names.push_back(panel.name);
   }
   obj.mesh.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
-  for (size_t i = 0; i < v.size(); ++i) obj.mesh.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  for (size_t i = 0; i < v.size(); ++i)
+    obj.mesh.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
   obj.mesh.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
-  for (size_t i = 0; i < f.size(); ++i) obj.mesh.faces.row(static_cast<Eigen::Index>(i)) << f[i][0], f[i][1], f[i][2];
+  for (size_t i = 0; i < f.size(); ++i)
+    obj.mesh.faces.row(static_cast<Eigen::Index>(i)) << f[i][0], f[i][1], f[i][2];
   write_obj_with_groups(file, obj);
 }
 

@@ -49,8 +49,8 @@ inline TriMesh closed_cylinder(double radius, double length, int segments, int r
   const int top = (rings - 1) * segments;
   for (int s = 0; s < segments; ++s) {
     const int s1 = (s + 1) % segments;
-    m.faces.row(f++) << n, s1, s;                 // bottom, normal −y
-    m.faces.row(f++) << n + 1, top + s, top + s1; // top, normal +y
+    m.faces.row(f++) << n, s1, s;                  // bottom, normal −y
+    m.faces.row(f++) << n + 1, top + s, top + s1;  // top, normal +y
   }
   return m;
 }
@@ -100,7 +100,8 @@ inline TriMesh geodesic_sphere(double radius, int k) {
   }
   TriMesh m;
   m.vertices.resize(static_cast<Eigen::Index>(verts.size()), 3);
-  for (size_t i = 0; i < verts.size(); ++i) m.vertices.row(static_cast<Eigen::Index>(i)) = verts[i].transpose();
+  for (size_t i = 0; i < verts.size(); ++i)
+    m.vertices.row(static_cast<Eigen::Index>(i)) = verts[i].transpose();
   m.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
   for (size_t i = 0; i < faces.size(); ++i)
     m.faces.row(static_cast<Eigen::Index>(i)) << faces[i][0], faces[i][1], faces[i][2];

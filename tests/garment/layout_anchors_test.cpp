@@ -83,37 +83,51 @@ TEST(LayoutAnchorSpec, ParsesBoneAnchorsBodyAxesAndBoneRegions) {
 }
 
 TEST(LayoutAnchorSpec, NamesTheJsonPathOfMistakes) {
-  const auto error_of = [](const std::string& text) { return anchor_error([&] { anchored_spec(text); }); };
-  EXPECT_EQ(error_of(R"({"region": [{"name": "r", "point": {"bone": "shin", "at": 1.5}, "normal": "up"}],
+  const auto error_of = [](const std::string& text) {
+    return anchor_error([&] { anchored_spec(text); });
+  };
+  EXPECT_EQ(
+      error_of(R"({"region": [{"name": "r", "point": {"bone": "shin", "at": 1.5}, "normal": "up"}],
                          "panels": [{"name": "a"}]})"),
-            "layout.json: /region/0/point/at: must lie in [0, 1] (a fraction of the bone from its head to its tail)");
+      "layout.json: /region/0/point/at: must lie in [0, 1] (a fraction of the bone from its head "
+      "to its tail)");
   EXPECT_EQ(error_of(R"({"region": [{"name": "r", "point": [0, 0, 0], "normal": "sideways"}],
                          "panels": [{"name": "a"}]})"),
-            "layout.json: /region/0/normal: expected [x, y, z], a body axis (left, right, up, down, front, back), "
+            "layout.json: /region/0/normal: expected [x, y, z], a body axis (left, right, up, "
+            "down, front, back), "
             "\"along_bone\" or \"-along_bone\", got \"sideways\"");
   EXPECT_NE(error_of(R"({"region": [{"name": "r", "point": [0, 0, 0], "normal": "along_bone"}],
                          "panels": [{"name": "a"}]})")
                 .find("/region/0/normal: \"along_bone\" needs a bone anchor as \"point\""),
             std::string::npos);
-  EXPECT_NE(error_of(R"({"dividers": [{"name": "d", "bones": ["shin"], "normal": "up"}], "panels": [{"name": "a"}]})")
-                .find("layout.json: /dividers/0/normal: not allowed in a bone region"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(
+          R"({"dividers": [{"name": "d", "bones": ["shin"], "normal": "up"}], "panels": [{"name": "a"}]})")
+          .find("layout.json: /dividers/0/normal: not allowed in a bone region"),
+      std::string::npos);
   EXPECT_EQ(error_of(R"({"dividers": [{"name": "d", "bones": []}], "panels": [{"name": "a"}]})"),
             "layout.json: /dividers/0/bones: expected a non-empty array of bone names");
-  EXPECT_EQ(error_of(R"({"dividers": [{"name": "d", "bones": ["shin", "shin"]}], "panels": [{"name": "a"}]})"),
-            "layout.json: /dividers/0/bones/1: bone \"shin\" listed twice");
-  EXPECT_NE(error_of(R"({"panels": [{"name": "a"}], "pinned": [{"name": "p", "on_plane": {"bones": ["shin"]}}]})")
-                .find("/pinned/0/on_plane/bones: a pin's plane cannot be a bone region"),
-            std::string::npos);
-  EXPECT_EQ(error_of(R"({"region": [{"name": "r", "point": {"bone": "shin", "at": 0.5, "of": 1}, "normal": "up"}],
+  EXPECT_EQ(
+      error_of(
+          R"({"dividers": [{"name": "d", "bones": ["shin", "shin"]}], "panels": [{"name": "a"}]})"),
+      "layout.json: /dividers/0/bones/1: bone \"shin\" listed twice");
+  EXPECT_NE(
+      error_of(
+          R"({"panels": [{"name": "a"}], "pinned": [{"name": "p", "on_plane": {"bones": ["shin"]}}]})")
+          .find("/pinned/0/on_plane/bones: a pin's plane cannot be a bone region"),
+      std::string::npos);
+  EXPECT_EQ(
+      error_of(
+          R"({"region": [{"name": "r", "point": {"bone": "shin", "at": 0.5, "of": 1}, "normal": "up"}],
                          "panels": [{"name": "a"}]})"),
-            "layout.json: /region/0/point/of: unknown key \"of\"");
+      "layout.json: /region/0/point/of: unknown key \"of\"");
 }
 
 TEST(LayoutAnchors, PlanesAtAFractionOfABonePassThroughThatPointOfTheBone) {
   const auto skeleton = leg_skeleton();
   const TriMesh body = test::closed_cylinder(0.05, 0.4, 32, 17);
-  const LayoutSpec spec = resolve_layout_anchors(anchored_spec(kAnchoredSleeve), body, {&skeleton, nullptr, "rig"});
+  const LayoutSpec spec =
+      resolve_layout_anchors(anchored_spec(kAnchoredSleeve), body, {&skeleton, nullptr, "rig"});
   EXPECT_EQ(spec.first_rig_use(), "");
   // bottom: 3/4 down the shin (head y = 0.2, tail y = 0), normal tail → head (+y).
   EXPECT_LT((spec.region[0].point - Vec3(0, 0.05, 0)).norm(), 1e-15);
@@ -151,17 +165,20 @@ TEST(LayoutAnchors, UnknownBonesMissingSkeletonsAndPlanesMissingTheBodyAreErrors
   text["dividers"][0]["point"]["bone"] = "shim";
   const std::string unknown =
       anchor_error([&] { resolve_layout_anchors(anchored_spec(text.dump()), body, rig); });
-  EXPECT_EQ(unknown, "layout.json: /dividers/0/point/bone: unknown bone \"shim\" (not in the skeleton of "
-                     "legs.joints.json); did you mean \"shin\"?");
+  EXPECT_EQ(unknown,
+            "layout.json: /dividers/0/point/bone: unknown bone \"shim\" (not in the skeleton of "
+            "legs.joints.json); did you mean \"shin\"?");
   text = nlohmann::json::parse(kAnchoredSleeve);
   text["region"][1]["normal"]["along_bone"] = "calf";
   EXPECT_EQ(anchor_error([&] { resolve_layout_anchors(anchored_spec(text.dump()), body, rig); }),
-            "layout.json: /region/1/normal: unknown bone \"calf\" (not in the skeleton of legs.joints.json)");
+            "layout.json: /region/1/normal: unknown bone \"calf\" (not in the skeleton of "
+            "legs.joints.json)");
 
-  const std::string no_skeleton =
-      anchor_error([&] { resolve_layout_anchors(anchored_spec(kAnchoredSleeve), body, LayoutRig{}); });
-  EXPECT_NE(no_skeleton.find("layout.json: /region/0/point/bone: bone \"shin\": the layout is anchored on the "
-                             "skeleton, but no skeleton is given"),
+  const std::string no_skeleton = anchor_error(
+      [&] { resolve_layout_anchors(anchored_spec(kAnchoredSleeve), body, LayoutRig{}); });
+  EXPECT_NE(no_skeleton.find(
+                "layout.json: /region/0/point/bone: bone \"shin\": the layout is anchored on the "
+                "skeleton, but no skeleton is given"),
             std::string::npos)
       << no_skeleton;
 
@@ -169,16 +186,22 @@ TEST(LayoutAnchors, UnknownBonesMissingSkeletonsAndPlanesMissingTheBodyAreErrors
   text = nlohmann::json::parse(kAnchoredSleeve);
   text["region"][0]["point"] = nlohmann::json::parse(R"({"bone": "toe", "at": 0.5})");
   text["region"][0]["normal"] = "up";
-  const std::string misses = anchor_error([&] { resolve_layout_anchors(anchored_spec(text.dump()), body, rig); });
-  EXPECT_NE(misses.find("layout.json: /region/0: region plane \"bottom\" misses the body: it does not cross the "
-                        "body surface, which lies on its + side, 0.2 to 0.6 m from it"),
-            std::string::npos)
+  const std::string misses =
+      anchor_error([&] { resolve_layout_anchors(anchored_spec(text.dump()), body, rig); });
+  EXPECT_NE(
+      misses.find(
+          "layout.json: /region/0: region plane \"bottom\" misses the body: it does not cross the "
+          "body surface, which lies on its + side, 0.2 to 0.6 m from it"),
+      std::string::npos)
       << misses;
   // So does an absolute divider beside it.
   text = nlohmann::json::parse(kAnchoredSleeve);
   text["dividers"][0]["point"] = nlohmann::json::parse("[0.2, 0, 0]");
-  const std::string beside = anchor_error([&] { resolve_layout_anchors(anchored_spec(text.dump()), body, rig); });
-  EXPECT_NE(beside.find("layout.json: /dividers/0: divider \"side\" misses the body"), std::string::npos) << beside;
+  const std::string beside =
+      anchor_error([&] { resolve_layout_anchors(anchored_spec(text.dump()), body, rig); });
+  EXPECT_NE(beside.find("layout.json: /dividers/0: divider \"side\" misses the body"),
+            std::string::npos)
+      << beside;
 }
 
 TEST(LayoutAnchors, ANormalAcrossTwoBonesIsTheNormalOfTheirPlane) {
@@ -188,12 +211,19 @@ TEST(LayoutAnchors, ANormalAcrossTwoBonesIsTheNormalOfTheirPlane) {
   auto text = nlohmann::json::parse(kAnchoredSleeve);
   // shin (−y) × toe (+x) = +z.
   text["dividers"][0]["normal"] = nlohmann::json::parse(R"({"across_bones": ["shin", "toe"]})");
-  EXPECT_LT((resolve_layout_anchors(anchored_spec(text.dump()), body, rig).dividers[0].normal - Vec3::UnitZ()).norm(), 1e-15);
+  EXPECT_LT((resolve_layout_anchors(anchored_spec(text.dump()), body, rig).dividers[0].normal -
+             Vec3::UnitZ())
+                .norm(),
+            1e-15);
   text["dividers"][0]["normal"]["reversed"] = true;
-  EXPECT_LT((resolve_layout_anchors(anchored_spec(text.dump()), body, rig).dividers[0].normal + Vec3::UnitZ()).norm(), 1e-15);
+  EXPECT_LT((resolve_layout_anchors(anchored_spec(text.dump()), body, rig).dividers[0].normal +
+             Vec3::UnitZ())
+                .norm(),
+            1e-15);
   text["dividers"][0]["normal"] = nlohmann::json::parse(R"({"across_bones": ["thigh", "shin"]})");
   EXPECT_EQ(anchor_error([&] { resolve_layout_anchors(anchored_spec(text.dump()), body, rig); }),
-            "layout.json: /dividers/0/normal: bones \"thigh\" and \"shin\" are parallel: they span no plane");
+            "layout.json: /dividers/0/normal: bones \"thigh\" and \"shin\" are parallel: they span "
+            "no plane");
   text["dividers"][0]["normal"] = nlohmann::json::parse(R"({"across_bones": ["shin"]})");
   EXPECT_EQ(anchor_error([&] { anchored_spec(text.dump()); }),
             "layout.json: /dividers/0/normal/across_bones: expected two bone names");
@@ -286,37 +316,47 @@ TEST(LayoutBoneRegions, CutAlongTheHalfIsoLineOfTheSkinWeights) {
       if (s.pin == 0) {
         hem_edges += s.count;
         for (int i = 0; i <= s.count; ++i)
-          EXPECT_NEAR(panel.mesh.vertices(panel.boundary[(s.first + i) % panel.boundary.size()], 1), 0.2125, 1e-12);
+          EXPECT_NEAR(panel.mesh.vertices(panel.boundary[(s.first + i) % panel.boundary.size()], 1),
+                      0.2125, 1e-12);
       }
   EXPECT_GE(hem_edges, 32);
 
   const std::string unknown = anchor_error([&] {
-    resolve_layout_anchors(anchored_spec(R"({"region": [{"name": "r", "bones": ["lower", "uper"]}], "panels": [{"name": "a"}]})"),
-                           body, {nullptr, &weights, "ramp"});
+    resolve_layout_anchors(
+        anchored_spec(
+            R"({"region": [{"name": "r", "bones": ["lower", "uper"]}], "panels": [{"name": "a"}]})"),
+        body, {nullptr, &weights, "ramp"});
   });
-  EXPECT_EQ(unknown, "layout.json: /region/0/bones/1: unknown bone \"uper\" (no skin weights for it in ramp.mhw); "
-                     "did you mean \"upper\"?");
+  EXPECT_EQ(
+      unknown,
+      "layout.json: /region/0/bones/1: unknown bone \"uper\" (no skin weights for it in ramp.mhw); "
+      "did you mean \"upper\"?");
   SkinWeights all_lower = weights;
   all_lower.bones.erase("upper");
   all_lower.bones["lower"].clear();
   for (int v = 0; v < body.num_vertices(); ++v) all_lower.bones["lower"].emplace_back(v, 1.0);
   all_lower.bones["upper"] = {};
   const std::string none = anchor_error([&] {
-    resolve_layout_anchors(anchored_spec(R"({"region": [{"name": "r", "bones": ["upper"]}], "panels": [{"name": "a"}]})"),
-                           body, {nullptr, &all_lower, "ramp"});
+    resolve_layout_anchors(
+        anchored_spec(
+            R"({"region": [{"name": "r", "bones": ["upper"]}], "panels": [{"name": "a"}]})"),
+        body, {nullptr, &all_lower, "ramp"});
   });
-  EXPECT_NE(none.find("layout.json: /region/0: region plane \"r\" misses the body: the bones upper dominate no part "
+  EXPECT_NE(none.find("layout.json: /region/0: region plane \"r\" misses the body: the bones upper "
+                      "dominate no part "
                       "of the body surface"),
             std::string::npos)
       << none;
   const std::string no_weights = anchor_error([&] {
-    resolve_layout_anchors(anchored_spec(R"({"region": [{"name": "r", "bones": ["upper"]}], "panels": [{"name": "a"}]})"),
-                           body, LayoutRig{});
+    resolve_layout_anchors(
+        anchored_spec(
+            R"({"region": [{"name": "r", "bones": ["upper"]}], "panels": [{"name": "a"}]})"),
+        body, LayoutRig{});
   });
-  EXPECT_NE(no_weights.find("layout.json: /region/0/bones: bone region \"r\" needs skin weights"), std::string::npos)
+  EXPECT_NE(no_weights.find("layout.json: /region/0/bones: bone region \"r\" needs skin weights"),
+            std::string::npos)
       << no_weights;
 }
-
 
 /// One layout file on bodies of the MakeHuman rig: three full bodies of different build
 /// and size with their own joints (vertex i of each is the rig's vertex i), and the legs
@@ -334,16 +374,17 @@ class LayoutAnchorTransfer : public ::testing::Test {
   static void SetUpTestSuite() {
     const std::string data = TIGHTFIT_DATA_DIR;
     bodies_ = new std::vector<RigBody>;
-    for (const auto& [body, rig] : std::vector<std::pair<std::string, std::string>>{
-             {"mh_male_regular", "mh_male_regular"},
-             {"mh_male_athletic", "mh_male_athletic"},
-             {"mh_child", "mh_child"},
-             {"mh_legs_male", "mh_male_regular"}}) {
+    for (const auto& [body, rig] :
+         std::vector<std::pair<std::string, std::string>>{{"mh_male_regular", "mh_male_regular"},
+                                                          {"mh_male_athletic", "mh_male_athletic"},
+                                                          {"mh_child", "mh_child"},
+                                                          {"mh_legs_male", "mh_male_regular"}}) {
       RigBody b;
       b.name = body;
       b.surface = read_tri_mesh(data + "/bodies/" + body + ".obj");
       b.skeleton = read_skeleton(data + "/rig/" + rig + ".joints.json");
-      b.weights = read_skin_weights(data + "/bodies/" + rig + ".obj", data + "/rig/default_weights.mhw");
+      b.weights =
+          read_skin_weights(data + "/bodies/" + rig + ".obj", data + "/rig/default_weights.mhw");
       bodies_->push_back(std::move(b));
     }
   }
@@ -361,17 +402,20 @@ std::vector<int> pinned_vertices(const Layout& layout, int pin) {
     for (const auto& s : panel.segments)
       if (s.seam < 0 && s.pin == pin)
         for (int i = 0; i <= s.count; ++i)
-          out.push_back(panel.surface_vertex[panel.boundary[(s.first + i) % panel.boundary.size()]]);
+          out.push_back(
+              panel.surface_vertex[panel.boundary[(s.first + i) % panel.boundary.size()]]);
   return out;
 }
 
 TEST_F(LayoutAnchorTransfer, OneLayoutFileLaysOutEveryBodyOfTheRigAtItsOwnJoints) {
-  const LayoutSpec spec = read_layout_spec(std::string(TIGHTFIT_SOURCE_DIR) + "/examples/layouts/left_leg_anchored.json");
+  const LayoutSpec spec = read_layout_spec(std::string(TIGHTFIT_SOURCE_DIR) +
+                                           "/examples/layouts/left_leg_anchored.json");
   std::vector<std::string> first_seams;
   std::vector<double> cuff_heights;
   for (const RigBody& body : *bodies_) {
     SCOPED_TRACE(body.name);
-    const LayoutSpec absolute = resolve_layout_anchors(spec, body.surface, {&body.skeleton, &body.weights, body.name});
+    const LayoutSpec absolute =
+        resolve_layout_anchors(spec, body.surface, {&body.skeleton, &body.weights, body.name});
     // The cuff plane lies 3/4 down this body's own lower shin, across it.
     const BoneSegment& shin = body.skeleton.at("lowerleg02.L");
     const LayoutPlane& cuff = absolute.region[1];
@@ -383,7 +427,8 @@ TEST_F(LayoutAnchorTransfer, OneLayoutFileLaysOutEveryBodyOfTheRigAtItsOwnJoints
     std::vector<std::string> panels, seams;
     for (const auto& p : layout.panels) panels.push_back(p.name);
     for (const auto& s : layout.seams) seams.push_back(s.name);
-    EXPECT_EQ(panels, (std::vector<std::string>{"thigh_front", "thigh_back", "lower_leg_front", "lower_leg_back"}));
+    EXPECT_EQ(panels, (std::vector<std::string>{"thigh_front", "thigh_back", "lower_leg_front",
+                                                "lower_leg_back"}));
     EXPECT_EQ(seams.size(), 6u);
     if (first_seams.empty()) first_seams = seams;
     EXPECT_EQ(seams, first_seams);
@@ -393,7 +438,8 @@ TEST_F(LayoutAnchorTransfer, OneLayoutFileLaysOutEveryBodyOfTheRigAtItsOwnJoints
     EXPECT_FALSE(pinned_vertices(layout, 0).empty());
     const std::vector<int> cuff_vertices = pinned_vertices(layout, 1);
     EXPECT_FALSE(cuff_vertices.empty());
-    for (int v : cuff_vertices) EXPECT_LT(std::abs(cuff.distance(layout.surface.vertices.row(v).transpose())), 1e-9);
+    for (int v : cuff_vertices)
+      EXPECT_LT(std::abs(cuff.distance(layout.surface.vertices.row(v).transpose())), 1e-9);
   }
   // The taller athletic man's cuff is higher, the child's lower; the legs body shares the
   // regular man's joints.
@@ -403,21 +449,28 @@ TEST_F(LayoutAnchorTransfer, OneLayoutFileLaysOutEveryBodyOfTheRigAtItsOwnJoints
 }
 
 TEST_F(LayoutAnchorTransfer, TheTwelvePieceWetsuitLaysOutOnEveryFullBodyWithLocalCuffs) {
-  const LayoutSpec spec = read_layout_spec(std::string(TIGHTFIT_SOURCE_DIR) + "/examples/layouts/wetsuit_12.json");
+  const LayoutSpec spec =
+      read_layout_spec(std::string(TIGHTFIT_SOURCE_DIR) + "/examples/layouts/wetsuit_12.json");
   for (size_t b = 0; b < 3; ++b) {  // the full bodies
     const RigBody& body = (*bodies_)[b];
     SCOPED_TRACE(body.name);
-    const LayoutSpec absolute = resolve_layout_anchors(spec, body.surface, {&body.skeleton, &body.weights, body.name});
+    const LayoutSpec absolute =
+        resolve_layout_anchors(spec, body.surface, {&body.skeleton, &body.weights, body.name});
     const Layout layout = layout_from_rules(body.surface, absolute);
     ASSERT_EQ(layout.panels.size(), 12u);
-    EXPECT_EQ(layout.pin_names, (std::vector<std::string>{"neckline", "cuff_L", "cuff_R", "ankle_L", "ankle_R"}));
+    EXPECT_EQ(layout.pin_names,
+              (std::vector<std::string>{"neckline", "cuff_L", "cuff_R", "ankle_L", "ankle_R"}));
     // Each cuff lies on its own plane around its own wrist or ankle; none is empty.
-    const std::vector<std::pair<std::string, double>> cuffs = {
-        {"neck01", 0.5}, {"lowerarm02.L", 0.7}, {"lowerarm02.R", 0.7}, {"lowerleg02.L", 0.7}, {"lowerleg02.R", 0.7}};
+    const std::vector<std::pair<std::string, double>> cuffs = {{"neck01", 0.5},
+                                                               {"lowerarm02.L", 0.7},
+                                                               {"lowerarm02.R", 0.7},
+                                                               {"lowerleg02.L", 0.7},
+                                                               {"lowerleg02.R", 0.7}};
     for (int pin = 0; pin < 5; ++pin) {
       const LayoutPlane& plane = absolute.region[static_cast<size_t>(pin)];
       const BoneSegment& bone = body.skeleton.at(cuffs[static_cast<size_t>(pin)].first);
-      const Vec3 anchor = bone.head + cuffs[static_cast<size_t>(pin)].second * (bone.tail - bone.head);
+      const Vec3 anchor =
+          bone.head + cuffs[static_cast<size_t>(pin)].second * (bone.tail - bone.head);
       const std::vector<int> ring = pinned_vertices(layout, pin);
       ASSERT_FALSE(ring.empty()) << layout.pin_names[static_cast<size_t>(pin)];
       for (int v : ring) {

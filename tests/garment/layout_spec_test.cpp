@@ -44,7 +44,8 @@ TEST(LayoutSpec, ParsesRulesAndMeshLayouts) {
   EXPECT_EQ(rules.pins[0].source_path, "/layout/pinned/0");
   EXPECT_EQ(rules.seam_tolerance, 0.08);
 
-  const LayoutSpec mesh = parse(R"({"mesh": "panels.obj", "pinned": [{"name": "x", "nearest": [0, 0, 0]}]})");
+  const LayoutSpec mesh =
+      parse(R"({"mesh": "panels.obj", "pinned": [{"name": "x", "nearest": [0, 0, 0]}]})");
   EXPECT_TRUE(mesh.is_mesh_layout());
   EXPECT_EQ(mesh.mesh_file, "/specs/panels.obj");
   EXPECT_EQ(mesh.seam_tolerance, 0.05);
@@ -56,22 +57,28 @@ TEST(LayoutSpec, NamesTheJsonPathOfMistakes) {
   EXPECT_EQ(error_of(R"({"dividers": [{"name": "d", "point": [0,0,0], "normal": [1,0,0]}],
                          "panels": [{"name": "a", "sides": ["d"]}]})"),
             "layout.json: /layout/panels/0/sides/0: expected \"+name\" or \"-name\", got \"d\"");
-  EXPECT_EQ(error_of(R"({"panels": [{"name": "a"}], "pinned": [{"name": "p", "on_plane": "waist"}]})"),
-            "layout.json: /layout/pinned/0/on_plane: unknown region plane \"waist\"");
+  EXPECT_EQ(
+      error_of(R"({"panels": [{"name": "a"}], "pinned": [{"name": "p", "on_plane": "waist"}]})"),
+      "layout.json: /layout/pinned/0/on_plane: unknown region plane \"waist\"");
   EXPECT_EQ(error_of(R"({"panels": [{"name": "a"}], "pinned": [{"name": "p"}]})"),
             "layout.json: /layout/pinned/0: give exactly one of \"on_plane\" and \"nearest\"");
   EXPECT_EQ(error_of(R"({"panels": [{"name": "a"}, {"name": "a"}]})"),
             "layout.json: /layout/panels/1/name: duplicate panel name \"a\"");
-  EXPECT_EQ(error_of(R"({"panels": []})"), "layout.json: /layout/panels: at least one panel is needed");
+  EXPECT_EQ(error_of(R"({"panels": []})"),
+            "layout.json: /layout/panels: at least one panel is needed");
   EXPECT_EQ(error_of(R"({"mesh": "x.obj", "panels": [{"name": "a"}]})"),
             "layout.json: /layout/panels: not allowed together with \"mesh\"");
-  EXPECT_EQ(error_of(R"({"panels": [{"name": "a"}], "extra": 1})"), "layout.json: /layout/extra: unknown key \"extra\"");
-  EXPECT_EQ(error_of(R"({"region": [{"name": "r", "point": [0,0,0], "normal": [0,0,0]}], "panels": [{"name": "a"}]})"),
-            "layout.json: /layout/region/0/normal: the normal must not be zero");
+  EXPECT_EQ(error_of(R"({"panels": [{"name": "a"}], "extra": 1})"),
+            "layout.json: /layout/extra: unknown key \"extra\"");
+  EXPECT_EQ(
+      error_of(
+          R"({"region": [{"name": "r", "point": [0,0,0], "normal": [0,0,0]}], "panels": [{"name": "a"}]})"),
+      "layout.json: /layout/region/0/normal: the normal must not be zero");
 }
 
 TEST(PatternOptions, ParsesScalesAndGrain) {
-  const auto j = nlohmann::json::parse(R"({"edge_length": 0.015, "scale": [0.95, 0.8], "grain": [0, 2, 0],
+  const auto j =
+      nlohmann::json::parse(R"({"edge_length": 0.015, "scale": [0.95, 0.8], "grain": [0, 2, 0],
                                            "piece_scale": {"front": [1.0, 0.7]}, "smoothing_iterations": 3})");
   JsonFields f(j, "scene.json", "/pattern");
   const PatternOptions o = parse_pattern_options(f);

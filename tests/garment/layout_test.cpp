@@ -1,7 +1,7 @@
 #include "tightfit/garment/layout.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <fstream>
@@ -83,11 +83,14 @@ TEST(Layout, ReportsGapsAndOverlapsBetweenRulePanels) {
   auto j = nlohmann::json::parse(kSleeve);
   j["panels"] = nlohmann::json::parse(R"([{"name": "front", "sides": ["+side"]}])");
   JsonFields f1(j, "gap.json", "");
-  const std::string gap = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f1, "")); });
+  const std::string gap =
+      expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f1, "")); });
   EXPECT_NE(gap.find("gap.json: /panels: a gap"), std::string::npos) << gap;
-  j["panels"] = nlohmann::json::parse(R"([{"name": "all", "sides": []}, {"name": "front", "sides": ["+side"]}])");
+  j["panels"] = nlohmann::json::parse(
+      R"([{"name": "all", "sides": []}, {"name": "front", "sides": ["+side"]}])");
   JsonFields f2(j, "overlap.json", "");
-  const std::string overlap = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f2, "")); });
+  const std::string overlap =
+      expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f2, "")); });
   EXPECT_NE(overlap.find("overlap"), std::string::npos) << overlap;
   EXPECT_NE(overlap.find("\"all\" and \"front\""), std::string::npos) << overlap;
 }
@@ -102,8 +105,10 @@ TEST(Layout, AStrayPartLeftByAGrazingDividerJoinsItsNeighbour) {
   const Layout layout = layout_from_rules(test::two_cylinders(), spec_from(text));
   ASSERT_EQ(layout.panels.size(), 2u);
   ASSERT_EQ(layout.warnings.size(), 1u);
-  EXPECT_NE(layout.warnings[0].find("panel \"p\" has a stray part of "), std::string::npos) << layout.warnings[0];
-  EXPECT_NE(layout.warnings[0].find("it joins panel \"q\""), std::string::npos) << layout.warnings[0];
+  EXPECT_NE(layout.warnings[0].find("panel \"p\" has a stray part of "), std::string::npos)
+      << layout.warnings[0];
+  EXPECT_NE(layout.warnings[0].find("it joins panel \"q\""), std::string::npos)
+      << layout.warnings[0];
   for (int v : layout.panels[0].surface_vertex) EXPECT_GT(layout.surface.vertices(v, 0), 0.2);
   for (int v : layout.panels[1].surface_vertex) EXPECT_LT(layout.surface.vertices(v, 0), 0.1);
 
@@ -114,7 +119,9 @@ TEST(Layout, AStrayPartLeftByAGrazingDividerJoinsItsNeighbour) {
     layout_from_rules(test::two_cylinders(), spec_from(j.dump()));
     ADD_FAILURE() << "a panel in two parts accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("panel \"p\" is not a disc: it falls apart"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("panel \"p\" is not a disc: it falls apart"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -125,7 +132,8 @@ TEST(Layout, SeamsBetweenTheSamePanelsAreNumberedFromTheTopDown) {
   const nlohmann::json scene = nlohmann::json::parse(in);
   JsonFields f(scene["garment"]["layout"], "mask.json", "/garment/layout");
   const LayoutSpec spec = parse_layout_spec(f, "");
-  const Layout layout = layout_from_rules(read_tri_mesh(std::string(TIGHTFIT_DATA_DIR) + "/bodies/mh_head_neutral.obj"), spec);
+  const Layout layout = layout_from_rules(
+      read_tri_mesh(std::string(TIGHTFIT_DATA_DIR) + "/bodies/mh_head_neutral.obj"), spec);
   std::vector<std::pair<std::string, double>> seams;
   for (const LayoutSeam& seam : layout.seams) {
     double y = 0.0;
@@ -147,24 +155,31 @@ TEST(Layout, RejectsPanelsThatAreNotDiscs) {
   auto j = nlohmann::json::parse(kSleeve);
   j["panels"] = nlohmann::json::parse(R"([{"name": "tube"}])");
   JsonFields f(j, "tube.json", "");
-  const std::string tube = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f, "")); });
-  EXPECT_NE(tube.find("tube.json: /panels/0: panel \"tube\" is not a disc: it has 2 boundary loops"),
-            std::string::npos) << tube;
+  const std::string tube =
+      expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f, "")); });
+  EXPECT_NE(
+      tube.find("tube.json: /panels/0: panel \"tube\" is not a disc: it has 2 boundary loops"),
+      std::string::npos)
+      << tube;
   // A group layout whose "front" panel falls apart into two parts.
   const Layout sleeve = layout_from_rules(body, spec_from(kSleeve));
   std::vector<int> groups = sleeve.face_panel;
   for (int t = 0; t < sleeve.surface.num_faces(); ++t) {
     const double y = (sleeve.surface.vertices.row(sleeve.surface.faces(t, 0)) +
                       sleeve.surface.vertices.row(sleeve.surface.faces(t, 1)) +
-                      sleeve.surface.vertices.row(sleeve.surface.faces(t, 2))).y() / 3.0;
+                      sleeve.surface.vertices.row(sleeve.surface.faces(t, 2)))
+                         .y() /
+                     3.0;
     if (y > 0.15 && y < 0.2) groups[t] = 1;  // a band around the middle goes to "back"
   }
   auto m = nlohmann::json::parse(R"({"mesh": "parts.obj"})");
   JsonFields g(m, "parts.json", "");
   const LayoutSpec mesh_spec = parse_layout_spec(g, "");
-  const std::string parts = expect_input_error(
-      [&] { layout_from_groups(sleeve.surface, groups, {"front", "back"}, mesh_spec, "parts.obj"); });
-  EXPECT_NE(parts.find("panel \"front\" is not a disc: it falls apart into separate parts"), std::string::npos)
+  const std::string parts = expect_input_error([&] {
+    layout_from_groups(sleeve.surface, groups, {"front", "back"}, mesh_spec, "parts.obj");
+  });
+  EXPECT_NE(parts.find("panel \"front\" is not a disc: it falls apart into separate parts"),
+            std::string::npos)
       << parts;
 }
 
@@ -182,23 +197,29 @@ TEST(Layout, RejectsClosedSeamsAndEmptyPanels) {
       "panels": [{"name": "ghost", "sides": ["+far"]}, {"name": "all", "sides": ["-far"]}]})"));
   });
   EXPECT_NE(empty.find("panel \"ghost\" is empty"), std::string::npos) << empty;
-  const std::string whole = expect_input_error([&] { layout_from_rules(sphere, spec_from(R"({"panels": [{"name": "all"}]})")); });
+  const std::string whole = expect_input_error(
+      [&] { layout_from_rules(sphere, spec_from(R"({"panels": [{"name": "all"}]})")); });
   EXPECT_NE(whole.find("panel \"all\" is not a disc: it is closed"), std::string::npos) << whole;
 }
 
 TEST(Layout, RejectsPinnedBoundariesThatDoNotExist) {
   const TriMesh body = test::closed_cylinder(0.05, 0.4, 32, 17);
   auto j = nlohmann::json::parse(kSleeve);
-  j["region"].push_back(nlohmann::json::parse(R"({"name": "far", "point": [0, 2, 0], "normal": [0, -1, 0]})"));
+  j["region"].push_back(
+      nlohmann::json::parse(R"({"name": "far", "point": [0, 2, 0], "normal": [0, -1, 0]})"));
   j["pinned"] = nlohmann::json::parse(R"([{"name": "hem", "on_plane": "far"}])");
   JsonFields f(j, "pin.json", "");
-  const std::string missing = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f, "")); });
-  EXPECT_NE(missing.find("pin.json: /pinned/0: pinned boundary \"hem\" does not exist"), std::string::npos)
+  const std::string missing =
+      expect_input_error([&] { layout_from_rules(body, parse_layout_spec(f, "")); });
+  EXPECT_NE(missing.find("pin.json: /pinned/0: pinned boundary \"hem\" does not exist"),
+            std::string::npos)
       << missing;
   j = nlohmann::json::parse(kSleeve);
-  j["pinned"] = nlohmann::json::parse(R"([{"name": "hem", "nearest": [0, 1, 0], "max_distance": 0.1}])");
+  j["pinned"] =
+      nlohmann::json::parse(R"([{"name": "hem", "nearest": [0, 1, 0], "max_distance": 0.1}])");
   JsonFields g(j, "pin.json", "");
-  const std::string far = expect_input_error([&] { layout_from_rules(body, parse_layout_spec(g, "")); });
+  const std::string far =
+      expect_input_error([&] { layout_from_rules(body, parse_layout_spec(g, "")); });
   EXPECT_NE(far.find("does not exist: the nearest open boundary is"), std::string::npos) << far;
   // A closed garment has no open boundary to pin.
   const TriMesh sphere = test::geodesic_sphere(0.1, 4);
@@ -227,7 +248,8 @@ TEST(Layout, GroupLayoutMatchesRuleLayoutAndReportsGapsAndOverlaps) {
   const LayoutSpec spec = parse_layout_spec(f, "");
   std::vector<std::string> names;
   for (const auto& p : rules.panels) names.push_back(p.name);
-  const Layout groups = layout_from_groups(rules.surface, rules.face_panel, names, spec, "sleeve.obj");
+  const Layout groups =
+      layout_from_groups(rules.surface, rules.face_panel, names, spec, "sleeve.obj");
   ASSERT_EQ(groups.panels.size(), rules.panels.size());
   ASSERT_EQ(groups.seams.size(), rules.seams.size());
   for (size_t p = 0; p < rules.panels.size(); ++p) {
@@ -242,15 +264,16 @@ TEST(Layout, GroupLayoutMatchesRuleLayoutAndReportsGapsAndOverlaps) {
   // Faces in no group, the same face in two groups.
   std::vector<int> gaps = rules.face_panel;
   gaps[5] = -1;
-  const std::string gap = expect_input_error([&] { layout_from_groups(rules.surface, gaps, names, spec, "g.obj"); });
+  const std::string gap =
+      expect_input_error([&] { layout_from_groups(rules.surface, gaps, names, spec, "g.obj"); });
   EXPECT_NE(gap.find("g.obj: a gap: 1 faces belong to no panel"), std::string::npos) << gap;
   TriMesh doubled = rules.surface;
   doubled.faces.conservativeResize(doubled.faces.rows() + 1, 3);
   doubled.faces.row(doubled.faces.rows() - 1) = doubled.faces.row(0);
   std::vector<int> doubled_groups = rules.face_panel;
   doubled_groups.push_back(1 - rules.face_panel[0]);
-  const std::string overlap =
-      expect_input_error([&] { layout_from_groups(doubled, doubled_groups, names, spec, "o.obj"); });
+  const std::string overlap = expect_input_error(
+      [&] { layout_from_groups(doubled, doubled_groups, names, spec, "o.obj"); });
   EXPECT_NE(overlap.find("o.obj: an overlap"), std::string::npos) << overlap;
   // Panels whose boundaries run side by side without sharing vertices (a sloppy export).
   TriMesh apart = rules.surface;
@@ -267,8 +290,8 @@ TEST(Layout, GroupLayoutMatchesRuleLayoutAndReportsGapsAndOverlaps) {
       apart.faces(t, c) = v;
     }
   }
-  const std::string apart_error =
-      expect_input_error([&] { layout_from_groups(apart, rules.face_panel, names, spec, "a.obj"); });
+  const std::string apart_error = expect_input_error(
+      [&] { layout_from_groups(apart, rules.face_panel, names, spec, "a.obj"); });
   EXPECT_NE(apart_error.find("a.obj: a gap between panels"), std::string::npos) << apart_error;
 }
 

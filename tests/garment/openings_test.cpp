@@ -57,7 +57,8 @@ double signed_area(const Points2& x, const std::vector<int>& loop) {
 }
 
 bool inside(const Points2& x, const std::vector<int>& loop, const Vec2& q) {
-  return inside_polygon(loop.size(), [&](size_t i) -> Vec2 { return x.row(loop[i]); }, q);
+  return inside_polygon(
+      loop.size(), [&](size_t i) -> Vec2 { return x.row(loop[i]); }, q);
 }
 
 TEST(Openings, ParseWithRadiusOrRadiiAndRejectBadOnes) {
@@ -71,13 +72,17 @@ TEST(Openings, ParseWithRadiusOrRadiiAndRejectBadOnes) {
   j["openings"][0]["radii"] = {0.02, 0.01, 0.03};
   EXPECT_TRUE(parse_spec(j).openings[0].radii.isApprox(Vec3(0.02, 0.01, 0.03)));
   j["openings"][0]["radii"] = {0.02, 0.0, 0.03};
-  EXPECT_NE(input_error_of([&] { parse_spec(j); }).find("/openings/0/radii: every semi-axis must be positive"),
+  EXPECT_NE(input_error_of([&] {
+              parse_spec(j);
+            }).find("/openings/0/radii: every semi-axis must be positive"),
             std::string::npos);
   j["openings"][0]["radius"] = 0.01;
-  EXPECT_NE(input_error_of([&] { parse_spec(j); }).find("exactly one of \"radius\" and \"radii\""), std::string::npos);
+  EXPECT_NE(input_error_of([&] { parse_spec(j); }).find("exactly one of \"radius\" and \"radii\""),
+            std::string::npos);
   auto twice = sleeve_with_opening();
   twice["openings"].push_back(twice["openings"][0]);
-  EXPECT_NE(input_error_of([&] { parse_spec(twice); }).find("duplicate opening name \"window\""), std::string::npos);
+  EXPECT_NE(input_error_of([&] { parse_spec(twice); }).find("duplicate opening name \"window\""),
+            std::string::npos);
   // A level function: zero on the ellipsoid, negative inside, about the distance near it.
   LayoutOpening e;
   e.center = Vec3(1, 2, 3);
@@ -104,7 +109,9 @@ TEST(Openings, CutAHoleWhoseRimLiesOnTheEllipsoid) {
   for (size_t i = 0; i < loop.size(); ++i) {
     const Vec3 p = front.mesh.vertices.row(loop[i]);
     EXPECT_NEAR((p - window.center).norm(), 0.015, 1e-12);
-    rim_length += (front.mesh.vertices.row(loop[(i + 1) % loop.size()]) - front.mesh.vertices.row(loop[i])).norm();
+    rim_length +=
+        (front.mesh.vertices.row(loop[(i + 1) % loop.size()]) - front.mesh.vertices.row(loop[i]))
+            .norm();
   }
   // A circle of radius ≈ 0.015 m on a cylinder of radius 0.05 m.
   EXPECT_NEAR(rim_length, 2 * test::kPi * 0.015, 0.05 * 2 * test::kPi * 0.015);
@@ -124,7 +131,9 @@ TEST(Openings, AreRejectedWhenTheyCutNothingAndBandsStillNeedADivider) {
   auto j = sleeve_with_opening();
   j["openings"][0]["center"] = {0.5, 0.2, 0.0};
   const std::string missed = input_error_of([&] { layout_from_rules(body, parse_spec(j)); });
-  EXPECT_NE(missed.find("openings.json: /openings/0: opening \"window\" cuts nothing"), std::string::npos) << missed;
+  EXPECT_NE(missed.find("openings.json: /openings/0: opening \"window\" cuts nothing"),
+            std::string::npos)
+      << missed;
   // An opening on the region's edge makes a notch in the outline, not a hole.
   auto notch = sleeve_with_opening();
   notch["openings"][0]["center"] = {0.05, 0.05, 0.0};
@@ -135,8 +144,11 @@ TEST(Openings, AreRejectedWhenTheyCutNothingAndBandsStillNeedADivider) {
   tube.erase("dividers");
   tube["panels"] = nlohmann::json::parse(R"([{"name": "tube"}])");
   const std::string band = input_error_of([&] { layout_from_rules(body, parse_spec(tube)); });
-  EXPECT_NE(band.find("panel \"tube\" is not a disc: it has 3 boundary loops"), std::string::npos) << band;
-  EXPECT_NE(band.find("not made by an opening (a band around the body? add a divider)"), std::string::npos) << band;
+  EXPECT_NE(band.find("panel \"tube\" is not a disc: it has 3 boundary loops"), std::string::npos)
+      << band;
+  EXPECT_NE(band.find("not made by an opening (a band around the body? add a divider)"),
+            std::string::npos)
+      << band;
 }
 
 TEST(Openings, MesherKeepsHolesEmptyAndRejectsBadHoles) {
@@ -152,7 +164,8 @@ TEST(Openings, MesherKeepsHolesEmptyAndRejectsBadHoles) {
       for (int k = 0; k < n; ++k) pts.push_back(a + (b - a) * k / n);
     }
     Points2 p(static_cast<Eigen::Index>(pts.size()), 2);
-    for (size_t i = 0; i < pts.size(); ++i) p.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
+    for (size_t i = 0; i < pts.size(); ++i)
+      p.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
     return p;
   };
   const Points2 outer = square(0, 1, false), hole = square(0.3, 0.7, true);
@@ -167,7 +180,8 @@ TEST(Openings, MesherKeepsHolesEmptyAndRejectsBadHoles) {
     EXPECT_GT(a2, 0.0);
     area += 0.5 * a2;
     const Vec2 centroid = (a + b + c) / 3.0;
-    EXPECT_FALSE(centroid.x() > 0.3 && centroid.x() < 0.7 && centroid.y() > 0.3 && centroid.y() < 0.7);
+    EXPECT_FALSE(centroid.x() > 0.3 && centroid.x() < 0.7 && centroid.y() > 0.3 &&
+                 centroid.y() < 0.7);
   }
   EXPECT_NEAR(area, 1.0 - 0.16, 1e-12);
   EXPECT_GT(min_angle_deg(m.vertices, m.triangles), 25.0);
@@ -183,7 +197,8 @@ TEST(Openings, MesherKeepsHolesEmptyAndRejectsBadHoles) {
     return std::string("no error");
   };
   EXPECT_NE(error_of({square(0.3, 0.7, false)}).find("hole 1 is not clockwise"), std::string::npos);
-  EXPECT_NE(error_of({square(1.3, 1.7, true)}).find("hole 1 is not inside the outer boundary"), std::string::npos);
+  EXPECT_NE(error_of({square(1.3, 1.7, true)}).find("hole 1 is not inside the outer boundary"),
+            std::string::npos);
   const std::string crossing = error_of({hole, square(0.52, 0.92, true)});
   EXPECT_NE(crossing.find("crosses itself"), std::string::npos) << crossing;
 }
@@ -205,7 +220,8 @@ TEST(Openings, FlattenAPlanarAnnulusIsometricallyAndFindOpeningsOutside) {
     }
   plate.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
   for (size_t f = 0; f < faces.size(); ++f)
-    for (int c = 0; c < 3; ++c) plate.faces(static_cast<Eigen::Index>(f), c) = faces[f][static_cast<size_t>(c)];
+    for (int c = 0; c < 3; ++c)
+      plate.faces(static_cast<Eigen::Index>(f), c) = faces[f][static_cast<size_t>(c)];
   const SurfaceTopology topo(plate.faces, plate.num_vertices());
   auto loops = topo.boundary_loops();
   ASSERT_EQ(loops.size(), 2u);
@@ -215,7 +231,8 @@ TEST(Openings, FlattenAPlanarAnnulusIsometricallyAndFindOpeningsOutside) {
   EXPECT_LT(flat.report.max_angle_error_deg, 1e-6);
   EXPECT_EQ(find_overlap(plate, loops, flat.uv), "");
   // The same loops with the roles swapped: the "hole" lies outside the "outer" loop.
-  EXPECT_NE(find_overlap(plate, {loops[1], loops[0]}, flat.uv).find("an opening lies outside"), std::string::npos);
+  EXPECT_NE(find_overlap(plate, {loops[1], loops[0]}, flat.uv).find("an opening lies outside"),
+            std::string::npos);
 }
 
 TEST(Openings, BuildPiecesWithClockwiseHolesThatSurviveTheWholeBuild) {
@@ -237,17 +254,20 @@ TEST(Openings, BuildPiecesWithClockwiseHolesThatSurviveTheWholeBuild) {
   // About 2π · 15 mm / 8 mm edges, clockwise, inside the outline, no triangle inside.
   EXPECT_NEAR(static_cast<double>(hole.size()), 2 * test::kPi * 0.015 / 0.008, 2.0);
   EXPECT_LT(signed_area(front.rest, hole), 0.0);
-  EXPECT_NEAR(-signed_area(front.rest, hole), test::kPi * 0.015 * 0.015, 0.1 * test::kPi * 0.015 * 0.015);
+  EXPECT_NEAR(-signed_area(front.rest, hole), test::kPi * 0.015 * 0.015,
+              0.1 * test::kPi * 0.015 * 0.015);
   for (int v : hole) EXPECT_TRUE(inside(front.rest, front.boundary, front.rest.row(v)));
   for (Eigen::Index f = 0; f < front.triangles.rows(); ++f) {
     const Vec2 c = (front.rest.row(front.triangles(f, 0)) + front.rest.row(front.triangles(f, 1)) +
-                    front.rest.row(front.triangles(f, 2))) / 3.0;
+                    front.rest.row(front.triangles(f, 2))) /
+                   3.0;
     EXPECT_FALSE(inside(front.rest, hole, c));
   }
   // Piece area = panel area (the cylinder is developable; the pattern is not scaled).
   double area = 0.0;
   for (Eigen::Index f = 0; f < front.triangles.rows(); ++f) {
-    const Vec2 a = front.rest.row(front.triangles(f, 0)), c1 = front.rest.row(front.triangles(f, 1)),
+    const Vec2 a = front.rest.row(front.triangles(f, 0)),
+               c1 = front.rest.row(front.triangles(f, 1)),
                c2 = front.rest.row(front.triangles(f, 2));
     area += 0.5 * ((c1 - a).x() * (c2 - a).y() - (c1 - a).y() * (c2 - a).x());
   }

@@ -21,7 +21,8 @@ std::string spec_file(const char* name) {
 class Pants : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    body_ = new TriMesh(read_tri_mesh(std::filesystem::path(TIGHTFIT_DATA_DIR) / "bodies/mh_legs_male.obj"));
+    body_ = new TriMesh(
+        read_tri_mesh(std::filesystem::path(TIGHTFIT_DATA_DIR) / "bodies/mh_legs_male.obj"));
     limit_ = new LimitSurface(*body_);
   }
   static void TearDownTestSuite() {
@@ -41,14 +42,17 @@ class Pants : public ::testing::Test {
 
   static void report(const GarmentBuild& b) {
     for (const auto& p : b.pieces)
-      std::printf("  %-18s area error %.2e, |det J - 1| mean %.2e max %.2e, angle error mean %.2f max %.1f deg, "
-                  "%d vertices, min angle %.1f deg\n",
-                  p.name.c_str(), p.distortion.area_error, p.distortion.mean_area_distortion,
-                  p.distortion.max_area_distortion, p.distortion.mean_angle_error_deg,
-                  p.distortion.max_angle_error_deg, p.vertices, p.min_angle_deg);
+      std::printf(
+          "  %-18s area error %.2e, |det J - 1| mean %.2e max %.2e, angle error mean %.2f max %.1f "
+          "deg, "
+          "%d vertices, min angle %.1f deg\n",
+          p.name.c_str(), p.distortion.area_error, p.distortion.mean_area_distortion,
+          p.distortion.max_area_distortion, p.distortion.mean_angle_error_deg,
+          p.distortion.max_angle_error_deg, p.vertices, p.min_angle_deg);
     for (const auto& s : b.seams)
-      std::printf("  seam %-36s 3D %.4f m, sides %.4f / %.4f m (%.2f %%), %d vertices\n", s.name.c_str(),
-                  s.length_3d, s.length_a, s.length_b, 100 * s.relative_difference, s.vertices);
+      std::printf("  seam %-36s 3D %.4f m, sides %.4f / %.4f m (%.2f %%), %d vertices\n",
+                  s.name.c_str(), s.length_3d, s.length_a, s.length_b, 100 * s.relative_difference,
+                  s.vertices);
   }
 
   static void check(const GarmentBuild& b, double max_seam_difference) {
@@ -76,7 +80,9 @@ class Pants : public ::testing::Test {
     for (size_t k = 0; k < g.pattern.pieces.size(); ++k)
       for (Eigen::Index v = 0; v < g.pattern.pieces[k].rest.rows(); v += 5) {
         const Vec2 q = g.pattern.pieces[k].rest.row(v);
-        worst = std::max(worst, (panel_to_piece(b.layout, b.maps[k], piece_to_panel(b.layout, b.maps[k], q)) - q).norm());
+        worst = std::max(
+            worst, (panel_to_piece(b.layout, b.maps[k], piece_to_panel(b.layout, b.maps[k], q)) - q)
+                       .norm());
       }
     EXPECT_LT(worst, 1e-6);
   }

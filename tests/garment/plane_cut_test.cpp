@@ -1,7 +1,7 @@
 #include "tightfit/garment/plane_cut.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "garment/garment_test_meshes.hpp"
 #include "tightfit/geometry/surface_topology.hpp"
@@ -12,7 +12,8 @@ namespace {
 double area(const TriMesh& m) {
   double a = 0;
   for (int f = 0; f < m.num_faces(); ++f) {
-    const Vec3 p0 = m.vertices.row(m.faces(f, 0)), p1 = m.vertices.row(m.faces(f, 1)), p2 = m.vertices.row(m.faces(f, 2));
+    const Vec3 p0 = m.vertices.row(m.faces(f, 0)), p1 = m.vertices.row(m.faces(f, 1)),
+               p2 = m.vertices.row(m.faces(f, 2));
     a += 0.5 * (p1 - p0).cross(p2 - p0).norm();
   }
   return a;
@@ -73,7 +74,8 @@ TEST(PlaneCut, SnapsNearbyVerticesInsteadOfMakingSlivers) {
     EXPECT_NEAR(std::hypot(x.x(), x.z()), 0.05, 1e-15);
   }
   const CutMesh sliver = cut_by_planes(cylinder, planes, 0.0);
-  EXPECT_EQ(sliver.mesh.num_vertices(), cylinder.num_vertices() + 32);  // a vertical and a diagonal edge per column
+  EXPECT_EQ(sliver.mesh.num_vertices(),
+            cylinder.num_vertices() + 32);  // a vertical and a diagonal edge per column
 }
 
 }  // namespace

@@ -17,10 +17,11 @@ namespace fs = std::filesystem;
 using test::run_cli;
 
 TEST(WetsuitCli, TheTwelvePieceWetsuitLaysOutOnTheCroppedRegularBody) {
-  const fs::path out = fs::temp_directory_path() / ("tightfit_wetsuit_" + std::to_string(::getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("tightfit_wetsuit_" + std::to_string(::getpid()));
   fs::remove_all(out);
-  const auto r = run_cli("layout " + std::string(TIGHTFIT_SOURCE_DIR) + "/examples/optimize_wetsuit_regular.json --out " +
-                         out.string());
+  const auto r = run_cli("layout " + std::string(TIGHTFIT_SOURCE_DIR) +
+                         "/examples/optimize_wetsuit_regular.json --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream in(out / "pieces.json");
   const nlohmann::json pieces = nlohmann::json::parse(in);

@@ -33,7 +33,9 @@ std::string mesh_writer_error(const std::function<void()>& write) {
   return {};
 }
 
-bool no_file_in(const fs::path& dir) { return fs::directory_iterator(dir) == fs::directory_iterator(); }
+bool no_file_in(const fs::path& dir) {
+  return fs::directory_iterator(dir) == fs::directory_iterator();
+}
 
 TEST(FiniteMeshWriters, SurfaceWritersRefuseANonFinitePosition) {
   test::ScratchDir dir;
@@ -83,7 +85,9 @@ TEST(FiniteMeshWriters, VolumeWritersRefuseANonFinitePositionOrField) {
   mesh.tets << 0, 1, 2, 3;
   MatX displacement = MatX::Zero(4, 3);
   displacement(1, 0) = kMeshNaN;
-  std::string what = mesh_writer_error([&] { write_vtu(dir / "a.vtu", mesh, {{"u", displacement}}); });
+  std::string what = mesh_writer_error([&] {
+    write_vtu(dir / "a.vtu", mesh, {{"u", displacement}});
+  });
   EXPECT_NE(what.find("(nan) in the point field 'u', row 1, column 0"), std::string::npos) << what;
   mesh.vertices(0, 0) = kMeshInf;
   what = mesh_writer_error([&] { write_vtu(dir / "b.vtu", mesh); });

@@ -19,7 +19,8 @@ TriMesh tube(double r, double x0, int columns, int rows, bool closed) {
   for (int j = 0; j < rows; ++j)
     for (int i = 0; i < columns; ++i) {
       const double a = 2.0 * std::numbers::pi * i / columns;
-      m.vertices.row(j * columns + i) << x0 + r * std::cos(a), static_cast<double>(j) / (rows - 1), r * std::sin(a);
+      m.vertices.row(j * columns + i) << x0 + r * std::cos(a), static_cast<double>(j) / (rows - 1),
+          r * std::sin(a);
     }
   const int across = closed ? columns : columns - 1;
   m.faces.resize(2 * across * (rows - 1), 3);
@@ -67,8 +68,10 @@ TEST(PlaneCut, TwoTubesGiveTwoClosedLoopsAndTheOneAroundThePointIsPicked) {
     const Vec3 p = crossing_point(m, cut, static_cast<int>(i));
     EXPECT_NEAR(p.y(), 0.4, 1e-12);
   }
-  const double polygon = 2.0 * columns * std::sin(std::numbers::pi / columns);  // perimeter / radius
-  for (const auto& [point, radius] : {std::pair{Vec3(0.0, 0.4, 0.0), 0.1}, std::pair{Vec3(0.5, 0.4, 0.0), 0.05}}) {
+  const double polygon =
+      2.0 * columns * std::sin(std::numbers::pi / columns);  // perimeter / radius
+  for (const auto& [point, radius] :
+       {std::pair{Vec3(0.0, 0.4, 0.0), 0.1}, std::pair{Vec3(0.5, 0.4, 0.0), 0.05}}) {
     const NearestCutLoop loop = nearest_cut_loop(m, cut, point, Vec3::UnitY());
     EXPECT_TRUE(loop.encloses);
     // Nearest: the crossings of the diagonal edges, 0.4 e_i + 0.6 e_(i+1) (chords).

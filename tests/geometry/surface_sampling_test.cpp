@@ -39,7 +39,8 @@ TEST(SurfaceSampling, AFineMeshGivesItsVertices) {
   const OrientedPoints s = sample_surface(right_triangle(), 2.0);
   ASSERT_EQ(s.points.rows(), 3);
   EXPECT_TRUE(s.points.isApprox(right_triangle().vertices));
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR((s.normals.row(k) - Vec3(0, 0, 1).transpose()).norm(), 0.0, 1e-15);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR((s.normals.row(k) - Vec3(0, 0, 1).transpose()).norm(), 0.0, 1e-15);
 }
 
 TEST(SurfaceSampling, CountsAndCoversACoarseTriangle) {

@@ -47,7 +47,8 @@ TEST(CliHelp, OptimizeProgressHasAHeaderAndATerseMode) {
   const std::filesystem::path out =
       std::filesystem::temp_directory_path() / ("tightfit_cli_help_" + std::to_string(::getpid()));
   std::filesystem::remove_all(out);
-  const std::string scene = std::string(TIGHTFIT_SOURCE_DIR) + "/examples/optimize_sleeve_stretch.json";
+  const std::string scene =
+      std::string(TIGHTFIT_SOURCE_DIR) + "/examples/optimize_sleeve_stretch.json";
   std::string args = "optimize " + scene;
   args += " --max-iterations 1 --out ";
   args += out.string();
@@ -68,7 +69,7 @@ TEST(CliHelp, OptimizeProgressHasAHeaderAndATerseMode) {
   ASSERT_NE(terse_header, std::string::npos) << terse.output;
   EXPECT_NE(terse.output.find("1/1 "), std::string::npos) << terse.output;
   EXPECT_EQ(terse.output.find("stretch ", terse_header), std::string::npos) << "no terms line\n"
-                                                                             << terse.output;
+                                                                            << terse.output;
   std::filesystem::remove_all(out);
 }
 

@@ -13,7 +13,9 @@
 namespace tightfit {
 namespace ease_cli_test {
 
-nlohmann::json read_json(const std::filesystem::path& file) { return nlohmann::json::parse(test::read_text(file)); }
+nlohmann::json read_json(const std::filesystem::path& file) {
+  return nlohmann::json::parse(test::read_text(file));
+}
 
 }  // namespace ease_cli_test
 
@@ -21,7 +23,8 @@ using namespace ease_cli_test;
 
 TEST(EaseCli, TheLeftLegIsMeasuredAtTheSkeletonsStandardLevels) {
   const test::TempDir dir("ease_leg");
-  const std::string scene = std::string(TIGHTFIT_SOURCE_DIR) + "/examples/left_leg_anchored_regular.json";
+  const std::string scene =
+      std::string(TIGHTFIT_SOURCE_DIR) + "/examples/left_leg_anchored_regular.json";
   const test::CliRun run = test::run_cli("simulate " + scene + " --out " + (dir / "run").string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const nlohmann::json levels = read_json(dir / "run" / "result.json").at("measurements");
@@ -31,7 +34,8 @@ TEST(EaseCli, TheLeftLegIsMeasuredAtTheSkeletonsStandardLevels) {
     const std::string name = level.at("name").get<std::string>();
     if (level.at("status") == "skipped") {
       skipped.insert(name);
-      EXPECT_NE(level.at("reason").get<std::string>().find("all the way around"), std::string::npos) << name;
+      EXPECT_NE(level.at("reason").get<std::string>().find("all the way around"), std::string::npos)
+          << name;
       continue;
     }
     measured.insert(name);
@@ -41,12 +45,14 @@ TEST(EaseCli, TheLeftLegIsMeasuredAtTheSkeletonsStandardLevels) {
     EXPECT_GT(ease, -22.0) << name;
     EXPECT_LT(ease, -10.0) << name;
     double pieces = 0.0;
-    for (const nlohmann::json& piece : level.at("pieces")) pieces += piece.at("pattern_width_m").get<double>();
+    for (const nlohmann::json& piece : level.at("pieces"))
+      pieces += piece.at("pattern_width_m").get<double>();
     EXPECT_NEAR(pieces, level.at("pattern_circumference_m").get<double>(), 1e-12) << name;
   }
   // The left leg from the thigh to the calf; the ankle lies below the cuff, the right leg
   // and the arms carry no garment: left out. The hip plane crosses the garment's top edge.
-  for (const char* name : {"thigh.L", "mid-thigh.L", "knee.L", "calf.L"}) EXPECT_TRUE(measured.count(name)) << name;
+  for (const char* name : {"thigh.L", "mid-thigh.L", "knee.L", "calf.L"})
+    EXPECT_TRUE(measured.count(name)) << name;
   for (const auto& name : measured) EXPECT_TRUE(name.ends_with(".L")) << name;
   EXPECT_EQ(skipped, (std::set<std::string>{"hip"}));
   // Each piece's label carries its lines of the table (calf.L ... ease -NN %).
@@ -72,11 +78,12 @@ TEST(EaseCli, ALevelOnABoneWithoutASkeletonStopsTheRunBeforeAnyOutput) {
     "body_material": {"rigid": true},
     "measurements": [{"name": "calf", "point": {"bone": "lowerleg01.L", "at": 0.45}, "normal": "along_bone"}]
   })";
-  const test::CliRun run =
-      test::run_cli("simulate " + (dir / "scene.json").string() + " --out " + (dir / "run").string());
+  const test::CliRun run = test::run_cli("simulate " + (dir / "scene.json").string() + " --out " +
+                                         (dir / "run").string());
   EXPECT_EQ(run.exit_code, 2) << run.output;
-  EXPECT_NE(run.output.find("scene.json: /measurements/0: anchored on the skeleton, but there is none"),
-            std::string::npos)
+  EXPECT_NE(
+      run.output.find("scene.json: /measurements/0: anchored on the skeleton, but there is none"),
+      std::string::npos)
       << run.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "run"));
 }

@@ -23,7 +23,7 @@ TEST(ExampleScenes, EveryExampleParsesAndItsFilesRead) {
     ++scenes;
     SceneSpec scene;
     ASSERT_NO_THROW(scene = read_scene(entry.path()));
-    if (scene.body.source == BodySource::Mesh) {
+    if (scene.body.source == BodySource::kMesh) {
       EXPECT_TRUE(fs::exists(scene.body.mesh.path)) << scene.body.mesh.path;
     }
     if (scene.optimize.is_null()) continue;

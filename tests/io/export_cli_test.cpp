@@ -103,7 +103,7 @@ nlohmann::json layout_scene() {
 }
 
 /// Files whose bytes must not change when regenerated from the state.
-const char* const kSameBytes[] = {"garment.ply", "body.ply", "pieces.json", "pattern.svg",
+const char* const kSameBytes[] = {"garment.ply", "body.ply",   "pieces.json", "pattern.svg",
                                   "pattern.dxf", "scene.json", "state.json"};
 
 class ExportCli : public ::testing::Test {
@@ -123,8 +123,8 @@ class ExportCli : public ::testing::Test {
   /// Runs `command SCENE --out DIR/run`, returns DIR/run.
   fs::path run(const std::string& command, const nlohmann::json& scene) {
     const fs::path out = dir_ / "run";
-    const CliRun r =
-        run_cli(command + " " + write_scene("scene.json", scene).string() + " --out " + out.string());
+    const CliRun r = run_cli(command + " " + write_scene("scene.json", scene).string() + " --out " +
+                             out.string());
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_TRUE(fs::exists(out / "state.json")) << r.output;
     return out;
@@ -132,7 +132,8 @@ class ExportCli : public ::testing::Test {
   /// The export's printed force residual and tolerance (N).
   static std::pair<double, double> residual(const std::string& output) {
     std::smatch m;
-    const std::regex re("force residual of the saved state ([0-9.e+-]+) N \\(tolerance ([0-9.e+-]+) N\\)");
+    const std::regex re(
+        "force residual of the saved state ([0-9.e+-]+) N \\(tolerance ([0-9.e+-]+) N\\)");
     if (!std::regex_search(output, m, re)) return {-1.0, -1.0};
     return {std::stod(m[1]), std::stod(m[2])};
   }
@@ -146,8 +147,8 @@ TEST_F(ExportCli, SimulateRunIsRegeneratedExactly) {
   std::printf("%s", r.output.c_str());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : kSameBytes) EXPECT_EQ(read_text(copy / f), read_text(original / f)) << f;
-  for (const char* f : {"report.html", "fit.glb", "pattern_a4.pdf", "pattern_letter.pdf",
-                        "pattern_full.pdf"})
+  for (const char* f :
+       {"report.html", "fit.glb", "pattern_a4.pdf", "pattern_letter.pdf", "pattern_full.pdf"})
     EXPECT_TRUE(fs::exists(copy / f)) << f;
   EXPECT_FALSE(fs::exists(copy / "history.json"));
   expect_json_near(read_json(copy / "result.json"), read_json(original / "result.json"), 1e-12);
@@ -161,11 +162,14 @@ TEST_F(ExportCli, SimulateRunIsRegeneratedExactly) {
   EXPECT_EQ(level.at("name"), "z 0.00 m");
   EXPECT_EQ(level.at("origin"), "planes");
   EXPECT_EQ(level.at("status"), "measured");
-  EXPECT_NEAR(level.at("body_circumference_m").get<double>(), 2 * std::numbers::pi * 0.05, 0.01 * 2 * std::numbers::pi * 0.05);
-  EXPECT_NEAR(level.at("pattern_circumference_m").get<double>(), 0.9 * 2 * std::numbers::pi * 0.05, 0.01 * 2 * std::numbers::pi * 0.05);
+  EXPECT_NEAR(level.at("body_circumference_m").get<double>(), 2 * std::numbers::pi * 0.05,
+              0.01 * 2 * std::numbers::pi * 0.05);
+  EXPECT_NEAR(level.at("pattern_circumference_m").get<double>(), 0.9 * 2 * std::numbers::pi * 0.05,
+              0.01 * 2 * std::numbers::pi * 0.05);
   EXPECT_NEAR(level.at("ease_percent").get<double>(), -10.0, 1.0);
   EXPECT_NEAR(level.at("fitted_stretch").get<double>(),
-              level.at("garment_circumference_m").get<double>() / level.at("pattern_circumference_m").get<double>(),
+              level.at("garment_circumference_m").get<double>() /
+                  level.at("pattern_circumference_m").get<double>(),
               1e-12);
   EXPECT_EQ(report_data(original / "report.html").at("measurements"), measurements);
   // fit.glb is y up: the cylinder's axis (z) was turned onto +y, so the body's length
@@ -174,8 +178,9 @@ TEST_F(ExportCli, SimulateRunIsRegeneratedExactly) {
   for (const fs::path& folder : {original, copy}) {
     const nlohmann::json gltf = glb_json(folder / "fit.glb");
     EXPECT_EQ(gltf["asset"]["extras"]["scene_up"], nlohmann::json({0.0, 0.0, 1.0}));
-    const auto& body = gltf["accessors"][gltf["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
-                                             .get<std::size_t>()];
+    const auto& body =
+        gltf["accessors"]
+            [gltf["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<std::size_t>()];
     const double height = body["max"][1].get<double>() - body["min"][1].get<double>();
     EXPECT_NEAR(height, 0.16 + 2 * 0.05, 0.01);  // side and round caps
     EXPECT_LT(body["max"][2].get<double>() - body["min"][2].get<double>(), 0.11);
@@ -224,11 +229,12 @@ TEST_F(ExportCli, RemeshedOptimizeRunIsRegeneratedExactly) {
   // triangles and is remeshed (measured: after iterations 1 and 3).
   nlohmann::json scene = sleeve_scene();
   scene["garment"]["sleeve"]["jitter"] = 0.0;
-  scene["optimize"] = {{"objectives",
-                        {{"directional_stretch",
-                          {{"weight", 1}, {"min", 1.6}, {"max", 1.7}, {"direction", "across_grain"}}}}},
-                       {"remesh", {{"min_angle_deg", 40}}},
-                       {"max_iterations", 5}};
+  scene["optimize"] = {
+      {"objectives",
+       {{"directional_stretch",
+         {{"weight", 1}, {"min", 1.6}, {"max", 1.7}, {"direction", "across_grain"}}}}},
+      {"remesh", {{"min_angle_deg", 40}}},
+      {"max_iterations", 5}};
   const fs::path original = run("optimize", scene);
   const nlohmann::json state = read_json(original / "state.json");
   ASSERT_TRUE(state["pattern"].value("remeshed", false)) << "the run did not remesh";
@@ -312,8 +318,7 @@ TEST_F(ExportCli, MissingOrCorruptStateIsAnInputErrorWithoutOutput) {
     std::ofstream(original / "state.json", std::ios::binary) << text;
     const CliRun bad = run_cli("export " + original.string());
     EXPECT_EQ(bad.exit_code, 2) << bad.output;
-    EXPECT_NE(bad.output.find((original / "state.json").string()), std::string::npos)
-        << bad.output;
+    EXPECT_NE(bad.output.find((original / "state.json").string()), std::string::npos) << bad.output;
     EXPECT_NE(bad.output.find(message), std::string::npos) << bad.output;
     // DIR is untouched, no staging folder is left.
     EXPECT_EQ(read_text(original / "layout.json"), before);

@@ -144,8 +144,8 @@ TEST(FitColormap, StandardColorings) {
   ASSERT_TRUE(list[2].negative_color.has_value());
   const auto r = resolve_coloring(list[2], scalar({-100.0, 0.0, 4000.0}), "x");
   expect_rgb_near(r.color(r.values[0]), kLiftOffColor, 0.0);
-  expect_rgb_near(r.color(r.values[1]), colormap_color(ColorMap::kTurbo, (0.0 - r.lo) / (r.hi - r.lo)),
-                  1e-12);
+  expect_rgb_near(r.color(r.values[1]),
+                  colormap_color(ColorMap::kTurbo, (0.0 - r.lo) / (r.hi - r.lo)), 1e-12);
   EXPECT_FALSE(list[0].negative_color.has_value());
 }
 

@@ -2,12 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
-#include <vector>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "io/fit_test_tools.hpp"
 #include "io/fit_test_view.hpp"
@@ -56,10 +56,10 @@ TEST(FitGlb, PassesTheKhronosValidator) {
   EXPECT_LT(used.lo, 0.0);  // lift-off kept in the range
   EXPECT_NEAR(used.hi, 2800.0 / kPascalPerMmHg, 0.2);
 
-  const auto result =
-      test::run_command("node " + test::shell_quote(test::source_path("tests/io/fit_glb_validate.mjs")) +
-                            " " + test::shell_quote(dir / "fit.glb"),
-                        dir / "validator.log");
+  const auto result = test::run_command(
+      "node " + test::shell_quote(test::source_path("tests/io/fit_glb_validate.mjs")) + " " +
+          test::shell_quote(dir / "fit.glb"),
+      dir / "validator.log");
   ASSERT_EQ(result.exit_code, 0) << "gltf-validator (node, report/node_modules; see "
                                  << "scripts/install-deps.sh) reported errors or could not run:\n"
                                  << result.output;
@@ -84,10 +84,10 @@ TEST(FitGlb, APoseIsANodeWithItsPosedBodyAndGarmentInASceneOfItsOwn) {
   pose.sliding_excess = VecX::LinSpaced(view.garment.num_faces(), 0.0, 1.5);
   view.poses = {pose};
   write_fit_glb(dir / "fit.glb", view);
-  const auto result =
-      test::run_command("node " + test::shell_quote(test::source_path("tests/io/fit_glb_validate.mjs")) +
-                            " " + test::shell_quote(dir / "fit.glb"),
-                        dir / "validator.log");
+  const auto result = test::run_command(
+      "node " + test::shell_quote(test::source_path("tests/io/fit_glb_validate.mjs")) + " " +
+          test::shell_quote(dir / "fit.glb"),
+      dir / "validator.log");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const auto report = nlohmann::json::parse(result.output);
   EXPECT_EQ(report["numErrors"], 0) << result.output;
@@ -238,14 +238,16 @@ TEST(FitGlb, EveryMapIsAColourSetAndASceneOfItsOwn) {
     const Points3 colors = accessor_rows(bytes, gltf, attributes[attribute].get<int>());
     const Rgb srgb = resolved.color(resolved.values[0]);
     for (int c = 0; c < 3; ++c)
-      EXPECT_NEAR(colors(0, c), srgb_to_linear(srgb[static_cast<std::size_t>(c)]), 1e-6) << attribute;
+      EXPECT_NEAR(colors(0, c), srgb_to_linear(srgb[static_cast<std::size_t>(c)]), 1e-6)
+          << attribute;
     if (k == 0) continue;
     // Scene k draws the body and the same garment geometry with this map as COLOR_0.
     const auto& scene = gltf["scenes"][k];
     EXPECT_EQ(scene["name"], "map: " + maps[k].label);
     ASSERT_EQ(scene["nodes"].size(), 2u);
     const int mesh = gltf["nodes"][scene["nodes"][1].get<std::size_t>()]["mesh"];
-    const auto& map_attributes = gltf["meshes"][static_cast<std::size_t>(mesh)]["primitives"][0]["attributes"];
+    const auto& map_attributes =
+        gltf["meshes"][static_cast<std::size_t>(mesh)]["primitives"][0]["attributes"];
     EXPECT_EQ(map_attributes["POSITION"], attributes["POSITION"]);
     EXPECT_EQ(map_attributes["NORMAL"], attributes["NORMAL"]);
     EXPECT_EQ(map_attributes["COLOR_0"], attributes[attribute]);
@@ -263,15 +265,18 @@ TEST(FitGlb, TheBodysUpIsItsCylinderAxisOrY) {
   const auto spec = [](const nlohmann::json& j) { return parse_body_spec(j, "", "."); };
   EXPECT_EQ(body_up_direction(spec({{"generator", "cylinder"}, {"radius", 0.05}, {"length", 0.2}})),
             Vec3::UnitZ());
-  EXPECT_LT((body_up_direction(spec({{"generator", "cylinder"}, {"radius", 0.05}, {"length", 0.2},
-                                     {"axis", {3, 0, 4}}})) -
-             Vec3(0.6, 0, 0.8))
-                .norm(),
-            1e-15);
+  EXPECT_LT(
+      (body_up_direction(spec(
+           {{"generator", "cylinder"}, {"radius", 0.05}, {"length", 0.2}, {"axis", {3, 0, 4}}})) -
+       Vec3(0.6, 0, 0.8))
+          .norm(),
+      1e-15);
   EXPECT_EQ(body_up_direction(spec({{"generator", "sphere"}, {"radius", 0.1}})), Vec3::UnitY());
-  EXPECT_EQ(body_up_direction(
-                spec({{"mesh", (std::filesystem::path(TIGHTFIT_DATA_DIR) / "bodies/mh_male_regular.obj").string()}})),
-            Vec3::UnitY());
+  EXPECT_EQ(
+      body_up_direction(spec(
+          {{"mesh",
+            (std::filesystem::path(TIGHTFIT_DATA_DIR) / "bodies/mh_male_regular.obj").string()}})),
+      Vec3::UnitY());
 }
 
 }  // namespace

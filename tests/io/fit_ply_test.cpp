@@ -85,8 +85,9 @@ TEST(FitPly, MeshioReadsTheFieldsOfASimulateRun) {
                            "hoop_scale": 0.9, "axial_scale": 0.95, "edge_length": 0.016,
                            "pin_first_ring": true, "pin_last_ring": true}},
     "body_material": {"rigid": true}})";
-  const auto run = test::run_command(std::string(TIGHTFIT_CLI) + " simulate " + test::shell_quote(dir / "scene.json") +
-                                         " --out " + test::shell_quote(dir / "run"),
+  const auto run = test::run_command(std::string(TIGHTFIT_CLI) + " simulate " +
+                                         test::shell_quote(dir / "scene.json") + " --out " +
+                                         test::shell_quote(dir / "run"),
                                      dir / "simulate.log");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   for (const char* file : {"garment.ply", "body.ply"}) {
@@ -96,7 +97,8 @@ TEST(FitPly, MeshioReadsTheFieldsOfASimulateRun) {
     const auto read = read_with_meshio(dir / "run" / file, dir);
     expect_mesh_and_fields(read, ours.mesh, fields);
     if (std::string(file) == "garment.ply") {
-      for (const char* name : {"stretch_max", "stretch_min", "regime", "pressure_pa", "pressure_mmhg"})
+      for (const char* name :
+           {"stretch_max", "stretch_min", "regime", "pressure_pa", "pressure_mmhg"})
         EXPECT_TRUE(read["cell_data"].contains(name)) << name;
     }
   }

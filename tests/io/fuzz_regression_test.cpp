@@ -13,13 +13,15 @@ namespace tightfit {
 namespace {
 
 TEST(FuzzRegressions, EveryReaderAnswersHostileFilesWithAnInputError) {
-  const std::filesystem::path root = std::filesystem::path(TIGHTFIT_SOURCE_DIR) / "tests/fuzz_regressions";
+  const std::filesystem::path root =
+      std::filesystem::path(TIGHTFIT_SOURCE_DIR) / "tests/fuzz_regressions";
   ASSERT_TRUE(std::filesystem::is_directory(root)) << root;
   int files = 0;
   for (const auto& dir : std::filesystem::directory_iterator(root)) {
     const std::string name = dir.path().filename().string();
     const auto reader = fuzz::readers().find(name);
-    ASSERT_NE(reader, fuzz::readers().end()) << "no reader called " << name << " (fuzz/readers.hpp)";
+    ASSERT_NE(reader, fuzz::readers().end())
+        << "no reader called " << name << " (fuzz/readers.hpp)";
     for (const auto& file : std::filesystem::directory_iterator(dir.path())) {
       ++files;
       try {

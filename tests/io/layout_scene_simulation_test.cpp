@@ -47,10 +47,11 @@ void expect_converges_scaled_ten_percent(const std::string& scene_name, size_t p
     pressure += a * fit.pressure_mid_edge[static_cast<Eigen::Index>(e)];
   }
   pressure /= area;
-  std::printf("%s: %d Newton iterations, residual %.2e N (tolerance %.2e N), taut %.1f %% of the "
-              "area, mean pressure %.0f Pa, %d garment vertices, %d body tets\n",
-              scene_name.c_str(), report.iterations, report.final_force_norm, report.tolerance,
-              100 * taut_area / area, pressure, g.num_garment_vertices, scene->body.volume.num_tets());
+  std::printf(
+      "%s: %d Newton iterations, residual %.2e N (tolerance %.2e N), taut %.1f %% of the "
+      "area, mean pressure %.0f Pa, %d garment vertices, %d body tets\n",
+      scene_name.c_str(), report.iterations, report.final_force_norm, report.tolerance,
+      100 * taut_area / area, pressure, g.num_garment_vertices, scene->body.volume.num_tets());
   EXPECT_GT(taut_area / area, 0.5);  // 10 % smaller pieces are stretched on the body
   EXPECT_GT(pressure, 0.0);
 }

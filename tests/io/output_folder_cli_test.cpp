@@ -150,7 +150,8 @@ TEST_F(OutputFolderCli, AFullDiskIsAnInputErrorAndLeavesTheFolderAsItWas) {
   // A 96 kB file system: the report alone does not fit.
   const fs::path disk = dir_ / "disk";
   fs::create_directories(disk);
-  if (std::system(("mount -t tmpfs -o size=96k tmpfs " + disk.string() + " 2>/dev/null").c_str()) != 0)
+  if (std::system(("mount -t tmpfs -o size=96k tmpfs " + disk.string() + " 2>/dev/null").c_str()) !=
+      0)
     GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
   struct Unmount {
     fs::path path;

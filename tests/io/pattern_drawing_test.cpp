@@ -32,7 +32,8 @@ TEST(PatternDrawing, SewLineIsTheBoundaryInMillimetres) {
     const PatternPiece& piece = pattern.pieces[p];
     ASSERT_EQ(pieces[p].sew_line.size(), piece.boundary.size());
     for (size_t k = 0; k < piece.boundary.size(); ++k) {
-      EXPECT_TRUE(pieces[p].sew_line[k].isApprox(piece.rest.row(piece.boundary[k]).transpose() * 1000.0));
+      EXPECT_TRUE(
+          pieces[p].sew_line[k].isApprox(piece.rest.row(piece.boundary[k]).transpose() * 1000.0));
     }
     EXPECT_EQ(pieces[p].quantity, 1);
   }
@@ -131,7 +132,8 @@ void check_notch_ticks(double notch_depth, double expected_default, double expec
         const Vec2& s0 = piece.sew_line[k];
         const Vec2& s1 = piece.sew_line[(k + 1) % piece.sew_line.size()];
         if (test::segment_distance(n.sew, s0, s1) > 1e-9) continue;
-        best_dot = std::min(best_dot, std::abs((s1 - s0).normalized().dot((n.cut - n.sew).normalized())));
+        best_dot =
+            std::min(best_dot, std::abs((s1 - s0).normalized().dot((n.cut - n.sew).normalized())));
       }
       EXPECT_NEAR(best_dot, 0.0, 1e-9);
     }
@@ -199,8 +201,9 @@ TEST(PatternDrawing, LayoutDoesNotOverlapAndContainsEverything) {
     EXPECT_LE(boxes[i].max.x(), layout.width_mm);
     EXPECT_LE(boxes[i].max.y(), layout.height_mm);
     for (size_t j = i + 1; j < boxes.size(); ++j) {
-      const bool apart = boxes[i].max.x() <= boxes[j].min.x() || boxes[j].max.x() <= boxes[i].min.x() ||
-                         boxes[i].max.y() <= boxes[j].min.y() || boxes[j].max.y() <= boxes[i].min.y();
+      const bool apart =
+          boxes[i].max.x() <= boxes[j].min.x() || boxes[j].max.x() <= boxes[i].min.x() ||
+          boxes[i].max.y() <= boxes[j].min.y() || boxes[j].max.y() <= boxes[i].min.y();
       EXPECT_TRUE(apart) << i << " " << j;
     }
   }

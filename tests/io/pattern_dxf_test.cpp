@@ -35,7 +35,7 @@ PatternExportOptions dxf_options() {
   options.annotations["front"] = "Front, cut on fold: no";
   options.quantities["back"] = 2;
   // Double notches, "top" marks and style text go through the audit and LibreCAD too.
-  options.seam_notch_styles["side_left"] = NotchStyle::Double;
+  options.seam_notch_styles["side_left"] = NotchStyle::kDouble;
   options.seam_last_end_up["side_right"] = true;
   options.label.style = "Test style";
   options.label.date = "2001-02-03";
@@ -83,10 +83,10 @@ TEST(PatternDxf, EzdxfReadsBackPiecesOutlinesAndLayers) {
   const Pattern pattern = dxf_pattern();
   const PatternExportOptions options = dxf_options();
   write_pattern_dxf(pattern, options, file);
-  const auto read = run_command(std::string(kPython) + " " +
-                                shell_quote(std::string(TIGHTFIT_SOURCE_DIR) +
-                                            "/tests/io/pattern_dxf_check.py") +
-                                " " + shell_quote(file));
+  const auto read =
+      run_command(std::string(kPython) + " " +
+                  shell_quote(std::string(TIGHTFIT_SOURCE_DIR) + "/tests/io/pattern_dxf_check.py") +
+                  " " + shell_quote(file));
   ASSERT_EQ(read.exit_code, 0) << read.output;
   const nlohmann::json found = nlohmann::json::parse(read.output);
   EXPECT_EQ(found["dxfversion"], "AC1009");
@@ -146,13 +146,14 @@ TEST(PatternDxf, LibreCadRendersIt) {
   std::filesystem::create_directories(runtime);
   std::filesystem::permissions(runtime, std::filesystem::perms::owner_all);
   // LibreCAD 2.2 needs a Qt platform; the offscreen one needs no display.
-  const auto render = run_command("cd " + shell_quote(dir) + " && QT_QPA_PLATFORM=offscreen XDG_RUNTIME_DIR=" +
-                                  shell_quote(runtime) + " " + kLibreCad +
-                                  " dxf2pdf -a -m pattern.dxf");
+  const auto render =
+      run_command("cd " + shell_quote(dir) + " && QT_QPA_PLATFORM=offscreen XDG_RUNTIME_DIR=" +
+                  shell_quote(runtime) + " " + kLibreCad + " dxf2pdf -a -m pattern.dxf");
   ASSERT_EQ(render.exit_code, 0) << render.output;
   ASSERT_TRUE(std::filesystem::exists(dir / "pattern.pdf")) << render.output;
-  const auto raster = run_command(std::string(kPdfToPpm) + " -r 40 -gray -singlefile " +
-                                  shell_quote(dir / "pattern.pdf") + " " + shell_quote(dir / "page"));
+  const auto raster =
+      run_command(std::string(kPdfToPpm) + " -r 40 -gray -singlefile " +
+                  shell_quote(dir / "pattern.pdf") + " " + shell_quote(dir / "page"));
   ASSERT_EQ(raster.exit_code, 0) << raster.output;
   const test::GrayImage image = test::read_pgm(dir / "page.pgm");
   ASSERT_GT(image.width, 100);

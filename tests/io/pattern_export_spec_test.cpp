@@ -60,9 +60,9 @@ TEST(PatternExportSpec, ReadsEveryKeyInMetres) {
   EXPECT_DOUBLE_EQ(o.seam_allowances.at("waist"), 0.02);
   EXPECT_DOUBLE_EQ(o.notch_depth, 0.005);
   EXPECT_DOUBLE_EQ(o.notch_spacing, 0.08);
-  EXPECT_EQ(o.seam_notch_styles.at("side_right"), NotchStyle::Double);
-  EXPECT_EQ(o.seam_notch_styles.at("side_left"), NotchStyle::Single);
-  EXPECT_EQ(o.corner_style, CornerStyle::Round);
+  EXPECT_EQ(o.seam_notch_styles.at("side_right"), NotchStyle::kDouble);
+  EXPECT_EQ(o.seam_notch_styles.at("side_left"), NotchStyle::kSingle);
+  EXPECT_EQ(o.corner_style, CornerStyle::kRound);
   EXPECT_DOUBLE_EQ(o.true_tolerance, 0.0005);
   EXPECT_EQ(scene.patterns.style, "Racer tights");
   EXPECT_EQ(scene.patterns.size, "M");

@@ -51,7 +51,8 @@ TEST(PatternJson, RoundTripKeepsPiecesAndSeams) {
   expect_same_pattern(pattern, read);
   // Writing what was read gives the same file.
   write_pieces_json(read, {}, dir / "again.json");
-  EXPECT_EQ(read_json_file((dir / "pieces.json").string()), read_json_file((dir / "again.json").string()));
+  EXPECT_EQ(read_json_file((dir / "pieces.json").string()),
+            read_json_file((dir / "again.json").string()));
 }
 
 TEST(PatternJson, CarriesOutlinesNotchesAndSeamCorrespondences) {

@@ -22,12 +22,13 @@ void expect_valid_cut(const Polygon2& sew, const Polygon2& cut, double min_allow
   EXPECT_FALSE(self_intersects(cut));
   EXPECT_GT(signed_area(cut), signed_area(sew));
   for (const Vec2& q : sew) EXPECT_TRUE(inside_polygon(q, cut)) << q.transpose();
-  for (const Vec2& q : cut) EXPECT_GE(polygon_distance(q, sew), min_allowance - 1e-9) << q.transpose();
+  for (const Vec2& q : cut)
+    EXPECT_GE(polygon_distance(q, sew), min_allowance - 1e-9) << q.transpose();
 }
 
 TEST(PatternOffset, RectangleMitresToLargerRectangle) {
   const Polygon2 sew = rectangle(100, 50);
-  const Polygon2 cut = offset_polygon(sew, {10, 10, 10, 10}, CornerStyle::Mitre, 2.0, 0.05);
+  const Polygon2 cut = offset_polygon(sew, {10, 10, 10, 10}, CornerStyle::kMitre, 2.0, 0.05);
   ASSERT_EQ(cut.size(), 4u);
   EXPECT_NEAR(signed_area(cut), 120.0 * 70.0, 1e-9);
   for (const Vec2& q : cut) {
@@ -39,7 +40,7 @@ TEST(PatternOffset, RectangleMitresToLargerRectangle) {
 
 TEST(PatternOffset, PerEdgeAllowance) {
   const Polygon2 sew = rectangle(100, 50);
-  const Polygon2 cut = offset_polygon(sew, {20, 10, 10, 10}, CornerStyle::Mitre, 2.0, 0.05);
+  const Polygon2 cut = offset_polygon(sew, {20, 10, 10, 10}, CornerStyle::kMitre, 2.0, 0.05);
   EXPECT_NEAR(signed_area(cut), 120.0 * 80.0, 1e-9);
   double ymin = 0.0;
   for (const Vec2& q : cut) ymin = std::min(ymin, q.y());
@@ -50,7 +51,7 @@ TEST(PatternOffset, PerEdgeAllowance) {
 TEST(PatternOffset, StepWhereAllowanceChangesOnAStraightEdge) {
   // Bottom edge split at x = 50: the left half has 20 mm, the rest 10 mm.
   const Polygon2 sew = {{0, 0}, {50, 0}, {100, 0}, {100, 50}, {0, 50}};
-  const Polygon2 cut = offset_polygon(sew, {20, 10, 10, 10, 10}, CornerStyle::Mitre, 2.0, 0.05);
+  const Polygon2 cut = offset_polygon(sew, {20, 10, 10, 10, 10}, CornerStyle::kMitre, 2.0, 0.05);
   EXPECT_NEAR(signed_area(cut), 120.0 * 70.0 + 60.0 * 10.0, 1e-9);
   int on_step = 0;
   for (const Vec2& q : cut) on_step += std::abs(q.x() - 50.0) < 1e-12 ? 1 : 0;
@@ -60,7 +61,7 @@ TEST(PatternOffset, StepWhereAllowanceChangesOnAStraightEdge) {
 
 TEST(PatternOffset, RoundCornersKeepExactDistance) {
   const Polygon2 sew = rectangle(100, 50);
-  const Polygon2 cut = offset_polygon(sew, {10, 10, 10, 10}, CornerStyle::Round, 2.0, 0.01);
+  const Polygon2 cut = offset_polygon(sew, {10, 10, 10, 10}, CornerStyle::kRound, 2.0, 0.01);
   for (const Vec2& q : cut) EXPECT_NEAR(polygon_distance(q, sew), 10.0, 1e-9);
   // Area of the rounded rectangle minus the chord error of the polygonal arcs.
   const double exact = 100.0 * 50.0 + 2.0 * (100.0 + 50.0) * 10.0 + std::numbers::pi * 100.0;
@@ -73,7 +74,7 @@ TEST(PatternOffset, SharpCornerIsRoundedBeyondMitreLimit) {
   // A 10° spike: its mitre would reach 10 / sin(5°) ≈ 115 mm.
   const double half = 5.0 * std::numbers::pi / 180.0;
   const Polygon2 sew = {{0, 0}, {200, -200 * std::tan(half)}, {200, 200 * std::tan(half)}};
-  const Polygon2 cut = offset_polygon(sew, {10, 10, 10}, CornerStyle::Mitre, 2.0, 0.05);
+  const Polygon2 cut = offset_polygon(sew, {10, 10, 10}, CornerStyle::kMitre, 2.0, 0.05);
   double farthest = 0.0;
   for (const Vec2& q : cut) farthest = std::max(farthest, polygon_distance(q, sew));
   EXPECT_LE(farthest, 2.0 * 10.0 + 1e-9);
@@ -82,9 +83,10 @@ TEST(PatternOffset, SharpCornerIsRoundedBeyondMitreLimit) {
 
 TEST(PatternOffset, SlitNarrowerThanTwiceTheAllowanceIsBridged) {
   // A U shape: slit 4 mm wide and 40 mm deep from the top.
-  const Polygon2 sew = {{0, 0}, {100, 0}, {100, 60}, {52, 60}, {52, 20}, {48, 20}, {48, 60}, {0, 60}};
-  const Polygon2 cut = offset_polygon(sew, std::vector<double>(sew.size(), 10.0), CornerStyle::Mitre,
-                                      2.0, 0.05);
+  const Polygon2 sew = {{0, 0},   {100, 0}, {100, 60}, {52, 60},
+                        {52, 20}, {48, 20}, {48, 60},  {0, 60}};
+  const Polygon2 cut =
+      offset_polygon(sew, std::vector<double>(sew.size(), 10.0), CornerStyle::kMitre, 2.0, 0.05);
   expect_valid_cut(sew, cut, 10.0);
   // Nothing of the cut line dips into the slit: the top is flat at y = 70.
   for (const Vec2& q : cut) {
@@ -103,7 +105,7 @@ TEST(PatternOffset, ConcaveCurveTighterThanTheAllowance) {
   }
   sew.emplace_back(0, 60);
   const Polygon2 cut =
-      offset_polygon(sew, std::vector<double>(sew.size(), 10.0), CornerStyle::Mitre, 2.0, 0.05);
+      offset_polygon(sew, std::vector<double>(sew.size(), 10.0), CornerStyle::kMitre, 2.0, 0.05);
   expect_valid_cut(sew, cut, 10.0);
   // The offset of a 5 mm hole by 10 mm closes it: the cut line's top is straight.
   double lowest_top = 1e9;
@@ -122,7 +124,7 @@ TEST(PatternOffset, GentleConcaveCurveFollowsTheCurve) {
   }
   sew.emplace_back(0, 100);
   const Polygon2 cut =
-      offset_polygon(sew, std::vector<double>(sew.size(), 10.0), CornerStyle::Mitre, 2.0, 0.05);
+      offset_polygon(sew, std::vector<double>(sew.size(), 10.0), CornerStyle::kMitre, 2.0, 0.05);
   expect_valid_cut(sew, cut, 10.0);
   // Every sew-line edge midpoint is exactly one allowance from the cut line.
   for (size_t i = 0; i < sew.size(); ++i) {
@@ -133,8 +135,8 @@ TEST(PatternOffset, GentleConcaveCurveFollowsTheCurve) {
 
 TEST(PatternOffset, ZeroAllowanceReturnsTheSewLine) {
   const Polygon2 sew = {{0, 0}, {100, 0}, {60, 30}, {100, 60}, {0, 60}};
-  const Polygon2 cut = offset_polygon(sew, std::vector<double>(sew.size(), 0.0), CornerStyle::Mitre,
-                                      2.0, 0.05);
+  const Polygon2 cut =
+      offset_polygon(sew, std::vector<double>(sew.size(), 0.0), CornerStyle::kMitre, 2.0, 0.05);
   EXPECT_NEAR(signed_area(cut), signed_area(sew), 1e-9);
   EXPECT_EQ(cut.size(), sew.size());
 }

@@ -51,7 +51,8 @@ PatternExportOptions tiled_options(Paper paper) {
 /// Pages along one side of a layout, computed from the sizes alone.
 int expected_tiles(double layout_mm, double page_mm, double margin_mm, double overlap_mm) {
   const double content = page_mm - 2.0 * margin_mm;
-  return std::max(1, static_cast<int>(std::ceil((layout_mm - overlap_mm) / (content - overlap_mm))));
+  return std::max(1,
+                  static_cast<int>(std::ceil((layout_mm - overlap_mm) / (content - overlap_mm))));
 }
 
 void check_tiled(Paper paper, double page_w_pt, double page_h_pt, const std::string& name) {
@@ -66,7 +67,8 @@ void check_tiled(Paper paper, double page_w_pt, double page_h_pt, const std::str
   EXPECT_NEAR(tiles.width_pt, page_w_pt, 0.01);
   EXPECT_NEAR(tiles.height_pt, page_h_pt, 0.01);
   // The full-size page is the layout's bounding box.
-  const PatternLayout layout = layout_pattern(draw_pattern_pieces(pattern, options, "test"), options);
+  const PatternLayout layout =
+      layout_pattern(draw_pattern_pieces(pattern, options, "test"), options);
   EXPECT_NEAR(full.width_pt, layout.width_mm * 72.0 / 25.4, 0.01);
   EXPECT_NEAR(full.height_pt, layout.height_mm * 72.0 / 25.4, 0.01);
   EXPECT_EQ(full.pages, 1);
@@ -80,10 +82,10 @@ void check_tiled(Paper paper, double page_w_pt, double page_h_pt, const std::str
   EXPECT_EQ(tiles.pages, cols * rows);
 }
 
-TEST(PatternPdf, TiledA4PageSizeAndCount) { check_tiled(Paper::A4, 595.276, 841.89, "pdf_a4"); }
+TEST(PatternPdf, TiledA4PageSizeAndCount) { check_tiled(Paper::kA4, 595.276, 841.89, "pdf_a4"); }
 
 TEST(PatternPdf, TiledLetterPageSizeAndCount) {
-  check_tiled(Paper::Letter, 612.0, 792.0, "pdf_letter");
+  check_tiled(Paper::kLetter, 612.0, 792.0, "pdf_letter");
 }
 
 TEST(PatternPdf, FullSizeSinglePageForPlotters) {
@@ -93,7 +95,8 @@ TEST(PatternPdf, FullSizeSinglePageForPlotters) {
   const Pattern pattern = test::test_pattern();
   write_pattern_pdf_full_size(pattern, options, dir / "full.pdf");
   const PdfInfo info = pdf_info(dir / "full.pdf");
-  const PatternLayout layout = layout_pattern(draw_pattern_pieces(pattern, options, "test"), options);
+  const PatternLayout layout =
+      layout_pattern(draw_pattern_pieces(pattern, options, "test"), options);
   EXPECT_EQ(info.pages, 1);
   EXPECT_NEAR(info.width_pt, layout.width_mm * 72.0 / 25.4, 0.01);
   EXPECT_NEAR(info.height_pt, layout.height_mm * 72.0 / 25.4, 0.01);
@@ -104,7 +107,7 @@ TEST(PatternPdf, FullSizeSinglePageForPlotters) {
 TEST(PatternPdf, TilesReassembleToTheFullSizePage) {
   test::require_program(kPdfToPpm);
   const auto dir = test::scratch_dir("pdf_mosaic");
-  const PatternExportOptions options = tiled_options(Paper::A4);
+  const PatternExportOptions options = tiled_options(Paper::kA4);
   const Pattern pattern = test::test_pattern();
   write_pattern_pdf_tiled(pattern, options, dir / "tiles.pdf");
   write_pattern_pdf_full_size(pattern, options, dir / "full.pdf");
@@ -125,7 +128,8 @@ TEST(PatternPdf, TilesReassembleToTheFullSizePage) {
   }
   std::sort(tile_files.begin(), tile_files.end());
   const test::GrayImage full = test::read_pgm(full_file);
-  const PatternLayout layout = layout_pattern(draw_pattern_pieces(pattern, options, "test"), options);
+  const PatternLayout layout =
+      layout_pattern(draw_pattern_pieces(pattern, options, "test"), options);
   const TileGrid grid = tile_grid(layout, options);
   ASSERT_EQ(tile_files.size(), static_cast<size_t>(grid.rows * grid.cols));
   // Paste each tile's content area at its place in the layout.
@@ -138,7 +142,8 @@ TEST(PatternPdf, TilesReassembleToTheFullSizePage) {
   const int content_h = static_cast<int>(std::lround(grid.content_height_mm * px_per_mm));
   for (int r = 0; r < grid.rows; ++r) {
     for (int c = 0; c < grid.cols; ++c) {
-      const test::GrayImage tile = test::read_pgm(tile_files[static_cast<size_t>(r * grid.cols + c)]);
+      const test::GrayImage tile =
+          test::read_pgm(tile_files[static_cast<size_t>(r * grid.cols + c)]);
       const int x0 = static_cast<int>(std::lround(c * grid.step_x_mm() * px_per_mm));
       const int y0 = static_cast<int>(std::lround(r * grid.step_y_mm() * px_per_mm));
       for (int y = 1; y < content_h - 1; ++y) {
@@ -170,20 +175,22 @@ TEST(PatternPdf, TilesReassembleToTheFullSizePage) {
   ASSERT_GT(ink, 1000u);
   RecordProperty("ink_pixels", std::to_string(ink));
   RecordProperty("ink_matched", std::to_string(matched));
-  EXPECT_GT(static_cast<double>(matched) / static_cast<double>(ink), 0.995) << matched << "/" << ink;
+  EXPECT_GT(static_cast<double>(matched) / static_cast<double>(ink), 0.995)
+      << matched << "/" << ink;
 }
 
 TEST(PatternPdf, FirstPageCarriesTheTestSquareAtTrueSize) {
   test::require_program(kPdfToPpm);
   const auto dir = test::scratch_dir("pdf_square");
-  const PatternExportOptions options = tiled_options(Paper::A4);
+  const PatternExportOptions options = tiled_options(Paper::kA4);
   const Pattern pattern = test::test_pattern();
   write_pattern_pdf_tiled(pattern, options, dir / "tiles.pdf");
   const auto r = run_command(std::string(kPdfToPpm) + " -r 96 -gray -f 1 -l 1 -singlefile " +
                              shell_quote(dir / "tiles.pdf") + " " + shell_quote(dir / "page1"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const test::GrayImage page = test::read_pgm(dir / "page1.pgm");
-  const PatternLayout layout = layout_pattern(draw_pattern_pieces(pattern, options, "test"), options);
+  const PatternLayout layout =
+      layout_pattern(draw_pattern_pieces(pattern, options, "test"), options);
   const double px_per_mm = 96.0 / 25.4;
   const double margin = options.page_margin * 1000.0;
   const Box2& s = layout.test_square;
@@ -192,9 +199,11 @@ TEST(PatternPdf, FirstPageCarriesTheTestSquareAtTrueSize) {
   const int col = static_cast<int>((margin + s.min.x() + 80.0) * px_per_mm);
   auto px = [&](double mm) { return static_cast<int>((margin + mm) * px_per_mm); };
   const double left = test::ink_centre_x(page, row, px(s.min.x()) - window, px(s.min.x()) + window);
-  const double right = test::ink_centre_x(page, row, px(s.max.x()) - window, px(s.max.x()) + window);
+  const double right =
+      test::ink_centre_x(page, row, px(s.max.x()) - window, px(s.max.x()) + window);
   const double top = test::ink_centre_y(page, col, px(s.min.y()) - window, px(s.min.y()) + window);
-  const double bottom = test::ink_centre_y(page, col, px(s.max.y()) - window, px(s.max.y()) + window);
+  const double bottom =
+      test::ink_centre_y(page, col, px(s.max.y()) - window, px(s.max.y()) + window);
   RecordProperty("square_width_px", std::to_string(right - left));
   RecordProperty("square_height_px", std::to_string(bottom - top));
   EXPECT_NEAR(right - left, 100.0 * px_per_mm, 1.0);

@@ -35,7 +35,8 @@ TEST(PatternSvg, RootSizedInMillimetresWithOneGroupPerPiece) {
   const std::string svg = read_text(file);
   const auto pieces = draw_pattern_pieces(pattern, {}, "test");
   const PatternLayout layout = layout_pattern(pieces, {});
-  const std::string root = svg.substr(svg.find("<svg "), svg.find('>', svg.find("<svg ")) - svg.find("<svg "));
+  const std::string root =
+      svg.substr(svg.find("<svg "), svg.find('>', svg.find("<svg ")) - svg.find("<svg "));
   double width = 0.0;
   double height = 0.0;
   double box[4] = {-1.0, -1.0, -1.0, -1.0};
@@ -46,7 +47,9 @@ TEST(PatternSvg, RootSizedInMillimetresWithOneGroupPerPiece) {
   };
   ASSERT_EQ(std::sscanf(attribute("width").c_str(), "%lfmm\"", &width), 1);
   ASSERT_EQ(std::sscanf(attribute("height").c_str(), "%lfmm\"", &height), 1);
-  ASSERT_EQ(std::sscanf(attribute("viewBox").c_str(), "%lf %lf %lf %lf", &box[0], &box[1], &box[2], &box[3]), 4);
+  ASSERT_EQ(std::sscanf(attribute("viewBox").c_str(), "%lf %lf %lf %lf", &box[0], &box[1], &box[2],
+                        &box[3]),
+            4);
   EXPECT_NE(attribute("width").find("mm\""), std::string::npos);
   EXPECT_NEAR(width, layout.width_mm, 1e-3);
   EXPECT_NEAR(height, layout.height_mm, 1e-3);
@@ -79,8 +82,9 @@ TEST(PatternSvg, RsvgRendersTheTestSquareAtTrueSize) {
   const auto file = dir / "pattern.svg";
   const Pattern pattern = test::test_pattern();
   write_pattern_svg(pattern, {}, file);
-  const auto render = run_command(std::string(kRsvg) + " --dpi-x 96 --dpi-y 96 -b white -f png -o " +
-                                  shell_quote(dir / "pattern.png") + " " + shell_quote(file));
+  const auto render =
+      run_command(std::string(kRsvg) + " --dpi-x 96 --dpi-y 96 -b white -f png -o " +
+                  shell_quote(dir / "pattern.png") + " " + shell_quote(file));
   ASSERT_EQ(render.exit_code, 0) << render.output;
   const test::GrayImage image = test::read_png(dir / "pattern.png");
   const auto pieces = draw_pattern_pieces(pattern, {}, "test");
@@ -95,14 +99,18 @@ TEST(PatternSvg, RsvgRendersTheTestSquareAtTrueSize) {
   const int row = static_cast<int>((s.min.y() + 0.8 * kTestSquareMm) * px_per_mm);
   const int col = static_cast<int>((s.min.x() + 0.8 * kTestSquareMm) * px_per_mm);
   const int window = static_cast<int>(3.0 * px_per_mm);
-  const double left = test::ink_centre_x(image, row, static_cast<int>(s.min.x() * px_per_mm) - window,
-                                         static_cast<int>(s.min.x() * px_per_mm) + window);
-  const double right = test::ink_centre_x(image, row, static_cast<int>(s.max.x() * px_per_mm) - window,
-                                          static_cast<int>(s.max.x() * px_per_mm) + window);
-  const double top = test::ink_centre_y(image, col, static_cast<int>(s.min.y() * px_per_mm) - window,
-                                        static_cast<int>(s.min.y() * px_per_mm) + window);
-  const double bottom = test::ink_centre_y(image, col, static_cast<int>(s.max.y() * px_per_mm) - window,
-                                           static_cast<int>(s.max.y() * px_per_mm) + window);
+  const double left =
+      test::ink_centre_x(image, row, static_cast<int>(s.min.x() * px_per_mm) - window,
+                         static_cast<int>(s.min.x() * px_per_mm) + window);
+  const double right =
+      test::ink_centre_x(image, row, static_cast<int>(s.max.x() * px_per_mm) - window,
+                         static_cast<int>(s.max.x() * px_per_mm) + window);
+  const double top =
+      test::ink_centre_y(image, col, static_cast<int>(s.min.y() * px_per_mm) - window,
+                         static_cast<int>(s.min.y() * px_per_mm) + window);
+  const double bottom =
+      test::ink_centre_y(image, col, static_cast<int>(s.max.y() * px_per_mm) - window,
+                         static_cast<int>(s.max.y() * px_per_mm) + window);
   const double expected = 100.0 * px_per_mm;  // 377.95 px
   RecordProperty("square_width_px", std::to_string(right - left));
   RecordProperty("square_height_px", std::to_string(bottom - top));

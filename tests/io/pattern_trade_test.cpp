@@ -37,7 +37,8 @@ test::GarmentState small_sleeve() {
 
 Points3 positions_of(const test::GarmentState& s) {
   Points3 x(s.garment.num_garment_vertices, 3);
-  for (int i = 0; i < s.garment.num_garment_vertices; ++i) x.row(i) = s.x.segment<3>(3 * i).transpose();
+  for (int i = 0; i < s.garment.num_garment_vertices; ++i)
+    x.row(i) = s.x.segment<3>(3 * i).transpose();
   return x;
 }
 
@@ -64,11 +65,13 @@ std::vector<SvgText> svg_texts(const std::string& svg, const std::string& id) {
   EXPECT_NE(begin, std::string::npos) << id;
   if (begin == std::string::npos) return {};
   const size_t end = svg.find("\n</g>\n<g id=", begin + open.size());
-  const std::string group = svg.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+  const std::string group =
+      svg.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
   static const std::regex text(
       R"re(<text class="([a-z]+)" x="([-0-9.]+)" y="([-0-9.]+)" font-size="([0-9.]+)"(?: font-weight="bold")?(?: transform="rotate\(([-0-9.]+) [-0-9.]+ [-0-9.]+\)")?>([^<]*)</text>)re");
   std::vector<SvgText> out;
-  for (auto it = std::sregex_iterator(group.begin(), group.end(), text); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(group.begin(), group.end(), text);
+       it != std::sregex_iterator(); ++it) {
     const std::smatch& m = *it;
     SvgText t;
     t.css_class = m[1];
@@ -102,14 +105,17 @@ TEST(PatternTrade, BackSeamsAndUpperEndsFromThe3DState) {
   const test::GarmentState s = small_sleeve();
   const Points3 x = positions_of(s);
   // The seam lies at +x of the sleeve's axis: behind it when the body faces −x.
-  EXPECT_EQ(classify_seam_notches(s.garment, x, -Vec3::UnitX()).at("axial seam"), NotchStyle::Double);
-  EXPECT_EQ(classify_seam_notches(s.garment, x, Vec3::UnitX()).at("axial seam"), NotchStyle::Single);
-  EXPECT_EQ(classify_seam_notches(s.garment, x, Vec3::Zero()).at("axial seam"), NotchStyle::Single);
+  EXPECT_EQ(classify_seam_notches(s.garment, x, -Vec3::UnitX()).at("axial seam"),
+            NotchStyle::kDouble);
+  EXPECT_EQ(classify_seam_notches(s.garment, x, Vec3::UnitX()).at("axial seam"),
+            NotchStyle::kSingle);
+  EXPECT_EQ(classify_seam_notches(s.garment, x, Vec3::Zero()).at("axial seam"),
+            NotchStyle::kSingle);
   EXPECT_TRUE(seam_upper_ends(s.garment, x, Vec3::UnitZ()).at("axial seam"));
   EXPECT_FALSE(seam_upper_ends(s.garment, x, -Vec3::UnitZ()).at("axial seam"));
   EXPECT_TRUE(seam_upper_ends(s.garment, x, Vec3::UnitY()).empty());  // level: no mark
   BodySpec mesh_body;
-  mesh_body.source = BodySource::Mesh;
+  mesh_body.source = BodySource::kMesh;
   EXPECT_EQ(body_front_direction(mesh_body), Vec3::UnitZ());
   EXPECT_EQ(body_front_direction(BodySpec{}), Vec3::Zero());  // a cylinder has no front
 }
@@ -124,7 +130,7 @@ TEST(PatternTrade, DoubleNotchesAreTwoParallelTicksAlikeOnBothSides) {
   for (const Notch& n : pieces[0].notches) {
     SCOPED_TRACE(n.index);
     ++per_side[n.side];
-    EXPECT_EQ(n.style, NotchStyle::Double);
+    EXPECT_EQ(n.style, NotchStyle::kDouble);
     ASSERT_EQ(n.ticks.size(), 2u);
     const Vec2 t0 = n.ticks[0][1] - n.ticks[0][0];
     const Vec2 t1 = n.ticks[1][1] - n.ticks[1][0];
@@ -214,11 +220,12 @@ TEST(PatternTrade, SvgNotchesAreNotchDepthLong) {
   PatternExportOptions options;
   options.notch_depth = 0.005;
   options.seam_allowances["side_left"] = 0.003;  // shallower than the notch: clamped
-  options.seam_notch_styles["sleeve_hem"] = NotchStyle::Double;
+  options.seam_notch_styles["sleeve_hem"] = NotchStyle::kDouble;
   write_pattern_svg(pattern, options, dir / "pattern.svg");
   const std::string svg = read_text(dir / "pattern.svg");
   const auto pieces = draw_pattern_pieces(pattern, options, "test");
-  static const std::regex line(R"re(<line x1="([-0-9.]+)" y1="([-0-9.]+)" x2="([-0-9.]+)" y2="([-0-9.]+)"/>)re");
+  static const std::regex line(
+      R"re(<line x1="([-0-9.]+)" y1="([-0-9.]+)" x2="([-0-9.]+)" y2="([-0-9.]+)"/>)re");
   size_t from = 0;
   size_t five = 0;
   size_t three = 0;
@@ -229,7 +236,8 @@ TEST(PatternTrade, SvgNotchesAreNotchDepthLong) {
     from = end;
     const std::string group = svg.substr(begin, end - begin);
     size_t lines = 0;
-    for (auto it = std::sregex_iterator(group.begin(), group.end(), line); it != std::sregex_iterator(); ++it) {
+    for (auto it = std::sregex_iterator(group.begin(), group.end(), line);
+         it != std::sregex_iterator(); ++it) {
       const Vec2 a(std::stod((*it)[1]), std::stod((*it)[2]));
       const Vec2 b(std::stod((*it)[3]), std::stod((*it)[4]));
       const double length = (b - a).norm();
@@ -257,8 +265,8 @@ TEST(PatternTrade, PdfCarriesSeamNamesTopMarksAndTheLabel) {
   write_pattern_pdf_full_size(test::test_pattern(), options, dir / "pattern.pdf");
   const auto text = run_command("/usr/bin/pdftotext " + shell_quote(dir / "pattern.pdf") + " -");
   ASSERT_EQ(text.exit_code, 0) << text.output;
-  for (const char* word : {"side_right", "side_left", "sleeve_hem", "waist", "top", "Racer", "2001-02-03",
-                           "cut 1", "front", "sleeve"})
+  for (const char* word : {"side_right", "side_left", "sleeve_hem", "waist", "top", "Racer",
+                           "2001-02-03", "cut 1", "front", "sleeve"})
     EXPECT_NE(text.output.find(word), std::string::npos) << word << " in " << text.output;
 }
 
@@ -269,7 +277,8 @@ TEST(PatternTrade, SvgGrainLineHasArrowHeadsAtBothEnds) {
   const std::string svg = read_text(dir / "pattern.svg");
   const auto pieces = draw_pattern_pieces(pattern, {}, "test");
   const PatternLayout layout = layout_pattern(pieces, {});
-  static const std::regex head(R"re(<path d="M[-0-9.]+,[-0-9.]+ L([-0-9.]+),([-0-9.]+) L[-0-9.]+,[-0-9.]+"/>)re");
+  static const std::regex head(
+      R"re(<path d="M[-0-9.]+,[-0-9.]+ L([-0-9.]+),([-0-9.]+) L[-0-9.]+,[-0-9.]+"/>)re");
   size_t from = 0;
   for (size_t p = 0; p < pieces.size(); ++p) {
     const size_t begin = svg.find("<g class=\"grain\">", from);
@@ -278,7 +287,8 @@ TEST(PatternTrade, SvgGrainLineHasArrowHeadsAtBothEnds) {
     from = end;
     const std::string group = svg.substr(begin, end - begin);
     std::vector<Vec2> tips;
-    for (auto it = std::sregex_iterator(group.begin(), group.end(), head); it != std::sregex_iterator(); ++it)
+    for (auto it = std::sregex_iterator(group.begin(), group.end(), head);
+         it != std::sregex_iterator(); ++it)
       tips.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
     ASSERT_EQ(tips.size(), 2u) << group;
     EXPECT_LT((tips[0] - layout.to_layout(p, pieces[p].grain_end)).norm(), 1e-3);
@@ -300,7 +310,8 @@ TEST(PatternTrade, PieceLabelShrinksToFitInsideTheSewLine) {
   options.label.thickness = 5e-4;
   options.label.stretch_min = 1.05;
   options.label.stretch_max = 1.3;
-  options.piece_notes["grid"] = {"negative ease -12 % at the calf", "negative ease -8 % at the knee"};
+  options.piece_notes["grid"] = {"negative ease -12 % at the calf",
+                                 "negative ease -8 % at the knee"};
   const auto pieces = draw_pattern_pieces(pattern, options, "test");
   const PieceDrawing& d = pieces[0];
   std::vector<std::string> lines;
@@ -330,7 +341,8 @@ TEST(PatternTrade, PieceLabelShrinksToFitInsideTheSewLine) {
   const PatternLayout layout = layout_pattern(pieces, options);
   const std::vector<SvgText> texts = svg_texts(svg, "piece-grid");
   for (const std::string& line : expected) EXPECT_EQ(count_of(texts, line), 1u) << line;
-  for (const SvgText& t : texts) EXPECT_TRUE(text_inside(to_piece(t, layout, 0), d.trued_sew_line)) << t.content;
+  for (const SvgText& t : texts)
+    EXPECT_TRUE(text_inside(to_piece(t, layout, 0), d.trued_sew_line)) << t.content;
 }
 
 TEST(PatternTrade, DxfLayersTwoThreeFourAndStyleTextReadByEzdxf) {
@@ -350,7 +362,8 @@ TEST(PatternTrade, DxfLayersTwoThreeFourAndStyleTextReadByEzdxf) {
   EXPECT_EQ(audit.output.find("Error"), std::string::npos) << audit.output;
   std::string script = TIGHTFIT_SOURCE_DIR;
   script += "/tests/io/pattern_dxf_check.py";
-  const auto read = run_command("/usr/bin/python3 " + shell_quote(script) + " " + shell_quote(file));
+  const auto read =
+      run_command("/usr/bin/python3 " + shell_quote(script) + " " + shell_quote(file));
   ASSERT_EQ(read.exit_code, 0) << read.output;
   const nlohmann::json found = nlohmann::json::parse(read.output);
   const auto pieces = draw_pattern_pieces(s.garment.pattern, options, "test");
@@ -416,9 +429,10 @@ SceneSpec cylinder_scene(const nlohmann::json& patterns) {
 TEST(PatternTrade, RunOptionsFromTheSceneAndTheGarmentOnTheBody) {
   const test::GarmentState s = small_sleeve();
   const Points3 x = positions_of(s);
-  PatternExportOptions o = scene_pattern_export_options(cylinder_scene(nullptr), s.garment, x, "2001-02-03");
+  PatternExportOptions o =
+      scene_pattern_export_options(cylinder_scene(nullptr), s.garment, x, "2001-02-03");
   // A cylinder has no front: single notches; up is its axis (+z): the seam's last end.
-  EXPECT_EQ(o.seam_notch_styles.at("axial seam"), NotchStyle::Single);
+  EXPECT_EQ(o.seam_notch_styles.at("axial seam"), NotchStyle::kSingle);
   EXPECT_TRUE(o.seam_last_end_up.at("axial seam"));
   EXPECT_EQ(o.label.style, "racer");
   EXPECT_EQ(o.label.size, "cylinder");
@@ -429,20 +443,23 @@ TEST(PatternTrade, RunOptionsFromTheSceneAndTheGarmentOnTheBody) {
   EXPECT_DOUBLE_EQ(o.label.stretch_max, 1.2);
   EXPECT_DOUBLE_EQ(o.notch_depth, 0.004);
   // The scene's section: an explicit rule wins, style and size given.
-  o = scene_pattern_export_options(
-      cylinder_scene({{"notches", {{"axial seam", "double"}}}, {"style", "Sleeve"}, {"size", "S"},
-                      {"notch_depth", 0.005}}),
-      s.garment, x, "2001-02-03");
-  EXPECT_EQ(o.seam_notch_styles.at("axial seam"), NotchStyle::Double);
+  o = scene_pattern_export_options(cylinder_scene({{"notches", {{"axial seam", "double"}}},
+                                                   {"style", "Sleeve"},
+                                                   {"size", "S"},
+                                                   {"notch_depth", 0.005}}),
+                                   s.garment, x, "2001-02-03");
+  EXPECT_EQ(o.seam_notch_styles.at("axial seam"), NotchStyle::kDouble);
   EXPECT_EQ(o.label.style, "Sleeve");
   EXPECT_EQ(o.label.size, "S");
   EXPECT_DOUBLE_EQ(o.notch_depth, 0.005);
   // A seam the garment does not have: the scene file and JSON path are named.
   try {
-    scene_pattern_export_options(cylinder_scene({{"seam_allowances", {{"hem", 0.02}}}}), s.garment, x, "");
+    scene_pattern_export_options(cylinder_scene({{"seam_allowances", {{"hem", 0.02}}}}), s.garment,
+                                 x, "");
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("racer.json: /patterns/seam_allowances/hem"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("racer.json: /patterns/seam_allowances/hem"),
+              std::string::npos)
         << e.what();
   }
 }

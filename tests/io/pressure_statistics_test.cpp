@@ -116,7 +116,8 @@ TEST(PressureRegionScene, RegionsAndRelaxationAreRead) {
 TEST(PressureRegionScene, BoneRegionsNeedTheRigWhichIsLoaded) {
   nlohmann::json doc = nlohmann::json::parse(kSphere);
   doc["pressure"] = {
-      {"regions", {{{"name", "thigh"}, {"bones", {"upperleg01.L"}}, {"min_pa", 1}, {"max_pa", 2}}}}};
+      {"regions",
+       {{{"name", "thigh"}, {"bones", {"upperleg01.L"}}, {"min_pa", 1}, {"max_pa", 2}}}}};
   EXPECT_NE(parse_error(doc).find("/pressure/regions/0/bones"), std::string::npos)
       << parse_error(doc);
   const std::string data = TIGHTFIT_DATA_DIR;

@@ -132,9 +132,10 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
       outline.row(static_cast<Eigen::Index>(i)) = 0.95 * piece.rest.row(piece.boundary[i]);
     view.initial_outlines.push_back(outline);
   }
-  view.summary = {{"command", "optimize"}, {"scene", "band.json"}, {"status", "converged"},
-                  {"stop_reason", "gradient norm 1e-9 <= 1e-8"}, {"iterations", 11},
-                  {"objective_initial", 2.0}, {"objective_final", 0.018}, {"seconds", 12.5},
+  view.summary = {{"command", "optimize"},    {"scene", "band.json"},
+                  {"status", "converged"},    {"stop_reason", "gradient norm 1e-9 <= 1e-8"},
+                  {"iterations", 11},         {"objective_initial", 2.0},
+                  {"objective_final", 0.018}, {"seconds", 12.5},
                   {"version", "0.1.0"}};
   view.pinned_vertices = {0, 1, 2, 3};
   // One seam (front's right column to back's left column) and a pinned edge.
@@ -161,8 +162,9 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
     FitPose pose;
     pose.name = "turned";
     pose.garment = view.garment.vertices * R.transpose();
-    pose.garment_normals = view.garment_normals.rows() > 0 ? Points3(view.garment_normals * R.transpose())
-                                                          : Points3(Points3::Zero(view.garment.vertices.rows(), 3));
+    pose.garment_normals = view.garment_normals.rows() > 0
+                               ? Points3(view.garment_normals * R.transpose())
+                               : Points3(Points3::Zero(view.garment.vertices.rows(), 3));
     pose.body = view.body.vertices * R.transpose();
     pose.sliding_excess = VecX::LinSpaced(view.garment.num_faces(), 0.0, 2.0);
     pose.sliding_share = 0.25;
@@ -174,13 +176,15 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   view.initial_garment = TriMesh{1.05 * view.garment.vertices, view.garment.faces};
   {
     VecX distance(view.garment.vertices.rows());
-    for (Eigen::Index i = 0; i < distance.size(); ++i) distance[i] = 0.1 * view.garment.vertices.row(i).norm();
+    for (Eigen::Index i = 0; i < distance.size(); ++i)
+      distance[i] = 0.1 * view.garment.vertices.row(i).norm();
     view.garment_fields.push_back(shape_distance_field(view.garment.faces, distance));
   }
   // The ease table: a measured level and one the garment goes only part of the way around.
   {
     LevelMeasurement calf;
-    calf.level = {"calf.L", "skeleton", "lowerleg01.L at 0.45", Vec3(0.17, 0.4, 0.02), Vec3::UnitY()};
+    calf.level = {"calf.L", "skeleton", "lowerleg01.L at 0.45", Vec3(0.17, 0.4, 0.02),
+                  Vec3::UnitY()};
     calf.reached = true;
     calf.body_circumference = 0.352;
     calf.pattern_circumference = 0.303;
@@ -196,7 +200,9 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
   EXPECT_EQ(summary.at("poses"), (nlohmann::json{"neutral", "turned"}));
   EXPECT_TRUE(summary.at("poseSwitchVisible").get<bool>());
-  EXPECT_NE(summary.at("poseHint").get<std::string>().find("25.0 % of the free garment vertices would slide"),
+  EXPECT_NE(summary.at("poseHint")
+                .get<std::string>()
+                .find("25.0 % of the free garment vertices would slide"),
             std::string::npos)
       << summary.dump(2);
   EXPECT_GT(summary.at("pixels").at("notBackground").get<double>(), 0.05);
@@ -229,7 +235,9 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   }
   const auto colorings = summary.at("colorings").get<std::vector<std::string>>();
   EXPECT_NE(std::find_if(colorings.begin(), colorings.end(),
-                         [](const std::string& c) { return c.find("Distance to the shape target") != std::string::npos; }),
+                         [](const std::string& c) {
+                           return c.find("Distance to the shape target") != std::string::npos;
+                         }),
             colorings.end())
       << summary.dump(2);
   // The seam table: one row, its pieces, the sewing stretch and the traction.
@@ -241,9 +249,11 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
   // its stretch (34.9 / 30.3); the skipped level's reason.
   EXPECT_EQ(summary.at("measurementRows"), 2);
   const std::string measurements = summary.at("measurementsText").get<std::string>();
-  for (const char* word : {"calf.L", "lowerleg01.L at 0.45", "35.2", "30.3", "-13.9", "34.9", "1.152",
-                           "front 15.2", "back 15.2", "knee.L", "skipped: the garment does not go all the way around"})
-    EXPECT_NE(measurements.find(word), std::string::npos) << word << " missing in: " << measurements;
+  for (const char* word :
+       {"calf.L", "lowerleg01.L at 0.45", "35.2", "30.3", "-13.9", "34.9", "1.152", "front 15.2",
+        "back 15.2", "knee.L", "skipped: the garment does not go all the way around"})
+    EXPECT_NE(measurements.find(word), std::string::npos)
+        << word << " missing in: " << measurements;
   // Seam sides on both pieces, named; the pinned edge.
   EXPECT_EQ(summary.at("seamEdges"), 2);
   EXPECT_EQ(summary.at("pinnedEdges"), 1);
@@ -273,7 +283,7 @@ TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
   const auto summary = check_in_browser(view, "report_browser_sparse");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
   EXPECT_FALSE(summary.at("poseSwitchVisible").get<bool>());  // a fit without poses
-  EXPECT_EQ(summary.at("colorings").size(), 4u);  // stretch max/min, pressure, piece
+  EXPECT_EQ(summary.at("colorings").size(), 4u);              // stretch max/min, pressure, piece
   EXPECT_EQ(summary.at("pressureWarnings"), 1);
   EXPECT_EQ(summary.at("regionRows"), 0);
   EXPECT_EQ(summary.at("measurementRows"), 0);

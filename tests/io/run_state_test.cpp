@@ -16,8 +16,13 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Doubles that a fixed number of printed digits would not give back exactly.
-const double kAwkward[] = {0.1, 1.0 / 3.0, -2.0 / 7.0, 1e-300, 5e-324,
-                           std::numeric_limits<double>::max(), 0.30000000000000004,
+const double kAwkward[] = {0.1,
+                           1.0 / 3.0,
+                           -2.0 / 7.0,
+                           1e-300,
+                           5e-324,
+                           std::numeric_limits<double>::max(),
+                           0.30000000000000004,
                            std::nextafter(1.0, 2.0)};
 
 RunState sample_state(const std::string& command) {
@@ -239,7 +244,8 @@ TEST(RunState, InitialGarmentRoundTripsAndIsChecked) {
   EXPECT_FALSE(run_state_from_json(run_state_json(sample_state("optimize")), "s").initial_garment);
   nlohmann::json bad = j;
   bad["initial_garment"]["triangles"][0][2] = 3;  // only vertices 0..2 exist
-  EXPECT_NE(read_error(bad).find("/initial_garment/triangles"), std::string::npos) << read_error(bad);
+  EXPECT_NE(read_error(bad).find("/initial_garment/triangles"), std::string::npos)
+      << read_error(bad);
 }
 
 TEST(RunState, MalformedDocumentsNameTheJsonPath) {
@@ -257,9 +263,9 @@ TEST(RunState, MalformedDocumentsNameTheJsonPath) {
   EXPECT_NE(with("/garment/2", nlohmann::json::array({1, 0.5})).find("/garment/2"),
             std::string::npos);
   EXPECT_NE(with("/body/1/2", "x").find("/body/1/2"), std::string::npos);
-  EXPECT_NE(with("/pattern/pieces/0/rest/3", nlohmann::json::array({1})).find(
-                "/pattern/pieces/0/rest/3"),
-            std::string::npos);
+  EXPECT_NE(
+      with("/pattern/pieces/0/rest/3", nlohmann::json::array({1})).find("/pattern/pieces/0/rest/3"),
+      std::string::npos);
   EXPECT_NE(with("/pattern/pieces/0/triangles/1/2", -1).find("/pattern/pieces/0/triangles/1/2"),
             std::string::npos);
   EXPECT_NE(with("/history/iterations/0/objective", "x").find("/history/iterations/0/objective"),
@@ -273,7 +279,8 @@ TEST(RunState, MalformedDocumentsNameTheJsonPath) {
 }
 
 TEST(RunState, FileErrorsNameTheFile) {
-  const fs::path dir = fs::temp_directory_path() / ("tightfit_run_state_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("tightfit_run_state_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / "state.json";
   EXPECT_THROW(

@@ -3,9 +3,9 @@
 /// scene's "rig" (garment/layout_anchors.hpp).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/io/scene_loader.hpp"
@@ -28,7 +28,8 @@ std::string scene_layout_error(const nlohmann::json& scene) {
 }
 
 TEST(SceneLayoutFile, ReadsTheLayoutFileTheSceneNames) {
-  const fs::path dir = fs::temp_directory_path() / ("tightfit_layout_file_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("tightfit_layout_file_" + std::to_string(::getpid()));
   fs::create_directories(dir / "layouts");
   std::ofstream(dir / "layouts" / "halves.json") << R"({
     "dividers": [{"name": "mid", "point": [0, 0, 0], "normal": "left"}],
@@ -42,24 +43,28 @@ TEST(SceneLayoutFile, ReadsTheLayoutFileTheSceneNames) {
   EXPECT_EQ(spec.garment.layout.dividers[0].normal, Vec3::UnitX());
   fs::remove_all(dir);
 
-  EXPECT_EQ(scene_layout_error(nlohmann::json::parse(
-                R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"layout": "layouts/none.json"}})")),
-            "leg.json: /garment/layout: no such file: " + (kAnchoredExamples / "layouts" / "none.json").string());
+  EXPECT_EQ(
+      scene_layout_error(nlohmann::json::parse(
+          R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"layout": "layouts/none.json"}})")),
+      "leg.json: /garment/layout: no such file: " +
+          (kAnchoredExamples / "layouts" / "none.json").string());
 }
 
 TEST(SceneLayoutFile, AnAnchoredLayoutNeedsTheScenesRig) {
   const std::string error = scene_layout_error(nlohmann::json::parse(
       R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"layout": "layouts/left_leg_anchored.json"}})"));
-  EXPECT_EQ(error, (kAnchoredExamples / "layouts" / "left_leg_anchored.json").string() +
-                       ": /region/0: anchored on the skeleton or its skin weights, but the scene has no \"rig\" "
-                       "(\"rig\": {\"mesh\", \"weights\", \"joints\"})");
+  EXPECT_EQ(
+      error,
+      (kAnchoredExamples / "layouts" / "left_leg_anchored.json").string() +
+          ": /region/0: anchored on the skeleton or its skin weights, but the scene has no \"rig\" "
+          "(\"rig\": {\"mesh\", \"weights\", \"joints\"})");
   const std::string inline_error = scene_layout_error(nlohmann::json::parse(R"({
     "body": {"generator": "sphere", "radius": 0.1},
     "garment": {"layout": {"dividers": [{"name": "mid", "point": {"bone": "root", "at": 0}, "normal": "left"}],
                            "panels": [{"name": "a", "sides": ["+mid"]}, {"name": "b", "sides": ["-mid"]}]}}})"));
-  EXPECT_EQ(inline_error.substr(0, inline_error.find(": anchored")), "leg.json: /garment/layout/dividers/0");
+  EXPECT_EQ(inline_error.substr(0, inline_error.find(": anchored")),
+            "leg.json: /garment/layout/dividers/0");
 }
-
 
 /// The examples lay out one anchored layout file on the legs body and on the child, each
 /// with its own rig: load_scene resolves the anchors on each body.
@@ -76,7 +81,8 @@ TEST(SceneLayoutFileLoad, OneAnchoredLayoutOnTheManAndTheChild) {
     seams.push_back(scene->build->layout.seams.size());
     EXPECT_EQ(scene->build->layout.pin_names, (std::vector<std::string>{"top", "cuff"}));
   }
-  EXPECT_EQ(pieces[0], (std::vector<std::string>{"thigh_front", "thigh_back", "lower_leg_front", "lower_leg_back"}));
+  EXPECT_EQ(pieces[0], (std::vector<std::string>{"thigh_front", "thigh_back", "lower_leg_front",
+                                                 "lower_leg_back"}));
   EXPECT_EQ(pieces[1], pieces[0]);
   EXPECT_EQ(seams[0], 6u);
   EXPECT_EQ(seams[1], seams[0]);

@@ -39,11 +39,13 @@ std::string error_of(const std::string& measurements) {
 
 /// 0 when `scene` (JSON text) validates against schema/scene.schema.json.
 int schema_check(const std::string& scene, const std::string& tag) {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() /
-                                     ("tightfit_measurements_" + tag + "_" + std::to_string(::getpid()) + ".json");
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() /
+      ("tightfit_measurements_" + tag + "_" + std::to_string(::getpid()) + ".json");
   std::ofstream(file) << scene;
-  std::string cmd = "/usr/bin/python3 -c \"import json,sys,jsonschema; "
-                    "jsonschema.validate(json.load(open(sys.argv[2])), json.load(open(sys.argv[1])))\" '";
+  std::string cmd =
+      "/usr/bin/python3 -c \"import json,sys,jsonschema; "
+      "jsonschema.validate(json.load(open(sys.argv[2])), json.load(open(sys.argv[1])))\" '";
   cmd += TIGHTFIT_SOURCE_DIR;
   cmd += "/schema/scene.schema.json' '";
   cmd += file.string();
@@ -65,7 +67,8 @@ TEST(SceneMeasurements, LevelsOnBonesAndInAbsoluteCoordinates) {
   ASSERT_EQ(s.measurements.size(), 2u);
   ASSERT_TRUE(s.skeleton);
   EXPECT_NE(s.skeleton_source.find("mh_male_regular.joints.json"), std::string::npos);
-  const auto joints = read_skeleton(std::string(TIGHTFIT_SOURCE_DIR) + "/data/rig/mh_male_regular.joints.json");
+  const auto joints =
+      read_skeleton(std::string(TIGHTFIT_SOURCE_DIR) + "/data/rig/mh_male_regular.joints.json");
   const BoneSegment& shin = joints.at("lowerleg01.L");
   const MeasurementLevel& calf = s.measurements[0];
   EXPECT_EQ(calf.name, "calf");
@@ -85,9 +88,11 @@ TEST(SceneMeasurements, LevelsOnBonesAndInAbsoluteCoordinates) {
 }
 
 TEST(SceneMeasurements, MistakesNameTheFileAndJsonPath) {
-  EXPECT_EQ(error_of(R"([{"name": "calf", "point": {"bone": "shin.L", "at": 0.5}, "normal": "along_bone"}])")
-                .rfind("scene.json: /measurements/0/point/bone: unknown bone \"shin.L\"", 0),
-            0u);
+  EXPECT_EQ(
+      error_of(
+          R"([{"name": "calf", "point": {"bone": "shin.L", "at": 0.5}, "normal": "along_bone"}])")
+          .rfind("scene.json: /measurements/0/point/bone: unknown bone \"shin.L\"", 0),
+      0u);
   EXPECT_EQ(error_of(R"([{"name": "a", "point": [0, 0.5, 0], "normal": "up"},
                         {"name": "a", "point": [0, 0.6, 0], "normal": "up"}])"),
             "scene.json: /measurements/1/name: a second level named \"a\"");
@@ -97,10 +102,12 @@ TEST(SceneMeasurements, MistakesNameTheFileAndJsonPath) {
             "scene.json: /measurements/0/normal: the normal must not be zero");
   EXPECT_EQ(error_of(R"([{"name": "a", "point": [0, 0.5, 0], "normal": "up", "height": 1}])"),
             "scene.json: /measurements/0/height: unknown key \"height\"");
-  EXPECT_EQ(error_of(R"({"name": "a"})"), "scene.json: /measurements: expected an array of objects, got object");
+  EXPECT_EQ(error_of(R"({"name": "a"})"),
+            "scene.json: /measurements: expected an array of objects, got object");
   EXPECT_EQ(error_of("null"), "scene.json: /measurements: expected an array of objects, got null");
   // Bones without a skeleton.
-  const std::string text = R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}},
+  const std::string text =
+      R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}},
       "measurements": [{"name": "calf", "point": {"bone": "lowerleg01.L", "at": 0.45}, "normal": "along_bone"}]})";
   std::string error = "no error";
   try {
@@ -108,13 +115,17 @@ TEST(SceneMeasurements, MistakesNameTheFileAndJsonPath) {
   } catch (const InputError& e) {
     error = e.what();
   }
-  EXPECT_EQ(error.rfind("bad.json: /measurements/0: anchored on the skeleton, but there is none", 0), 0u) << error;
+  EXPECT_EQ(
+      error.rfind("bad.json: /measurements/0: anchored on the skeleton, but there is none", 0), 0u)
+      << error;
 }
 
 TEST(SceneMeasurements, TheSchemaKnowsTheKey) {
-  const std::string base = R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}}, )";
+  const std::string base =
+      R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}}, )";
   std::string good = base;
-  good += R"("measurements": [{"name": "calf", "point": {"bone": "lowerleg01.L", "at": 0.45}, "normal": "along_bone"},
+  good +=
+      R"("measurements": [{"name": "calf", "point": {"bone": "lowerleg01.L", "at": 0.45}, "normal": "along_bone"},
                               {"name": "y", "point": [0, 0.5, 0], "normal": [0, 1, 0]}]})";
   EXPECT_EQ(schema_check(good, "good"), 0);
   std::string bad = base;

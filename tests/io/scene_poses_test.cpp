@@ -48,30 +48,47 @@ TEST(ScenePoses, RotationsAndBvhFramesResolveToBoneRotations) {
   EXPECT_TRUE(s.pressure_rig);  // bone pressure regions may use the scene's rig
   ASSERT_EQ(s.poses.size(), 3u);
   EXPECT_EQ(s.poses[0].name, "knee");
-  EXPECT_LT((s.poses[0].rotations.at("lowerleg01.L") - euler_rotation(Vec3(90, 0, 0), "XYZ")).norm(), 1e-15);
+  EXPECT_LT(
+      (s.poses[0].rotations.at("lowerleg01.L") - euler_rotation(Vec3(90, 0, 0), "XYZ")).norm(),
+      1e-15);
   EXPECT_EQ(s.poses[0].origin, "scene.json /poses/0");
   EXPECT_GT(s.poses[1].rotations.size(), 10u);
   EXPECT_NE(s.poses[1].origin.find("tpose.bvh frame 0"), std::string::npos);
-  EXPECT_LT((s.poses[2].rotations.at("upperleg01.R") - euler_rotation(Vec3(0, 30, 10), "ZYX")).norm(), 1e-15);
+  EXPECT_LT(
+      (s.poses[2].rotations.at("upperleg01.R") - euler_rotation(Vec3(0, 30, 10), "ZYX")).norm(),
+      1e-15);
 }
 
 TEST(ScenePoses, BadPosesAreErrorsNamingTheJsonPathOrTheBone) {
   using nlohmann::json;
   auto one = [](const json& pose) { return pose_error(posed_scene(json::array({pose}))); };
-  EXPECT_NE(one({{"name", "a"}, {"rotations", {{"kneecap.L", {1, 2, 3}}}}}).find("/poses/0/rotations/kneecap.L: the rig's skeleton has no bone \"kneecap.L\""),
+  EXPECT_NE(one({{"name", "a"}, {"rotations", {{"kneecap.L", {1, 2, 3}}}}})
+                .find("/poses/0/rotations/kneecap.L: the rig's skeleton has no bone \"kneecap.L\""),
             std::string::npos);
-  EXPECT_NE(one({{"name", "a"}, {"rotations", {{"lowerleg01.L", {1, 2}}}}}).find("expected [a, b, c]"), std::string::npos);
-  EXPECT_NE(one({{"name", "a"}, {"rotations", {{"lowerleg01.L", {1, 2, 1e9}}}}}).find("within ±360"), std::string::npos);
-  EXPECT_NE(one({{"name", "a b"}, {"rotations", {{"lowerleg01.L", {1, 2, 3}}}}}).find("/poses/0/name"), std::string::npos);
+  EXPECT_NE(
+      one({{"name", "a"}, {"rotations", {{"lowerleg01.L", {1, 2}}}}}).find("expected [a, b, c]"),
+      std::string::npos);
+  EXPECT_NE(
+      one({{"name", "a"}, {"rotations", {{"lowerleg01.L", {1, 2, 1e9}}}}}).find("within ±360"),
+      std::string::npos);
+  EXPECT_NE(
+      one({{"name", "a b"}, {"rotations", {{"lowerleg01.L", {1, 2, 3}}}}}).find("/poses/0/name"),
+      std::string::npos);
   EXPECT_NE(one({{"name", "a"}}).find("either \"bvh\""), std::string::npos);
-  EXPECT_NE(one({{"name", "a"}, {"bvh", "data/rig/tpose.bvh"}, {"frame", 3}}).find("frame 3 does not exist"), std::string::npos);
-  EXPECT_NE(one({{"name", "a"}, {"bvh", "data/rig/missing.bvh"}}).find("missing.bvh"), std::string::npos);
-  EXPECT_NE(one({{"name", "a"}, {"rotations", {{"lowerleg01.L", {1, 2, 3}}}}, {"order", "XXY"}}).find("/poses/0/order"),
+  EXPECT_NE(one({{"name", "a"}, {"bvh", "data/rig/tpose.bvh"}, {"frame", 3}})
+                .find("frame 3 does not exist"),
+            std::string::npos);
+  EXPECT_NE(one({{"name", "a"}, {"bvh", "data/rig/missing.bvh"}}).find("missing.bvh"),
+            std::string::npos);
+  EXPECT_NE(one({{"name", "a"}, {"rotations", {{"lowerleg01.L", {1, 2, 3}}}}, {"order", "XXY"}})
+                .find("/poses/0/order"),
             std::string::npos);
   const json twice = json::array({{{"name", "a"}, {"rotations", {{"lowerleg01.L", {1, 2, 3}}}}},
                                   {{"name", "a"}, {"rotations", {{"lowerleg01.L", {1, 2, 3}}}}}});
-  EXPECT_NE(pose_error(posed_scene(twice)).find("/poses/1/name: another pose has this name"), std::string::npos);
-  json no_rig = posed_scene(json::array({{{"name", "a"}, {"rotations", {{"lowerleg01.L", {1, 2, 3}}}}}}));
+  EXPECT_NE(pose_error(posed_scene(twice)).find("/poses/1/name: another pose has this name"),
+            std::string::npos);
+  json no_rig =
+      posed_scene(json::array({{{"name", "a"}, {"rotations", {{"lowerleg01.L", {1, 2, 3}}}}}}));
   no_rig.erase("rig");
   EXPECT_NE(pose_error(no_rig).find("/poses: poses need a rig"), std::string::npos);
   json bad_rig = posed_scene(json::array());
@@ -80,7 +97,8 @@ TEST(ScenePoses, BadPosesAreErrorsNamingTheJsonPathOrTheBone) {
 }
 
 TEST(PoseCli, WritesEveryPosedBodyOrNothing) {
-  const fs::path dir = fs::temp_directory_path() / ("tightfit_pose_cli_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("tightfit_pose_cli_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   auto write_scene = [&](const nlohmann::json& poses) {
@@ -90,7 +108,8 @@ TEST(PoseCli, WritesEveryPosedBodyOrNothing) {
       j["rig"][key] = std::string(TIGHTFIT_SOURCE_DIR) + "/" + j["rig"][key].get<std::string>();
     std::ofstream(dir / "scene.json") << j.dump(2);
   };
-  write_scene(nlohmann::json::parse(R"([{"name": "knee_45", "rotations": {"lowerleg01.L": [45, 0, 0]}}])"));
+  write_scene(
+      nlohmann::json::parse(R"([{"name": "knee_45", "rotations": {"lowerleg01.L": [45, 0, 0]}}])"));
   const auto ok = test::run_cli("pose scene.json --out out", dir.string());
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
   for (const char* file : {"body_neutral.obj", "body_pose_knee_45.obj", "poses.json"})
@@ -100,7 +119,8 @@ TEST(PoseCli, WritesEveryPosedBodyOrNothing) {
   EXPECT_NEAR(summary["poses"][0]["volume_ratio"].get<double>(), 1.0, 0.02);
   EXPECT_GT(summary["poses"][0]["tet_volume_ratio"]["min"].get<double>(), 0.0);
   // A pose that folds the body inside out: an input error, and no new folder.
-  write_scene(nlohmann::json::parse(R"([{"name": "folded", "rotations": {"lowerleg01.L": [170, 0, 0]}}])"));
+  write_scene(
+      nlohmann::json::parse(R"([{"name": "folded", "rotations": {"lowerleg01.L": [170, 0, 0]}}])"));
   const auto bad = test::run_cli("pose scene.json --out out2", dir.string());
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("pose \"folded\" inverts"), std::string::npos) << bad.output;
@@ -108,11 +128,11 @@ TEST(PoseCli, WritesEveryPosedBodyOrNothing) {
   fs::remove_all(dir);
 }
 
-
 /// Writes DIR/scene.json: the posed legs scene with one pose (or none) and the given
 /// "optimize" objectives, every path absolute.
 void write_optimize_scene(const fs::path& dir, const nlohmann::json& objectives, bool with_poses) {
-  nlohmann::json j = posed_scene(nlohmann::json::parse(R"([{"name": "knee", "rotations": {"lowerleg01.L": [30, 0, 0]}}])"));
+  nlohmann::json j = posed_scene(
+      nlohmann::json::parse(R"([{"name": "knee", "rotations": {"lowerleg01.L": [30, 0, 0]}}])"));
   if (!with_poses) j.erase("poses");
   j["body"]["mesh"] = std::string(TIGHTFIT_SOURCE_DIR) + "/data/bodies/mh_legs_male.obj";
   for (const char* key : {"mesh", "weights", "joints"})
@@ -122,29 +142,38 @@ void write_optimize_scene(const fs::path& dir, const nlohmann::json& objectives,
 }
 
 TEST(ScenePoses, TheSlidingObjectiveNeedsPosesTheSceneHas) {
-  const fs::path dir = fs::temp_directory_path() / ("tightfit_sliding_spec_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("tightfit_sliding_spec_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   auto error = [&](const nlohmann::json& sliding, bool with_poses) {
     write_optimize_scene(dir, {{"sliding", sliding}}, with_poses);
     try {
       const OptimizationScene s = read_optimization_scene((dir / "scene.json").string());
-      return std::string("no error, ") + std::to_string(s.optimization.poses.bone_motions.size()) + " poses";
+      return std::string("no error, ") + std::to_string(s.optimization.poses.bone_motions.size()) +
+             " poses";
     } catch (const InputError& e) {
       return std::string(e.what());
     }
   };
   EXPECT_EQ(error({{"weight", 1}}, true), "no error, 1 poses");
-  EXPECT_NE(error({{"weight", 1}, {"poses", {"knee", "hop"}}}, true).find("/optimize/objectives/sliding/poses: the scene has no pose \"hop\""),
+  EXPECT_NE(error({{"weight", 1}, {"poses", {"knee", "hop"}}}, true)
+                .find("/optimize/objectives/sliding/poses: the scene has no pose \"hop\""),
             std::string::npos);
   EXPECT_NE(error({{"weight", 1}}, false).find("asks for poses"), std::string::npos);
-  EXPECT_NE(error({{"weight", 1}, {"friction", -0.3}}, true).find("/optimize/objectives/sliding/friction"), std::string::npos);
-  EXPECT_NE(error({{"weight", 1}, {"poses", nlohmann::json::array()}}, true).find("non-empty array"), std::string::npos);
+  EXPECT_NE(error({{"weight", 1}, {"friction", -0.3}}, true)
+                .find("/optimize/objectives/sliding/friction"),
+            std::string::npos);
+  EXPECT_NE(
+      error({{"weight", 1}, {"poses", nlohmann::json::array()}}, true).find("non-empty array"),
+      std::string::npos);
   // Stretch in every pose: the scene's poses are resolved for it too.
   auto stretch = [&](const nlohmann::json& poses, bool with_poses) {
-    write_optimize_scene(dir, {{"stretch", {{"weight", 1}, {"min", 1.0}, {"poses", poses}}}}, with_poses);
+    write_optimize_scene(dir, {{"stretch", {{"weight", 1}, {"min", 1.0}, {"poses", poses}}}},
+                         with_poses);
     try {
       const OptimizationScene s = read_optimization_scene((dir / "scene.json").string());
-      return std::to_string(s.optimization.stretch->all_poses) + " " + std::to_string(s.optimization.poses.bone_motions.size());
+      return std::to_string(s.optimization.stretch->all_poses) + " " +
+             std::to_string(s.optimization.poses.bone_motions.size());
     } catch (const InputError& e) {
       return std::string(e.what());
     }
@@ -156,20 +185,25 @@ TEST(ScenePoses, TheSlidingObjectiveNeedsPosesTheSceneHas) {
   fs::remove_all(dir);
 }
 
-
 TEST(PoseCli, SimulateWritesTheGarmentInEveryPoseAndItsSlidingStatisticsSlow) {
-  const fs::path dir = fs::temp_directory_path() / ("tightfit_pose_simulate_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("tightfit_pose_simulate_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   const std::string data = std::string(TIGHTFIT_SOURCE_DIR) + "/data/";
   nlohmann::json scene = {
-      {"body", {{"mesh", data + "bodies/mh_legs_male.obj"}, {"edge_length", 0.03},
-                {"crop", nlohmann::json::parse(R"([{"point": [0, 0.33, 0], "normal": [0, 1, 0]},
+      {"body",
+       {{"mesh", data + "bodies/mh_legs_male.obj"},
+        {"edge_length", 0.03},
+        {"crop", nlohmann::json::parse(R"([{"point": [0, 0.33, 0], "normal": [0, 1, 0]},
                     {"point": [0, 0.68, 0], "normal": [0, -1, 0]}, {"point": [0.02, 0, 0], "normal": [1, 0, 0]}])")}}},
       {"garment", {{"cover", {{"scale", 0.95}}}}},
-      {"rig", {{"mesh", data + "bodies/mh_male_regular.obj"}, {"weights", data + "rig/default_weights.mhw"},
-               {"joints", data + "rig/mh_male_regular.joints.json"}}},
-      {"poses", nlohmann::json::parse(R"([{"name": "knee_45", "rotations": {"lowerleg01.L": [45, 0, 0]}}])")}};
+      {"rig",
+       {{"mesh", data + "bodies/mh_male_regular.obj"},
+        {"weights", data + "rig/default_weights.mhw"},
+        {"joints", data + "rig/mh_male_regular.joints.json"}}},
+      {"poses", nlohmann::json::parse(
+                    R"([{"name": "knee_45", "rotations": {"lowerleg01.L": [45, 0, 0]}}])")}};
   std::ofstream(dir / "knee.json") << scene.dump(2);
   const auto run = test::run_cli("simulate knee.json --out out", dir.string());
   ASSERT_EQ(run.exit_code, 0) << run.output;

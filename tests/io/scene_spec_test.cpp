@@ -29,9 +29,10 @@ TEST(SceneSpec, EveryExampleParses) {
 TEST(SceneSpec, EveryExampleValidatesAgainstTheSchema) {
   const std::string schema = std::string(TIGHTFIT_SOURCE_DIR) + "/schema/scene.schema.json";
   for (const auto& file : example_scenes()) {
-    const std::string cmd = "/usr/bin/python3 -c \"import json,sys,jsonschema; "
-                            "jsonschema.validate(json.load(open(sys.argv[2])), json.load(open(sys.argv[1])))\" '" +
-                            schema + "' '" + file.string() + "'";
+    const std::string cmd =
+        "/usr/bin/python3 -c \"import json,sys,jsonschema; "
+        "jsonschema.validate(json.load(open(sys.argv[2])), json.load(open(sys.argv[1])))\" '" +
+        schema + "' '" + file.string() + "'";
     EXPECT_EQ(std::system(cmd.c_str()), 0) << file;
   }
 }
@@ -45,13 +46,18 @@ std::string error_of(const std::string& text) {
   return "";
 }
 
-const char* kGood = R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {"scale": 0.9}}})";
+const char* kGood =
+    R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {"scale": 0.9}}})";
 
 TEST(SceneSpec, ASleeveEdgeTooShortToMeshIsAnErrorBeforeMeshing) {
-  const std::string e = error_of(R"({"body": {"generator": "cylinder", "radius": 0.05, "length": 0.3},
+  const std::string e =
+      error_of(R"({"body": {"generator": "cylinder", "radius": 0.05, "length": 0.3},
                                     "garment": {"sleeve": {"edge_length": 0.00001}}})");
-  EXPECT_NE(e.find("bad.json: /garment/sleeve/edge_length: an edge length of 1e-05 m would mesh the sleeve"),
-            std::string::npos) << e;
+  EXPECT_NE(
+      e.find(
+          "bad.json: /garment/sleeve/edge_length: an edge length of 1e-05 m would mesh the sleeve"),
+      std::string::npos)
+      << e;
 }
 
 TEST(SceneSpec, ReadsMaterialsAndDefaults) {
@@ -75,16 +81,24 @@ TEST(SceneSpec, ErrorsNameTheFileAndJsonPath) {
   };
   EXPECT_EQ(error_of(with("fabric", {{"youngs_modulus", "stiff"}})),
             "bad.json: /fabric/youngs_modulus: expected a number, got string");
-  EXPECT_EQ(error_of(with("fabrik", nlohmann::json::object())), "bad.json: /fabrik: unknown key \"fabrik\"");
-  EXPECT_NE(error_of(with("fabric", {{"poisson_ratio", 1.5}})).find("/fabric/poisson_ratio"), std::string::npos);
-  EXPECT_NE(error_of(R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {}})").find("/garment"), std::string::npos);
+  EXPECT_EQ(error_of(with("fabrik", nlohmann::json::object())),
+            "bad.json: /fabrik: unknown key \"fabrik\"");
+  EXPECT_NE(error_of(with("fabric", {{"poisson_ratio", 1.5}})).find("/fabric/poisson_ratio"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {}})")
+                .find("/garment"),
+            std::string::npos);
   EXPECT_NE(error_of(R"({"garment": {"cover": {}}})").find("/body: missing"), std::string::npos);
-  EXPECT_NE(error_of(R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}, "sleeve": {}}})")
-                .find("exactly one"),
-            std::string::npos);
-  EXPECT_NE(error_of(R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"sleeve": {"radius": -1}}})")
-                .find("/garment/sleeve/radius"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(
+          R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}, "sleeve": {}}})")
+          .find("exactly one"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of(
+          R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"sleeve": {"radius": -1}}})")
+          .find("/garment/sleeve/radius"),
+      std::string::npos);
 }
 
 }  // namespace

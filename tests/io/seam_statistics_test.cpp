@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <numbers>
 
-#include "objectives/objective_test_garments.hpp"
 #include "io/support/pattern_tools.hpp"
+#include "objectives/objective_test_garments.hpp"
 #include "support/cli_run.hpp"
 #include "support/test_pieces.hpp"
 #include "tightfit/io/pattern_json.hpp"
@@ -26,12 +26,14 @@ TEST(SeamStatistics, UniformSleeveByHand) {
   const double r = 0.05, w = 0.9 * 2.0 * std::numbers::pi * r, h = 0.1;
   const test::GarmentState s = test::sleeve(nx, ny, r, w, h, 0.0, 1);
   const ClothMaterial m;
-  const std::vector<SeamStatistics> seams = fit_seam_statistics(s.garment, seam_test_positions(s), m);
+  const std::vector<SeamStatistics> seams =
+      fit_seam_statistics(s.garment, seam_test_positions(s), m);
   ASSERT_EQ(seams.size(), 1u);
   const SeamStatistics& seam = seams[0];
   const double stretch = 2.0 * r * std::sin(std::numbers::pi / (nx - 1)) / (w / (nx - 1));
   const double traction = m.thickness * m.youngs_modulus /
-                          (1.0 - m.poisson_ratio * m.poisson_ratio) * 0.5 * (stretch * stretch - 1.0);
+                          (1.0 - m.poisson_ratio * m.poisson_ratio) * 0.5 *
+                          (stretch * stretch - 1.0);
   EXPECT_EQ(seam.name, "axial seam");
   EXPECT_TRUE(seam.has_fit);
   EXPECT_NEAR(seam.length_a, h, 1e-12);
@@ -74,7 +76,8 @@ TEST(SeamStatistics, MismatchAndSewingStretchOfUnequalSides) {
   EXPECT_FALSE(j.contains("sewn_length_mm"));
 
   s.garment.pattern = pattern;
-  const SeamStatistics fit = fit_seam_statistics(s.garment, seam_test_positions(s), ClothMaterial{})[0];
+  const SeamStatistics fit =
+      fit_seam_statistics(s.garment, seam_test_positions(s), ClothMaterial{})[0];
   EXPECT_NEAR(fit.stretch_a(), 1.0, 1e-12);
   EXPECT_NEAR(fit.stretch_b(), 1.0 / 1.02, 1e-12);
   const nlohmann::json jf = seam_statistics_json(fit);

@@ -25,7 +25,8 @@ std::vector<Vec3> path_across_an_edge(const TriMesh& mesh, int samples) {
   int other = -1;
   for (int f = 1; f < mesh.num_faces() && other < 0; ++f)
     for (int k = 0; k < 3; ++k)
-      if (mesh.faces(f, k) == b && mesh.faces(f, (k + 1) % 3) == a) other = mesh.faces(f, (k + 2) % 3);
+      if (mesh.faces(f, k) == b && mesh.faces(f, (k + 1) % 3) == a)
+        other = mesh.faces(f, (k + 2) % 3);
   EXPECT_GE(other, 0);
   auto v = [&](int i) -> Vec3 { return mesh.vertices.row(i).transpose(); };
   const Vec3 start = 0.6 * v(a) + 0.1 * v(b) + 0.3 * v(c);
@@ -38,7 +39,7 @@ std::vector<Vec3> path_across_an_edge(const TriMesh& mesh, int samples) {
 }
 
 struct Walk {
-  double largest_jump = 0.0;  // m, between consecutive path points
+  double largest_jump = 0.0;   // m, between consecutive path points
   double largest_value = 0.0;  // m
   int fallbacks = 0;
 };

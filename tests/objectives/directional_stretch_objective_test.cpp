@@ -32,8 +32,8 @@ TEST(DirectionalStretchObjective, AcrossAndAlongTheGrainByHand) {
   // Grain along the piece's y axis: across the grain is x (stretch 1.4), along is y (1.0).
   const test::GarmentState s = stretched_square(1.4, 1.0, Vec2::UnitY());
   const Points2 rest = s.garment.rest_positions();
-  const DirectionalStretchObjective across(s.garment, FabricDirection::across_grain, {1.1, 1.3});
-  const DirectionalStretchObjective along(s.garment, FabricDirection::along_grain, {1.1, 1.3});
+  const DirectionalStretchObjective across(s.garment, FabricDirection::kAcrossGrain, {1.1, 1.3});
+  const DirectionalStretchObjective along(s.garment, FabricDirection::kAlongGrain, {1.1, 1.3});
   EXPECT_DOUBLE_EQ(across.squared_min(), 1.21);
   EXPECT_DOUBLE_EQ(across.squared_max(), 1.69);
   // Area 0.01 m².
@@ -56,7 +56,7 @@ TEST(DirectionalStretchObjective, FollowsARotatedGrain) {
   const Vec2 grain = Vec2(1.0, 1.0).normalized();
   const test::GarmentState s = stretched_square(1.4, 1.0, 3.0 * grain);
   const Points2 rest = s.garment.rest_positions();
-  for (FabricDirection dir : {FabricDirection::along_grain, FabricDirection::across_grain}) {
+  for (FabricDirection dir : {FabricDirection::kAlongGrain, FabricDirection::kAcrossGrain}) {
     const DirectionalStretchObjective t(s.garment, dir, {1.3, 1.3});
     for (double st : t.stretches({s.x, rest})) EXPECT_NEAR(st * st, 1.48, 1e-12);
     EXPECT_NEAR(t.value({s.x, rest}), 0.01 * std::pow(1.48 - 1.69, 2), 1e-14);
@@ -66,7 +66,7 @@ TEST(DirectionalStretchObjective, FollowsARotatedGrain) {
 TEST(DirectionalStretchObjective, GradientsOnRandomStates) {
   test::GarmentState s = test::sleeve(9, 5, 0.05, 0.28, 0.1, 0.2, 4);
   s.garment.pattern.pieces[0].grain = Vec2(0.3, 1.0).normalized();
-  for (FabricDirection dir : {FabricDirection::along_grain, FabricDirection::across_grain}) {
+  for (FabricDirection dir : {FabricDirection::kAlongGrain, FabricDirection::kAcrossGrain}) {
     const DirectionalStretchObjective t(s.garment, dir, {1.05, 1.15});
     for (unsigned seed = 1; seed <= 3; ++seed) {
       const VecX x = test::perturb(s.x, 0.004, seed);
@@ -83,7 +83,7 @@ TEST(DirectionalStretchObjective, GradientsOnRandomStates) {
 TEST(DirectionalStretchObjective, GradientsAtAnExactTargetStretch) {
   // min = max: the penalty is (c − c0)², smooth through the target.
   const test::GarmentState s = stretched_square(1.3 * (1.0 + 1e-4), 1.1, Vec2::UnitY(), 0.2);
-  const DirectionalStretchObjective t(s.garment, FabricDirection::across_grain, {1.3, 1.3});
+  const DirectionalStretchObjective t(s.garment, FabricDirection::kAcrossGrain, {1.3, 1.3});
   const Points2 rest = s.garment.rest_positions();
   EXPECT_GT(t.value({s.x, rest}), 0.0);
   const test::GradientErrors e = test::gradient_errors(t, s.x, rest, 1e-9, 1e-9);
@@ -93,16 +93,16 @@ TEST(DirectionalStretchObjective, GradientsAtAnExactTargetStretch) {
 
 TEST(DirectionalStretchObjective, UnboundedAboveAndBadInput) {
   const test::GarmentState st = stretched_square(3.0, 1.2, Vec2::UnitY());
-  const DirectionalStretchObjective t(st.garment, FabricDirection::across_grain,
+  const DirectionalStretchObjective t(st.garment, FabricDirection::kAcrossGrain,
                                       {1.0, std::numeric_limits<double>::infinity()});
   EXPECT_EQ(t.value({st.x, st.garment.rest_positions()}), 0.0);
-  EXPECT_THROW(DirectionalStretchObjective(st.garment, FabricDirection::along_grain, {1.3, 1.1}),
+  EXPECT_THROW(DirectionalStretchObjective(st.garment, FabricDirection::kAlongGrain, {1.3, 1.1}),
                InputError);
-  EXPECT_THROW(DirectionalStretchObjective(st.garment, FabricDirection::along_grain, {0.0, 1.1}),
+  EXPECT_THROW(DirectionalStretchObjective(st.garment, FabricDirection::kAlongGrain, {0.0, 1.1}),
                InputError);
   Garment no_grain = st.garment;
   no_grain.pattern.pieces[0].grain = Vec2::Zero();
-  EXPECT_THROW(DirectionalStretchObjective(no_grain, FabricDirection::along_grain, {1.0, 1.1}),
+  EXPECT_THROW(DirectionalStretchObjective(no_grain, FabricDirection::kAlongGrain, {1.0, 1.1}),
                InputError);
 }
 

@@ -17,12 +17,13 @@ constexpr double kBandSleeveRadius = 0.05;
 
 /// A sleeve 10 cm long on a cylinder of radius 5 cm along z (one piece, "grid").
 test::GarmentState region_sleeve(int nx = 17, int ny = 9) {
-  return test::sleeve(nx, ny, kBandSleeveRadius, 0.9 * 2.0 * std::numbers::pi * kBandSleeveRadius, 0.1, 0.2, 3);
+  return test::sleeve(nx, ny, kBandSleeveRadius, 0.9 * 2.0 * std::numbers::pi * kBandSleeveRadius,
+                      0.1, 0.2, 3);
 }
 
 /// The band between heights `lo` and `hi` (m) along z.
-PressureRegion band(const std::string& name, double lo, double hi, double transition,
-                    double min_pa, double max_pa) {
+PressureRegion band(const std::string& name, double lo, double hi, double transition, double min_pa,
+                    double max_pa) {
   PressureRegion r;
   r.name = name;
   r.above = RegionPlane{Vec3(0, 0, lo), Vec3(0, 0, 2)};  // normals need not be unit

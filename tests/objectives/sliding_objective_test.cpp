@@ -49,10 +49,12 @@ SlidingScene sliding_scene(double friction) {
   SlidingScene s{test::make_sleeve_scene(o), nullptr};
   GarmentSimulation& sim = *s.scene->sim;
   sim.solve();
-  std::vector<PoseMotions> poses{twist_pose(s.scene->body, 25.0, 10.0), twist_pose(s.scene->body, -15.0, 20.0)};
+  std::vector<PoseMotions> poses{twist_pose(s.scene->body, 25.0, 10.0),
+                                 twist_pose(s.scene->body, -15.0, 20.0)};
   poses[1].name = "bend";
-  s.term = std::make_shared<SlidingObjective>(sim.garment(), sim.materials(), *s.scene->surface,
-                                              s.scene->body.num_vertices(), std::move(poses), friction);
+  s.term =
+      std::make_shared<SlidingObjective>(sim.garment(), sim.materials(), *s.scene->surface,
+                                         s.scene->body.num_vertices(), std::move(poses), friction);
   return s;
 }
 
@@ -63,20 +65,23 @@ double central(const std::function<double(double)>& f, double h) {
 /// The adjoint design gradient of `term` alone against finite differences of the whole
 /// pipeline along two random directions from a perturbed start (seed `seed`); each
 /// check's relative error must be below 1e-6. Returns the checks.
-std::vector<DirectionalCheck> pipeline_checks(GarmentSimulation& sim, std::shared_ptr<const DesignTerm> term,
-                                              unsigned seed, const char* label) {
+std::vector<DirectionalCheck> pipeline_checks(GarmentSimulation& sim,
+                                              std::shared_ptr<const DesignTerm> term, unsigned seed,
+                                              const char* label) {
   auto objective = std::make_shared<DesignTermSum>();
   objective->add(std::move(term), 1.0);
   DesignProblem problem(sim, objective);
   GradientCheckOptions options;
   options.directions = 2;
-  const VecX p = problem.initial_parameters() +
-                 0.1 * problem.mean_boundary_edge() * random_design_direction(problem.num_parameters(), seed);
+  const VecX p =
+      problem.initial_parameters() +
+      0.1 * problem.mean_boundary_edge() * random_design_direction(problem.num_parameters(), seed);
   const std::vector<DirectionalCheck> checks = check_design_gradient(problem, p, options);
   for (const DirectionalCheck& c : checks) {
-    EXPECT_LT(c.relative_error, 1e-6) << label << ": adjoint " << c.adjoint << " FD " << c.finite_difference;
-    std::printf("%s: adjoint %.9e, FD %.9e, relative error %.2e\n", label, c.adjoint, c.finite_difference,
-                c.relative_error);
+    EXPECT_LT(c.relative_error, 1e-6)
+        << label << ": adjoint " << c.adjoint << " FD " << c.finite_difference;
+    std::printf("%s: adjoint %.9e, FD %.9e, relative error %.2e\n", label, c.adjoint,
+                c.finite_difference, c.relative_error);
   }
   return checks;
 }
@@ -96,11 +101,11 @@ TEST(SlidingObjective, PosesPullTheClothAcrossTheBodyAndFrictionHoldsPartOfIt) {
   EXPECT_LT(sticky.term->value(ds.view()), with_friction);
   // The neutral pose (identity motions) leaves only the equilibrium's residual forces.
   std::vector<PoseMotions> rest{{"rest", std::vector<PointMotion>(s.scene->body.num_vertices())}};
-  const SlidingObjective neutral(s.scene->sim->garment(), s.scene->sim->materials(), *s.scene->surface,
-                                 s.scene->body.num_vertices(), rest, 0.3);
+  const SlidingObjective neutral(s.scene->sim->garment(), s.scene->sim->materials(),
+                                 *s.scene->surface, s.scene->body.num_vertices(), rest, 0.3);
   EXPECT_LT(neutral.value(ds.view()), 1e-12 * with_friction);
-  EXPECT_THROW(SlidingObjective(s.scene->sim->garment(), s.scene->sim->materials(), *s.scene->surface,
-                                s.scene->body.num_vertices(), rest, -0.1),
+  EXPECT_THROW(SlidingObjective(s.scene->sim->garment(), s.scene->sim->materials(),
+                                *s.scene->surface, s.scene->body.num_vertices(), rest, -0.1),
                InputError);
 }
 
@@ -110,7 +115,8 @@ TEST(SlidingObjective, PartialDerivativesMatchFiniteDifferences) {
   const DesignState state = ds.view();
   ASSERT_GT(s.term->value(state), 0.0);
   VecX d_x = VecX::Zero(ds.x.size()), d_rest = VecX::Zero(2 * ds.rest.rows());
-  VecX d_s = VecX::Zero(2 * static_cast<Eigen::Index>(ds.garment.size())), d_y = VecX::Zero(ds.body.size());
+  VecX d_s = VecX::Zero(2 * static_cast<Eigen::Index>(ds.garment.size())),
+       d_y = VecX::Zero(ds.body.size());
   s.term->add_gradient(state, d_x, d_rest);
   s.term->add_embedding_gradient(state, d_s, d_y);
   EXPECT_EQ(d_x.norm(), 0.0);  // T does not look at the neutral positions themselves
@@ -144,7 +150,8 @@ TEST(SlidingObjective, PartialDerivativesMatchFiniteDifferences) {
   VecX du = VecX::Zero(d_s.size());
   for (std::size_t j = 0; j < ds.garment.size(); ++j) {
     const SurfacePoint& p = ds.garment[j];
-    if (p.u > 0.05 && p.v > 0.05 && p.u + p.v < 0.95) du.segment<2>(2 * static_cast<Eigen::Index>(j)) = direction(2);
+    if (p.u > 0.05 && p.v > 0.05 && p.u + p.v < 0.95)
+      du.segment<2>(2 * static_cast<Eigen::Index>(j)) = direction(2);
   }
   ASSERT_GT(du.norm(), 0.0);
   auto T_surface = [&](double t) {
@@ -158,8 +165,8 @@ TEST(SlidingObjective, PartialDerivativesMatchFiniteDifferences) {
   };
   const double fd_surface = central(T_surface, 1e-7);
   EXPECT_NEAR(d_s.dot(du), fd_surface, 1e-6 * std::abs(fd_surface));
-  std::printf("sliding partials: rest %.6e vs FD %.6e, body %.6e vs %.6e, surface %.6e vs %.6e\n", d_rest.dot(dr),
-              fd_rest, d_y.dot(dy), fd_body, d_s.dot(du), fd_surface);
+  std::printf("sliding partials: rest %.6e vs FD %.6e, body %.6e vs %.6e, surface %.6e vs %.6e\n",
+              d_rest.dot(dr), fd_rest, d_y.dot(dy), fd_body, d_s.dot(du), fd_surface);
 }
 
 TEST(SlidingObjective, AdjointGradientOfTheWholePipelineMatchesFiniteDifferences) {
@@ -181,20 +188,24 @@ TEST(AllPosesTerm, StretchInEveryPoseHasTheAdjointGradientOfTheWholePipeline) {
   const SimulationDesignState ds(sim);
   // Neutral value plus one value per pose; the twisted poses stretch the sleeve more.
   const double neutral = stretch->value(ds.view());
-  EXPECT_NEAR(all->value(ds.view()), neutral + all->pose_value(ds.view(), 0) + all->pose_value(ds.view(), 1), 1e-15);
+  EXPECT_NEAR(all->value(ds.view()),
+              neutral + all->pose_value(ds.view(), 0) + all->pose_value(ds.view(), 1), 1e-15);
   EXPECT_GT(all->pose_value(ds.view(), 0), neutral);
   EXPECT_EQ(all->name(), "stretch (all poses)");
-  for (const DirectionalCheck& c : pipeline_checks(sim, all, 5, "stretch in all poses")) EXPECT_NE(c.adjoint, 0.0);
+  for (const DirectionalCheck& c : pipeline_checks(sim, all, 5, "stretch in all poses"))
+    EXPECT_NE(c.adjoint, 0.0);
 }
 
 TEST(PinnedTractionRegularizer, PartialsAndThePipelineMatchFiniteDifferences) {
   SlidingScene s = sliding_scene(0.3);
   GarmentSimulation& sim = *s.scene->sim;
-  const auto term = std::make_shared<PinnedTractionRegularizer>(sim.garment(), sim.materials(), *s.scene->surface);
+  const auto term = std::make_shared<PinnedTractionRegularizer>(sim.garment(), sim.materials(),
+                                                                *s.scene->surface);
   const SimulationDesignState ds(sim);
   ASSERT_GT(term->value(ds.view()), 0.0);  // the axially short sleeve pulls on its cuffs
   VecX d_x = VecX::Zero(ds.x.size()), d_rest = VecX::Zero(2 * ds.rest.rows());
-  VecX d_s = VecX::Zero(2 * static_cast<Eigen::Index>(ds.garment.size())), d_y = VecX::Zero(ds.body.size());
+  VecX d_s = VecX::Zero(2 * static_cast<Eigen::Index>(ds.garment.size())),
+       d_y = VecX::Zero(ds.body.size());
   term->add_gradient(ds.view(), d_x, d_rest);
   term->add_embedding_gradient(ds.view(), d_s, d_y);
   std::mt19937 rng(11);
@@ -205,19 +216,25 @@ TEST(PinnedTractionRegularizer, PartialsAndThePipelineMatchFiniteDifferences) {
     return d;
   };
   const VecX dx = direction(d_x.size()), dr = direction(d_rest.size()), dy = direction(d_y.size());
-  const double fd_x = central([&](double t) {
-    const VecX x = ds.x + t * dx;
-    return term->value(DesignState{x, ds.rest, &ds.embedding});
-  }, 1e-7);
-  const double fd_rest = central([&](double t) {
-    const Points2 rest = ds.rest + t * Eigen::Map<const Points2>(dr.data(), ds.rest.rows(), 2);
-    return term->value(DesignState{ds.x, rest, &ds.embedding});
-  }, 1e-7);
-  const double fd_body = central([&](double t) {
-    const Points3 body = ds.body + t * Eigen::Map<const Points3>(dy.data(), ds.body.rows(), 3);
-    const DesignEmbedding e{ds.garment, body};
-    return term->value(DesignState{ds.x, ds.rest, &e});
-  }, 1e-7);
+  const double fd_x = central(
+      [&](double t) {
+        const VecX x = ds.x + t * dx;
+        return term->value(DesignState{x, ds.rest, &ds.embedding});
+      },
+      1e-7);
+  const double fd_rest = central(
+      [&](double t) {
+        const Points2 rest = ds.rest + t * Eigen::Map<const Points2>(dr.data(), ds.rest.rows(), 2);
+        return term->value(DesignState{ds.x, rest, &ds.embedding});
+      },
+      1e-7);
+  const double fd_body = central(
+      [&](double t) {
+        const Points3 body = ds.body + t * Eigen::Map<const Points3>(dy.data(), ds.body.rows(), 3);
+        const DesignEmbedding e{ds.garment, body};
+        return term->value(DesignState{ds.x, ds.rest, &e});
+      },
+      1e-7);
   EXPECT_NEAR(d_x.dot(dx), fd_x, 1e-6 * std::abs(fd_x));
   EXPECT_NEAR(d_rest.dot(dr), fd_rest, 1e-6 * std::abs(fd_rest));
   EXPECT_NEAR(d_y.dot(dy), fd_body, 1e-6 * std::abs(fd_body) + 1e-12);

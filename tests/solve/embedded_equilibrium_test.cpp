@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "support/finite_difference.hpp"
 #include "subdiv/test_meshes.hpp"
+#include "support/finite_difference.hpp"
 #include "tightfit/physics/assembly.hpp"
 
 namespace tightfit {
@@ -39,7 +39,8 @@ class SpringsForTest : public Energy {
       const Vec3 d = x.segment<3>(3 * pairs_[s][0]) - x.segment<3>(3 * pairs_[s][1]);
       const double l = d.norm();
       const Vec3 n = d / l;
-      const Mat3 K = k_ * (n * n.transpose() + (1 - rest_[s] / l) * (Mat3::Identity() - n * n.transpose()));
+      const Mat3 K =
+          k_ * (n * n.transpose() + (1 - rest_[s] / l) * (Mat3::Identity() - n * n.transpose()));
       Eigen::Matrix<double, 6, 6> local;
       local << K, -K, -K, K;
       if (psd) project_psd<6>(local);
@@ -142,7 +143,7 @@ TEST(EmbeddedEquilibrium, HessianOperatorIsTheProductWithTheNewtonHessian) {
   ASSERT_TRUE(op.has_value());
   const VecX v = VecX::LinSpaced(problem.num_dofs(), 1.0, -2.0);
   const VecX Hv = H * v;
-  EXPECT_LT(((*op)(v) - Hv).norm(), 1e-12 * Hv.norm());
+  EXPECT_LT(((*op)(v)-Hv).norm(), 1e-12 * Hv.norm());
 }
 
 TEST(EmbeddedEquilibrium, PositionJacobianMatchesFiniteDifferences) {

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "rigid_body_case.hpp"
 #include "tightfit/body/generators.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
-#include "rigid_body_case.hpp"
 
 namespace tightfit {
 namespace {
@@ -80,15 +80,17 @@ TEST_P(RigidCylinderSleeve, UniformHoopStretchAndPressureTOverR) {
   const double err_limit = max_relative_error(fit.pressure_limit, expected);
   // Vertex-area pressure (paper Fig. 2) against T/R at interior vertices.
   const double T = fit.elements[0].principal_tension[0];
-  std::printf("sleeve: %d elements, hoop stretch %.6f (spread %.2e), T = %.3f N/m, "
-              "p = %.2f Pa; max error mid-edge %.3f %%, limit %.3f %%\n",
-              ne, hoop.mean, hoop_spread, T, T / c.sleeve.radius, 100 * err_mid, 100 * err_limit);
+  std::printf(
+      "sleeve: %d elements, hoop stretch %.6f (spread %.2e), T = %.3f N/m, "
+      "p = %.2f Pa; max error mid-edge %.3f %%, limit %.3f %%\n",
+      ne, hoop.mean, hoop_spread, T, T / c.sleeve.radius, 100 * err_mid, 100 * err_limit);
   // Per-vertex-area pressure (paper Fig. 2) at the free vertices, for comparison.
   double err_vertex = 0;
   const auto& pinned = sim.garment().pinned;
   for (int i = 0; i < sim.garment().num_garment_vertices; ++i)
     if (!std::binary_search(pinned.begin(), pinned.end(), i))
-      err_vertex = std::max(err_vertex, std::abs(fit.vertex_pressure[i] / (T / c.sleeve.radius) - 1));
+      err_vertex =
+          std::max(err_vertex, std::abs(fit.vertex_pressure[i] / (T / c.sleeve.radius) - 1));
   std::printf("sleeve: max error of force / Voronoi area pressure %.2f %%\n", 100 * err_vertex);
   EXPECT_NEAR(hoop.mean, 1.0 / 0.9, 2e-3);
   // Elements are chords of the curved body: their hoop stretch differs from the arc's by
@@ -152,11 +154,12 @@ TEST(RigidSphereCover, UniformStretchAndPressureTwoTOverR) {
   double err_vertex = 0;
   for (int i = 0; i < fit.vertex_pressure.size(); ++i)
     err_vertex = std::max(err_vertex, std::abs(fit.vertex_pressure[i] / (2 * T / sp.radius) - 1));
-  std::printf("cover: %d elements, stretch %.5f..%.5f, T = %.3f N/m, p = %.1f Pa; max error "
-              "mid-edge %.3f %%, limit %.3f %% (%.3f %% away from valence-5 vertices), "
-              "force/Voronoi area %.2f %%\n",
-              ne, stretch.min, stretch.max, T, 2 * T / sp.radius, 100 * err_mid, 100 * err_limit,
-              100 * err_limit_regular, 100 * err_vertex);
+  std::printf(
+      "cover: %d elements, stretch %.5f..%.5f, T = %.3f N/m, p = %.1f Pa; max error "
+      "mid-edge %.3f %%, limit %.3f %% (%.3f %% away from valence-5 vertices), "
+      "force/Voronoi area %.2f %%\n",
+      ne, stretch.min, stretch.max, T, 2 * T / sp.radius, 100 * err_mid, 100 * err_limit,
+      100 * err_limit_regular, 100 * err_vertex);
   EXPECT_LT(err_mid, 0.01);
   EXPECT_LT(err_limit_regular, 0.01);
   EXPECT_LT(err_limit, 0.03);

@@ -13,11 +13,11 @@
 #include <cstdio>
 #include <functional>
 
+#include "rigid_body_case.hpp"
 #include "tightfit/body/generators.hpp"
 #include "tightfit/body/loop_limit.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
-#include "rigid_body_case.hpp"
 
 namespace tightfit {
 namespace {
@@ -82,8 +82,7 @@ CurvedBodyCase elliptic_case(double a, double b) {
     const double t = std::atan2(p.y() / b, p.x() / a);  // ellipse parameter of p
     const double s = std::sin(t), co = std::cos(t);
     const double speed = std::sqrt(a * a * s * s + b * b * co * co);
-    return CurvedDirection{a * b / (speed * speed * speed),
-                           Vec3(-a * s, b * co, 0.0) / speed};
+    return CurvedDirection{a * b / (speed * speed * speed), Vec3(-a * s, b * co, 0.0) / speed};
   };
   return c;
 }
@@ -163,8 +162,8 @@ LaplaceCheck check_laplace_law(CurvedBodyCase c) {
     EXPECT_GT(expected, 0.0);
     p_min = std::min(p_min, expected);
     p_max = std::max(p_max, expected);
-    for (auto [errors, value] : {std::pair{&mid, fit.pressure_mid_edge[e]},
-                                 std::pair{&limit, fit.pressure_limit[e]}}) {
+    for (auto [errors, value] :
+         {std::pair{&mid, fit.pressure_mid_edge[e]}, std::pair{&limit, fit.pressure_limit[e]}}) {
       const double r = std::abs(value / expected - 1.0);
       errors->max = std::max(errors->max, r);
       errors->rms += r * r;
@@ -172,10 +171,11 @@ LaplaceCheck check_laplace_law(CurvedBodyCase c) {
     }
   }
   for (Errors* errors : {&mid, &limit}) errors->rms = std::sqrt(errors->rms / errors->checked);
-  std::printf("%s: %d of %d elements checked, Laplace pressure %.1f .. %.1f Pa; error "
-              "max/rms mid-edge %.3f/%.3f %%, limit surface %.3f/%.3f %%\n",
-              c.name, mid.checked, static_cast<int>(tri.rows()), p_min, p_max, 100 * mid.max,
-              100 * mid.rms, 100 * limit.max, 100 * limit.rms);
+  std::printf(
+      "%s: %d of %d elements checked, Laplace pressure %.1f .. %.1f Pa; error "
+      "max/rms mid-edge %.3f/%.3f %%, limit surface %.3f/%.3f %%\n",
+      c.name, mid.checked, static_cast<int>(tri.rows()), p_min, p_max, 100 * mid.max, 100 * mid.rms,
+      100 * limit.max, 100 * limit.rms);
   EXPECT_GT(mid.checked, tri.rows() / 2);
   return {mid, limit, p_max / p_min};
 }

@@ -18,8 +18,8 @@ namespace tightfit {
 namespace {
 
 struct SoftCylinder {
-  double b = 0.05;      // outer radius
-  double core = 0.02;   // core radius a: pinned below b − a of soft tissue
+  double b = 0.05;     // outer radius
+  double core = 0.02;  // core radius a: pinned below b − a of soft tissue
   Body body;
   std::unique_ptr<LimitSurface> surface;
 };
@@ -56,8 +56,8 @@ TEST(SoftCylinderSleeveSlow, RadialCompressionFollowsLame) {
   SoftCylinder c = make_soft_cylinder(0.008);
   SimulationMaterials m;
   m.body.poisson_ratio = 0.3;  // linear tets lock as ν → 0.5; the check is on elasticity
-  GarmentSimulation sim(c.body, *c.surface, make_sleeve(covering_sleeve(c), *c.surface,
-                                                        c.body.surface.vertices), m);
+  GarmentSimulation sim(c.body, *c.surface,
+                        make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
   const NewtonReport report = sim.solve();
   ASSERT_TRUE(report.converged);
   const FitAnalysis fit = sim.analyze();
@@ -96,9 +96,10 @@ TEST(SoftCylinderSleeveSlow, RadialCompressionFollowsLame) {
   const double a = c.core, b = c.b;
   const double A = -p / (2 * (lambda + mu) + 2 * mu * a * a / (b * b));
   const double u_lame = A * (b - a * a / b);
-  std::printf("soft cylinder: p = %.1f Pa, radial displacement %.4e m vs Lamé %.4e m (%.2f %%), "
-              "%d Newton iterations\n",
-              p, u, u_lame, 100 * (u / u_lame - 1), report.iterations);
+  std::printf(
+      "soft cylinder: p = %.1f Pa, radial displacement %.4e m vs Lamé %.4e m (%.2f %%), "
+      "%d Newton iterations\n",
+      p, u, u_lame, 100 * (u / u_lame - 1), report.iterations);
   // Measured −1.40 % at 8 mm with the exact embedded core (3.95 % with a core pinned by
   // depth, whose jagged boundary lies anywhere within one element of r = a).
   EXPECT_NEAR(u / u_lame, 1.0, 0.03);
@@ -107,8 +108,8 @@ TEST(SoftCylinderSleeveSlow, RadialCompressionFollowsLame) {
 TEST(SoftCylinderSleeveSlow, NewtonConvergesQuadratically) {
   SoftCylinder c = make_soft_cylinder(0.012);
   SimulationMaterials m;
-  GarmentSimulation sim(c.body, *c.surface, make_sleeve(covering_sleeve(c), *c.surface,
-                                                        c.body.surface.vertices), m);
+  GarmentSimulation sim(c.body, *c.surface,
+                        make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
   const NewtonReport r = sim.solve();
   ASSERT_TRUE(r.converged);
   // Once the residual is small, each step squares it (up to a constant).

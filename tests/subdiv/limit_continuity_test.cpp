@@ -21,7 +21,8 @@ SurfacePoint on_edge(int face, int i, double t) {
 TEST(LimitSurface, PositionAndTangentPlaneAreContinuousAcrossEveryEdge) {
   for (const auto& [name, mesh] : irregular_meshes()) {
     const LimitSurface surface(mesh);
-    const double size = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
+    const double size =
+        (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
     for (int f = 0; f < surface.num_faces(); ++f) {
       for (int i = 0; i < 3; ++i) {
         const LimitSurface::EdgeMap em = surface.edge_map(f, i);
@@ -35,13 +36,15 @@ TEST(LimitSurface, PositionAndTangentPlaneAreContinuousAcrossEveryEdge) {
           EXPECT_NEAR(mapped[1], b.v, 1e-15);
           const LimitFrame fa = surface.evaluate(a, mesh.vertices);
           const LimitFrame fb = surface.evaluate(b, mesh.vertices);
-          EXPECT_LT((fa.x - fb.x).norm(), 1e-12 * size) << name << " face " << f << " edge " << i << " t " << t;
+          EXPECT_LT((fa.x - fb.x).norm(), 1e-12 * size)
+              << name << " face " << f << " edge " << i << " t " << t;
           const Vec3 na = surface.normal(a, mesh.vertices), nb = surface.normal(b, mesh.vertices);
           // Exact (box-spline) patches on both sides away from extraordinary corners;
           // the Gregory patches near them are tangent-plane continuous (G1) to round-off
           // but not C1 under the affine crossing map.
           const bool gregory = t < 1.0 / 256 || t > 1 - 1.0 / 256;
-          EXPECT_LT((na - nb).norm(), gregory ? 1e-8 : 1e-10) << name << " face " << f << " edge " << i << " t " << t;
+          EXPECT_LT((na - nb).norm(), gregory ? 1e-8 : 1e-10)
+              << name << " face " << f << " edge " << i << " t " << t;
           if (!gregory) {
             // C1 with the crossing map (Eq. 20): [xu xv]_b J = [xu xv]_a.
             Mat32 Ta, Tb;
@@ -122,7 +125,9 @@ TEST(LimitSurface, NormalsPointOutwardAndSphereCurvatureIsNegative) {
     A << c.e1.dot(fr.xu), c.e1.dot(fr.xv), c.e2.dot(fr.xu), c.e2.dot(fr.xv);
     EXPECT_LT((A.transpose() * c.shape_operator * A - c.second_fundamental_form).norm(),
               1e-12 * c.second_fundamental_form.norm());
-    EXPECT_LT((surface.second_fundamental_form(s, sphere.vertices) - c.second_fundamental_form).norm(), 1e-15);
+    EXPECT_LT(
+        (surface.second_fundamental_form(s, sphere.vertices) - c.second_fundamental_form).norm(),
+        1e-15);
   }
 }
 

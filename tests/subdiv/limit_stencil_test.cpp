@@ -17,7 +17,8 @@ using subdiv_test::random_smooth_point;
 /// Dense stencil (one weight per control vertex) of one derivative.
 Eigen::VectorXd dense(const LimitWeights& w, const std::vector<double>& a, int n) {
   Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
-  for (int k = 0; k < w.size(); ++k) d[w.index[static_cast<std::size_t>(k)]] += a[static_cast<std::size_t>(k)];
+  for (int k = 0; k < w.size(); ++k)
+    d[w.index[static_cast<std::size_t>(k)]] += a[static_cast<std::size_t>(k)];
   return d;
 }
 
@@ -33,7 +34,8 @@ TEST(LimitSurface, WeightsSumToOneAndDerivativesToZero) {
       surface.weights({f, u, v}, w);
       double sp = 0, sdu = 0, sdv = 0, suu = 0, suv = 0, svv = 0;
       for (int k = 0; k < w.size(); ++k) {
-        sp += w.p[k], sdu += w.du[k], sdv += w.dv[k], suu += w.duu[k], suv += w.duv[k], svv += w.dvv[k];
+        sp += w.p[k], sdu += w.du[k], sdv += w.dv[k], suu += w.duu[k], suv += w.duv[k],
+            svv += w.dvv[k];
       }
       EXPECT_NEAR(sp, 1.0, 1e-12) << name << " face " << f;
       for (double s : {sdu, sdv, suu, suv, svv}) EXPECT_NEAR(s, 0.0, 1e-9) << name << " face " << f;
@@ -104,18 +106,22 @@ void check_derivative_stencils(const LimitSurface& surface, SurfacePoint s, cons
   const double h = 1e-4;
   Eigen::MatrixXd first(n, 2);
   first << dense(w, w.du, n), dense(w, w.dv, n);
-  const auto c1 = test::check_jacobian([&](const Eigen::VectorXd& x) { return stencil(x, 0); }, first, uv, h);
-  EXPECT_LT(c1.relative_error, 1e-6) << name << " face " << s.face << " (" << s.u << ", " << s.v << ")";
+  const auto c1 =
+      test::check_jacobian([&](const Eigen::VectorXd& x) { return stencil(x, 0); }, first, uv, h);
+  EXPECT_LT(c1.relative_error, 1e-6)
+      << name << " face " << s.face << " (" << s.u << ", " << s.v << ")";
   Eigen::MatrixXd second_u(n, 2), second_v(n, 2);
   second_u << dense(w, w.duu, n), dense(w, w.duv, n);
   second_v << dense(w, w.duv, n), dense(w, w.dvv, n);
-  const auto cu = test::check_jacobian([&](const Eigen::VectorXd& x) { return stencil(x, 1); }, second_u, uv, h);
-  const auto cv = test::check_jacobian([&](const Eigen::VectorXd& x) { return stencil(x, 2); }, second_v, uv, h);
+  const auto cu = test::check_jacobian([&](const Eigen::VectorXd& x) { return stencil(x, 1); },
+                                       second_u, uv, h);
+  const auto cv = test::check_jacobian([&](const Eigen::VectorXd& x) { return stencil(x, 2); },
+                                       second_v, uv, h);
   const bool rotated = surface.in_rotated_subpatch(s.face, s.u, s.v);
-  EXPECT_LT(cu.relative_error, 1e-6) << name << " face " << s.face << " (" << s.u << ", " << s.v
-                                     << ") rotated " << rotated;
-  EXPECT_LT(cv.relative_error, 1e-6) << name << " face " << s.face << " (" << s.u << ", " << s.v
-                                     << ") rotated " << rotated;
+  EXPECT_LT(cu.relative_error, 1e-6)
+      << name << " face " << s.face << " (" << s.u << ", " << s.v << ") rotated " << rotated;
+  EXPECT_LT(cv.relative_error, 1e-6)
+      << name << " face " << s.face << " (" << s.u << ", " << s.v << ") rotated " << rotated;
 }
 
 TEST(LimitSurface, DerivativeStencilsMatchFiniteDifferences) {
@@ -151,7 +157,7 @@ TEST(LimitSurface, SecondDerivativesNearExtraordinaryVerticesMatchFiniteDifferen
     for (int corner = 0; corner < 3; ++corner) {
       for (int depth = 1; depth < 8; ++depth) {
         const double S = std::ldexp(1.0, 1 - depth);  // size of the parent corner triangle
-        Eigen::Matrix3d middle, side;                  // barycentrics relative to `corner`
+        Eigen::Matrix3d middle, side;                 // barycentrics relative to `corner`
         middle << 1 - S / 2, 1 - S / 2, 1 - S, S / 2, 0, S / 2, 0, S / 2, S / 2;
         side << 1 - S / 2, 1 - S, 1 - S, S / 2, S, S / 2, 0, 0, S / 2;
         for (const Eigen::Matrix3d& tri : {middle, side}) {
@@ -171,13 +177,13 @@ TEST(LimitSurface, SecondDerivativesNearExtraordinaryVerticesMatchFiniteDifferen
 
 TEST(LimitSurface, PatchTreeRotationFollowsTheTreeSearch) {
   const unsigned all = 7u, none = 0u;
-  EXPECT_TRUE(patch_tree_rotated(0.3, 0.3, none, 8));   // depth-1 middle triangle
-  EXPECT_FALSE(patch_tree_rotated(0.1, 0.1, none, 8));  // regular corner-0 leaf at depth 1
-  EXPECT_TRUE(patch_tree_rotated(0.1, 0.1, all, 8));    // depth-3 middle at an EV
-  EXPECT_FALSE(patch_tree_rotated(0.3, 0.1, all, 8));   // depth-2 corner-1 child of corner 0
-  EXPECT_TRUE(patch_tree_rotated(0.2, 0.2, all, 8));    // depth-2 middle
-  EXPECT_FALSE(patch_tree_rotated(0.6, 0.1, all, 8));   // depth-2 child of corner 1
-  EXPECT_FALSE(patch_tree_rotated(1e-4, 1e-4, all, 8)); // the Gregory leaf
+  EXPECT_TRUE(patch_tree_rotated(0.3, 0.3, none, 8));    // depth-1 middle triangle
+  EXPECT_FALSE(patch_tree_rotated(0.1, 0.1, none, 8));   // regular corner-0 leaf at depth 1
+  EXPECT_TRUE(patch_tree_rotated(0.1, 0.1, all, 8));     // depth-3 middle at an EV
+  EXPECT_FALSE(patch_tree_rotated(0.3, 0.1, all, 8));    // depth-2 corner-1 child of corner 0
+  EXPECT_TRUE(patch_tree_rotated(0.2, 0.2, all, 8));     // depth-2 middle
+  EXPECT_FALSE(patch_tree_rotated(0.6, 0.1, all, 8));    // depth-2 child of corner 1
+  EXPECT_FALSE(patch_tree_rotated(1e-4, 1e-4, all, 8));  // the Gregory leaf
   EXPECT_TRUE(patch_tree_rotated(0.5 * 0.75 * 0.01, 0.5 * 0.75 * 0.01, all, 8));
   // Ties go the way Bfr's search goes: u = 0.5 belongs to the corner-1 child.
   EXPECT_FALSE(patch_tree_rotated(0.5, 0.0, all, 8));
@@ -197,7 +203,8 @@ TEST(LimitSurface, SignFixIsAppliedOnlyWhereTheSelfTestFoundTheBug) {
     for (const Vec2& uv : {Vec2(0.3, 0.3), Vec2(0.1, 0.7), Vec2(0.15, 0.15), Vec2(0.35, 0.05)}) {
       fixed.weights({f, uv[0], uv[1]}, a);
       raw.weights({f, uv[0], uv[1]}, b);
-      const bool flip = fixed.second_derivative_fix_active() && fixed.in_rotated_subpatch(f, uv[0], uv[1]);
+      const bool flip =
+          fixed.second_derivative_fix_active() && fixed.in_rotated_subpatch(f, uv[0], uv[1]);
       rotated_checked += flip;
       const double sign = flip ? -1.0 : 1.0;
       for (int k = 0; k < a.size(); ++k) {

@@ -77,7 +77,8 @@ inline LoopLevel loop_subdivide(const LoopLevel& in) {
     const int ab = edge_vertex.at(std::minmax(a, b)), bc = edge_vertex.at(std::minmax(b, c)),
               ca = edge_vertex.at(std::minmax(c, a));
     const auto& uv = in.corner_uv[static_cast<std::size_t>(f)];
-    const Vec2 uab = 0.5 * (uv[0] + uv[1]), ubc = 0.5 * (uv[1] + uv[2]), uca = 0.5 * (uv[2] + uv[0]);
+    const Vec2 uab = 0.5 * (uv[0] + uv[1]), ubc = 0.5 * (uv[1] + uv[2]),
+               uca = 0.5 * (uv[2] + uv[0]);
     faces.push_back({a, ab, ca});
     l.corner_uv.push_back({uv[0], uab, uca});
     faces.push_back({ab, b, bc});
@@ -89,10 +90,12 @@ inline LoopLevel loop_subdivide(const LoopLevel& in) {
     for (int k = 0; k < 4; ++k) l.base_face.push_back(in.base_face[static_cast<std::size_t>(f)]);
   }
   l.mesh.vertices.resize(static_cast<Eigen::Index>(out.size()), 3);
-  for (std::size_t i = 0; i < out.size(); ++i) l.mesh.vertices.row(static_cast<Eigen::Index>(i)) = out[i].transpose();
+  for (std::size_t i = 0; i < out.size(); ++i)
+    l.mesh.vertices.row(static_cast<Eigen::Index>(i)) = out[i].transpose();
   l.mesh.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
   for (std::size_t i = 0; i < faces.size(); ++i) {
-    for (int k = 0; k < 3; ++k) l.mesh.faces(static_cast<Eigen::Index>(i), k) = faces[i][static_cast<std::size_t>(k)];
+    for (int k = 0; k < 3; ++k)
+      l.mesh.faces(static_cast<Eigen::Index>(i), k) = faces[i][static_cast<std::size_t>(k)];
   }
   return l;
 }
@@ -126,7 +129,8 @@ inline std::vector<SurfacePoint> vertex_surface_points(const LoopLevel& l) {
   for (int f = 0; f < l.mesh.num_faces(); ++f) {
     for (int k = 0; k < 3; ++k) {
       const Vec2& uv = l.corner_uv[static_cast<std::size_t>(f)][static_cast<std::size_t>(k)];
-      s[static_cast<std::size_t>(l.mesh.faces(f, k))] = {l.base_face[static_cast<std::size_t>(f)], uv[0], uv[1]};
+      s[static_cast<std::size_t>(l.mesh.faces(f, k))] = {l.base_face[static_cast<std::size_t>(f)],
+                                                         uv[0], uv[1]};
     }
   }
   return s;

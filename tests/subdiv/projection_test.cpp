@@ -24,7 +24,8 @@ TEST(LimitSurfaceProjection, PointsOffsetAlongTheNormalProjectBack) {
   for (const auto& [name, raw] : irregular_meshes()) {
     const TriMesh mesh = body_sized(raw);
     const LimitSurface surface(mesh);
-    const double edge = (mesh.vertices.row(mesh.faces(0, 0)) - mesh.vertices.row(mesh.faces(0, 1))).norm();
+    const double edge =
+        (mesh.vertices.row(mesh.faces(0, 0)) - mesh.vertices.row(mesh.faces(0, 1))).norm();
     std::mt19937 rng(21);
     std::uniform_real_distribution<double> offset(-0.05 * edge, 0.05 * edge);
     for (int k = 0; k < 200; ++k) {
@@ -33,8 +34,8 @@ TEST(LimitSurfaceProjection, PointsOffsetAlongTheNormalProjectBack) {
       const Vec3 p = x + offset(rng) * surface.normal(s, mesh.vertices);
       const SurfacePoint q = surface.project(p, mesh.vertices);
       EXPECT_LT((surface.position(q, mesh.vertices) - x).norm(), 1e-9)
-          << name << " face " << s.face << " (" << s.u << ", " << s.v << ") → face " << q.face << " ("
-          << q.u << ", " << q.v << ")";
+          << name << " face " << s.face << " (" << s.u << ", " << s.v << ") → face " << q.face
+          << " (" << q.u << ", " << q.v << ")";
     }
   }
 }
@@ -64,14 +65,17 @@ TEST(LimitSurfaceProjection, HintsAndPointsNearExtraordinaryVertices) {
           << "face " << f << " corner " << corner;
       const double t = angle(rng);
       const SurfacePoint hint = surface.walk(s, 0.1 * Vec2(std::cos(t), std::sin(t))).end;
-      EXPECT_LT((surface.position(surface.project(p, mesh.vertices, hint), mesh.vertices) - x).norm(), 1e-9)
+      EXPECT_LT(
+          (surface.position(surface.project(p, mesh.vertices, hint), mesh.vertices) - x).norm(),
+          1e-9)
           << "hinted, face " << f << " corner " << corner;
       // Up to 2 mm inside, the strongly curved limit near a cube corner can have a
       // closer point than x: the projection returns x or a point closer than x.
       const Vec3 p_far = x + offset(rng) * n;
       const Vec3 x_far = surface.position(projector.project(p_far), mesh.vertices);
       if ((x_far - x).norm() > 1e-9) {
-        EXPECT_LT((x_far - p_far).norm(), (x - p_far).norm()) << "face " << f << " corner " << corner;
+        EXPECT_LT((x_far - p_far).norm(), (x - p_far).norm())
+            << "face " << f << " corner " << corner;
         ++closer;
       }
     }
@@ -109,7 +113,8 @@ TEST(LimitSurfaceProjection, NeverMovesAwayFromTheStartPoint) {
     const Vec3 p(coord(rng), coord(rng), coord(rng));
     const SurfacePoint start = random_point(rng, surface.num_faces());
     const SurfacePoint q = refine_closest_point(surface, mesh.vertices, p, start);
-    EXPECT_LE((surface.position(q, mesh.vertices) - p).norm(), (surface.position(start, mesh.vertices) - p).norm());
+    EXPECT_LE((surface.position(q, mesh.vertices) - p).norm(),
+              (surface.position(start, mesh.vertices) - p).norm());
     // At an interior minimum the residual is normal to the surface.
     const LimitFrame fr = surface.evaluate(q, mesh.vertices);
     const Vec3 r = (fr.x - p).normalized();

@@ -1,11 +1,11 @@
 #pragma once
 /// Closed control meshes for the subdiv tests, with the valences the limit surface has
 /// to handle (3..6), and small mesh utilities shared by those tests.
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
-#include <Eigen/Geometry>
-#include <algorithm>
 #include <random>
 #include <utility>
 #include <vector>
@@ -25,7 +25,6 @@ inline SurfacePoint random_point(std::mt19937& rng, int num_faces) {
   return {face(rng), u, v};
 }
 
-
 /// Turns every face so that its normal points away from the origin (convex meshes around 0).
 inline void orient_outward(TriMesh& m) {
   for (int f = 0; f < m.num_faces(); ++f) {
@@ -39,10 +38,12 @@ inline void orient_outward(TriMesh& m) {
 inline TriMesh make_mesh(const std::vector<Vec3>& v, const std::vector<std::array<int, 3>>& f) {
   TriMesh m;
   m.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i) m.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    m.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
   m.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
   for (std::size_t i = 0; i < f.size(); ++i) {
-    for (int k = 0; k < 3; ++k) m.faces(static_cast<Eigen::Index>(i), k) = f[i][static_cast<std::size_t>(k)];
+    for (int k = 0; k < 3; ++k)
+      m.faces(static_cast<Eigen::Index>(i), k) = f[i][static_cast<std::size_t>(k)];
   }
   orient_outward(m);
   return m;
@@ -53,20 +54,23 @@ using ::tightfit::test::icosahedron;
 
 /// Regular tetrahedron: 4 vertices of valence 3.
 inline TriMesh tetrahedron() {
-  return make_mesh({{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}}, {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}});
+  return make_mesh({{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}},
+                   {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}});
 }
 
 /// Octahedron with unit circumradius: 6 vertices of valence 4.
 inline TriMesh octahedron() {
-  return make_mesh({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
-                   {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}});
+  return make_mesh(
+      {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+      {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}});
 }
 
 /// Cube [-1,1]³ split into triangles with diagonals chosen so that the corners have
 /// valences 6, 3, 4, 5, 4, 5, 4, 5 (vertex index = x + 2y + 4z).
 inline TriMesh triangulated_cube() {
   std::vector<Vec3> v;
-  for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0);
+  for (int i = 0; i < 8; ++i)
+    v.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0);
   // Each quad (a,b,c,d) in cyclic order is split along the diagonal a-c.
   const std::vector<std::array<int, 4>> quads = {{0, 2, 6, 4}, {0, 1, 5, 4}, {0, 1, 3, 2},
                                                  {3, 1, 5, 7}, {7, 3, 2, 6}, {7, 5, 4, 6}};
@@ -138,7 +142,8 @@ inline double distance_to_dyadic_lines(double u, double v, int depth) {
 /// Random point of a random face, at least `margin` away (in u, v) from every line of
 /// the depth-`depth` dyadic grid (so that finite differences stay inside one polynomial
 /// patch) and outside the Gregory corner regions of size 2^-depth.
-inline SurfacePoint random_smooth_point(std::mt19937& rng, int num_faces, int depth, double margin) {
+inline SurfacePoint random_smooth_point(std::mt19937& rng, int num_faces, int depth,
+                                        double margin) {
   std::uniform_int_distribution<int> face(0, num_faces - 1);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double corner = std::ldexp(1.0, -depth);

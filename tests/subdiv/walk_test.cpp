@@ -65,7 +65,8 @@ TEST(LimitSurfaceWalk, WalksAlongOneLineCompose) {
       EXPECT_EQ(whole.end.face, second.end.face) << name;
       EXPECT_NEAR(whole.end.u, second.end.u, 1e-12) << name;
       EXPECT_NEAR(whole.end.v, second.end.v, 1e-12) << name;
-      EXPECT_LT((whole.jacobian - second.jacobian * first.jacobian).norm(), 1e-12 * whole.jacobian.norm());
+      EXPECT_LT((whole.jacobian - second.jacobian * first.jacobian).norm(),
+                1e-12 * whole.jacobian.norm());
     }
   }
 }
@@ -82,7 +83,9 @@ TEST(LimitSurfaceWalk, JacobianCarriesTangentVectors) {
       const Vec2 delta = random_delta(rng, 2.0);
       const LimitSurface::Walk w = surface.walk(s, delta);
       const double corner = 1.0 / 128;
-      if (w.crossings == 0 || w.end.u + w.end.v < corner || w.end.u > 1 - corner || w.end.v > 1 - corner) continue;
+      if (w.crossings == 0 || w.end.u + w.end.v < corner || w.end.u > 1 - corner ||
+          w.end.v > 1 - corner)
+        continue;
       ++checked;
       const LimitFrame fr = surface.evaluate(w.end, mesh.vertices);
       Mat32 T;
@@ -117,7 +120,8 @@ TEST(LimitSurfaceWalk, LinesThroughVerticesEndInsideAFace) {
     for (int f = 0; f < surface.num_faces(); ++f) {
       // Aimed exactly at corner 0, then past it; and exactly along an edge.
       for (const Vec2& d : {Vec2(-0.5, -0.5), Vec2(-0.3, -0.6), Vec2(0.9, 0.0)}) {
-        const SurfacePoint start = d[1] == 0.0 ? SurfacePoint{f, 0.05, 0.0} : SurfacePoint{f, 0.25, 0.25 * d[1] / d[0]};
+        const SurfacePoint start =
+            d[1] == 0.0 ? SurfacePoint{f, 0.05, 0.0} : SurfacePoint{f, 0.25, 0.25 * d[1] / d[0]};
         const LimitSurface::Walk w = surface.walk(start, d);
         expect_inside(w.end);
         EXPECT_LE(w.crossings, 64) << name;

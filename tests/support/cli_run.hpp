@@ -23,8 +23,9 @@ inline CliRun run_cli(const std::string& args, const std::string& cwd = "") {
   const std::filesystem::path log =
       std::filesystem::temp_directory_path() /
       ("tightfit_cli_" + std::to_string(::getpid()) + "_" + std::to_string(++calls) + ".log");
-  const std::string command = (cwd.empty() ? "" : "cd '" + cwd + "' && ") + std::string(TIGHTFIT_CLI) +
-                              " " + args + " > " + log.string() + " 2>&1";
+  const std::string command = (cwd.empty() ? "" : "cd '" + cwd + "' && ") +
+                              std::string(TIGHTFIT_CLI) + " " + args + " > " + log.string() +
+                              " 2>&1";
   const int status = std::system(command.c_str());
   std::ifstream in(log);
   std::stringstream text;

@@ -52,7 +52,8 @@ inline TriMesh unit_icosphere() {
     }
     m.faces = faces;
     m.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
-    for (size_t i = 0; i < v.size(); ++i) m.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+    for (size_t i = 0; i < v.size(); ++i)
+      m.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
   }
   return m;
 }

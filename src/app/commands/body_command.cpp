@@ -10,10 +10,10 @@
 #include "tightfit/body/body_spec.hpp"
 #include "tightfit/body/body_stats.hpp"
 #include "tightfit/common/atomic_file.hpp"
-#include "tightfit/common/finite_output.hpp"
-#include "tightfit/common/output_directory.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/json_fields.hpp"
+#include "tightfit/common/output_directory.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 
@@ -61,10 +61,12 @@ nlohmann::json spec_json(const BodyOptions& o, const CLI::App& cmd) {
 }
 
 /// Writes the three outputs through an OutputDirectory (the rule of every command).
-void write_outputs(const fs::path& out, bool force, const Body& body, const nlohmann::json& summary) {
+void write_outputs(const fs::path& out, bool force, const Body& body,
+                   const nlohmann::json& summary) {
   OutputDirectory folder(out, force, "body");
   write_tri_mesh(folder.file("surface.obj"), body.surface);
-  write_vtu(folder.file("volume.vtu"), body.volume, body_point_fields(body), body_cell_fields(body));
+  write_vtu(folder.file("volume.vtu"), body.volume, body_point_fields(body),
+            body_cell_fields(body));
   write_json_atomically(folder.file("body.json"), summary, 2);
   folder.commit();
 }
@@ -72,7 +74,8 @@ void write_outputs(const fs::path& out, bool force, const Body& body, const nloh
 void run(const BodyOptions& o, const CLI::App& cmd) {
   const nlohmann::json j = spec_json(o, cmd);
   const std::string source = o.spec.empty() ? "command line" : o.spec;
-  const fs::path base_dir = o.spec.empty() ? fs::current_path() : fs::absolute(o.spec).parent_path();
+  const fs::path base_dir =
+      o.spec.empty() ? fs::current_path() : fs::absolute(o.spec).parent_path();
   const BodySpec spec = parse_body_spec(j, "", base_dir, source);
   BuildReport report;
   const Body body = build_body(spec, &report);
@@ -84,33 +87,35 @@ void run(const BodyOptions& o, const CLI::App& cmd) {
     std::printf("%s\n", (out / name).string().c_str());
 }
 
-const CommandRegistration kBody{"body", [](CLI::App& root) {
-  auto* cmd = root.add_subcommand(
-      "body",
-      "Build a simulation body (surface, tets, pinned core) from a JSON spec and/or flags;\n"
-      "writes OUT/surface.obj, OUT/volume.vtu and OUT/body.json. Units: metres.");
-  cmd->footer(
-      "Examples:\n  tightfit body --generator cylinder --radius 0.05 --length 0.3 --out "
-      "out/cylinder\n  tightfit body --mesh data/bodies/mh_child.obj --units m --edge-length 0.03 "
-      "--out out/child");
-  auto o = std::make_shared<BodyOptions>();
-  cmd->add_option("spec", o->spec, "JSON body spec (flags below override its keys)");
-  cmd->add_option("--out", o->out, kOutHelp)->required();
-  cmd->add_flag("--force", o->force, kForceHelp);
-  cmd->add_option("--generator", o->generator, "Built-in body: cylinder or sphere");
-  cmd->add_option("--mesh", o->mesh, "Closed surface mesh to import (OBJ, PLY, OFF, STL)");
-  cmd->add_option("--units", o->units,
-                  "Units of the mesh file: m, cm or mm (default: guessed from the body's size, "
-                  "with a warning)");
-  cmd->add_option("--caps", o->caps, "Cylinder caps: round or flat");
-  cmd->add_option("--radius", o->radius, "Generator radius (m)");
-  cmd->add_option("--length", o->length, "Cylinder length without caps (m)");
-  cmd->add_option("--edge-length", o->edge_length, "Surface edge length (m)");
-  cmd->add_option("--soft-tissue", o->soft_tissue, "Pin vertices deeper than this (m)");
-  cmd->add_option("--max-radius-edge", o->max_radius_edge, "TetGen radius-edge bound");
-  cmd->add_option("--min-dihedral", o->min_dihedral, "TetGen min dihedral angle (degrees)");
-  cmd->callback([o, cmd] { run(*o, *cmd); });
-}};
+const CommandRegistration kBody{
+    "body", [](CLI::App& root) {
+      auto* cmd = root.add_subcommand(
+          "body",
+          "Build a simulation body (surface, tets, pinned core) from a JSON spec and/or flags;\n"
+          "writes OUT/surface.obj, OUT/volume.vtu and OUT/body.json. Units: metres.");
+      cmd->footer(
+          "Examples:\n  tightfit body --generator cylinder --radius 0.05 --length 0.3 --out "
+          "out/cylinder\n  tightfit body --mesh data/bodies/mh_child.obj --units m --edge-length "
+          "0.03 "
+          "--out out/child");
+      auto o = std::make_shared<BodyOptions>();
+      cmd->add_option("spec", o->spec, "JSON body spec (flags below override its keys)");
+      cmd->add_option("--out", o->out, kOutHelp)->required();
+      cmd->add_flag("--force", o->force, kForceHelp);
+      cmd->add_option("--generator", o->generator, "Built-in body: cylinder or sphere");
+      cmd->add_option("--mesh", o->mesh, "Closed surface mesh to import (OBJ, PLY, OFF, STL)");
+      cmd->add_option("--units", o->units,
+                      "Units of the mesh file: m, cm or mm (default: guessed from the body's size, "
+                      "with a warning)");
+      cmd->add_option("--caps", o->caps, "Cylinder caps: round or flat");
+      cmd->add_option("--radius", o->radius, "Generator radius (m)");
+      cmd->add_option("--length", o->length, "Cylinder length without caps (m)");
+      cmd->add_option("--edge-length", o->edge_length, "Surface edge length (m)");
+      cmd->add_option("--soft-tissue", o->soft_tissue, "Pin vertices deeper than this (m)");
+      cmd->add_option("--max-radius-edge", o->max_radius_edge, "TetGen radius-edge bound");
+      cmd->add_option("--min-dihedral", o->min_dihedral, "TetGen min dihedral angle (degrees)");
+      cmd->callback([o, cmd] { run(*o, *cmd); });
+    }};
 
 }  // namespace
 }  // namespace tightfit::app

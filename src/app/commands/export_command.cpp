@@ -65,8 +65,8 @@ void run_export(const std::string& dir, const std::string& out_option, bool forc
   std::printf("tightfit export: %s run of %s\n", state.command.c_str(), state.scene_file.c_str());
   std::fflush(stdout);
   auto scene = load_scene(run_state_scene(state, source));
-  const Garment garment = run_state_garment(state, scene->garment, scene->body,
-                                            scene->surface->num_faces(), source);
+  const Garment garment =
+      run_state_garment(state, scene->garment, scene->body, scene->surface->num_faces(), source);
   if (state.command == "layout" && scene->garment.pattern.pieces.size() > kMaxPatternPieces)
     throw InputError(source, "/command: a layout run of a garment without a pattern");
 
@@ -79,23 +79,25 @@ void run_export(const std::string& dir, const std::string& out_option, bool forc
   for (const auto& f : files) std::printf("  %s\n", (out.target() / f).c_str());
 }
 
-const CommandRegistration kExport{"export", [](CLI::App& root) {
-  auto* cmd = root.add_subcommand(
-      "export",
-      "Regenerate the outputs of a simulate, layout or optimize run from DIR/state.json "
-      "without solving again: the pattern files, and for simulate/optimize runs report.html "
-      "(with the objective history of optimize runs), fit.glb, garment.ply, body.ply, "
-      "result.json; for layout runs garment_embedded.ply and layout.json. Prints the force "
-      "residual of the saved state.");
-  cmd->footer("Example:\n  tightfit export out/pants --out out/pants_again");
-  auto dir = std::make_shared<std::string>();
-  auto out = std::make_shared<std::string>();
-  cmd->add_option("dir", *dir, "Output folder of an earlier run (holds state.json)")->required();
-  auto force = std::make_shared<bool>(false);
-  cmd->add_option("--out", *out, std::string("Default DIR. ") + kOutHelp);
-  cmd->add_flag("--force", *force, kForceHelp);
-  cmd->callback([dir, out, force] { run_export(*dir, *out, *force); });
-}};
+const CommandRegistration kExport{
+    "export", [](CLI::App& root) {
+      auto* cmd = root.add_subcommand(
+          "export",
+          "Regenerate the outputs of a simulate, layout or optimize run from DIR/state.json "
+          "without solving again: the pattern files, and for simulate/optimize runs report.html "
+          "(with the objective history of optimize runs), fit.glb, garment.ply, body.ply, "
+          "result.json; for layout runs garment_embedded.ply and layout.json. Prints the force "
+          "residual of the saved state.");
+      cmd->footer("Example:\n  tightfit export out/pants --out out/pants_again");
+      auto dir = std::make_shared<std::string>();
+      auto out = std::make_shared<std::string>();
+      cmd->add_option("dir", *dir, "Output folder of an earlier run (holds state.json)")
+          ->required();
+      auto force = std::make_shared<bool>(false);
+      cmd->add_option("--out", *out, std::string("Default DIR. ") + kOutHelp);
+      cmd->add_flag("--force", *force, kForceHelp);
+      cmd->callback([dir, out, force] { run_export(*dir, *out, *force); });
+    }};
 
 }  // namespace
 }  // namespace tightfit::app

@@ -22,15 +22,14 @@ PlyAttributes force_fields(const Points3& forces) {
 
 void check_keep_failed_folder(const std::string& keep_failed, const std::string& out_dir) {
   namespace fs = std::filesystem;
-  if (!keep_failed.empty() &&
-      fs::weakly_canonical(fs::absolute(keep_failed)) == fs::weakly_canonical(fs::absolute(out_dir)))
+  if (!keep_failed.empty() && fs::weakly_canonical(fs::absolute(keep_failed)) ==
+                                  fs::weakly_canonical(fs::absolute(out_dir)))
     throw InputError("--keep-failed", "must name another folder than --out (" + out_dir + ")");
 }
 
 std::vector<std::string> keep_failed_state(const std::filesystem::path& dir, bool force,
-                                           const std::string& scene_file,
-                                           const LoadedScene& scene, GarmentSimulation& sim,
-                                           const std::string& message) {
+                                           const std::string& scene_file, const LoadedScene& scene,
+                                           GarmentSimulation& sim, const std::string& message) {
   OutputDirectory failed(dir, force, "simulate");
   EmbeddedEquilibrium& problem = sim.problem();
   const VecX g = problem.gradient();
@@ -49,8 +48,8 @@ std::vector<std::string> keep_failed_state(const std::filesystem::path& dir, boo
                        {"garment_residual_max_n", garment_forces.rowwise().norm().maxCoeff()},
                        {"body_residual_max_n", body_forces.rowwise().norm().maxCoeff()}};
   result["compute"] = compute_json();
-  std::vector<std::string> files =
-      write_fit_run_outputs(failed.staging(), sim, sim.analyze(), scene.spec.pressure_operator, state);
+  std::vector<std::string> files = write_fit_run_outputs(failed.staging(), sim, sim.analyze(),
+                                                         scene.spec.pressure_operator, state);
   TriMesh garment{sim.garment_positions(), sim.garment().garment_triangles};
   write_ply(failed.file("garment_residual.ply"), garment, force_fields(garment_forces));
   const int surface_vertices = scene.body.surface.num_vertices();
@@ -60,15 +59,15 @@ std::vector<std::string> keep_failed_state(const std::filesystem::path& dir, boo
   return failed.commit();
 }
 
-
 void report_kept_failure(const std::string& keep_failed, bool force, const std::string& scene_file,
                          const LoadedScene& scene, GarmentSimulation& sim,
                          const std::string& message) {
   for (const auto& f : keep_failed_state(keep_failed, force, scene_file, scene, sim, message))
     std::printf("  %s/%s\n", keep_failed.c_str(), f.c_str());
-  std::printf("  the last state of the failed solve is in %s (garment_residual.ply, "
-              "body_residual.ply: the unbalanced force per vertex; report.html)\n",
-              keep_failed.c_str());
+  std::printf(
+      "  the last state of the failed solve is in %s (garment_residual.ply, "
+      "body_residual.ply: the unbalanced force per vertex; report.html)\n",
+      keep_failed.c_str());
   std::fflush(stdout);
 }
 

@@ -21,9 +21,8 @@ void check_keep_failed_folder(const std::string& keep_failed, const std::string&
 /// state.json, …, and garment_residual.ply / body_residual.ply with the unbalanced force
 /// per vertex (N). Returns the files written.
 std::vector<std::string> keep_failed_state(const std::filesystem::path& dir, bool force,
-                                           const std::string& scene_file,
-                                           const LoadedScene& scene, GarmentSimulation& sim,
-                                           const std::string& message);
+                                           const std::string& scene_file, const LoadedScene& scene,
+                                           GarmentSimulation& sim, const std::string& message);
 
 /// keep_failed_state into `keep_failed`, then prints the files and what they hold.
 void report_kept_failure(const std::string& keep_failed, bool force, const std::string& scene_file,

@@ -17,8 +17,9 @@ void run_layout(const std::string& scene_file, const std::string& out_dir, bool 
   auto scene = load_scene(std::move(spec));
   const Garment& g = scene->garment;
   if (g.pattern.pieces.size() > kMaxPatternPieces)
-    throw InputError(scene_file, "this garment has one piece per triangle (a cover); it has no "
-                                 "pattern to lay out");
+    throw InputError(scene_file,
+                     "this garment has one piece per triangle (a cover); it has no "
+                     "pattern to lay out");
   // Nothing is simulated: the state is the embedding and the body at rest.
   RunState state =
       make_run_state("layout", scene->spec, g, {g.embedding, scene->body.volume.vertices});
@@ -38,22 +39,24 @@ void run_layout(const std::string& scene_file, const std::string& out_dir, bool 
   for (const auto& f : files) std::printf("  %s/%s\n", out.target().c_str(), f.c_str());
 }
 
-const CommandRegistration kLayout{"layout", [](CLI::App& root) {
-  auto* cmd = root.add_subcommand(
-      "layout",
-      "Flatten the scene's garment layout into pattern pieces (SVG 1:1, tiled and full-size "
-      "PDF, DXF, pieces.json) and embed the garment on the body (garment_embedded.ply), "
-      "without simulating. layout.json reports the flattening distortion per piece; "
-      "state.json is the run state for `tightfit export`.");
-  cmd->footer("Example:\n  tightfit layout examples/pants_legs.json --out out/pants_layout");
-  auto scene = std::make_shared<std::string>();
-  auto out = std::make_shared<std::string>();
-  auto force = std::make_shared<bool>(false);
-  cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")->required();
-  cmd->add_option("--out", *out, kOutHelp)->required();
-  cmd->add_flag("--force", *force, kForceHelp);
-  cmd->callback([scene, out, force] { run_layout(*scene, *out, *force); });
-}};
+const CommandRegistration kLayout{
+    "layout", [](CLI::App& root) {
+      auto* cmd = root.add_subcommand(
+          "layout",
+          "Flatten the scene's garment layout into pattern pieces (SVG 1:1, tiled and full-size "
+          "PDF, DXF, pieces.json) and embed the garment on the body (garment_embedded.ply), "
+          "without simulating. layout.json reports the flattening distortion per piece; "
+          "state.json is the run state for `tightfit export`.");
+      cmd->footer("Example:\n  tightfit layout examples/pants_legs.json --out out/pants_layout");
+      auto scene = std::make_shared<std::string>();
+      auto out = std::make_shared<std::string>();
+      auto force = std::make_shared<bool>(false);
+      cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")
+          ->required();
+      cmd->add_option("--out", *out, kOutHelp)->required();
+      cmd->add_flag("--force", *force, kForceHelp);
+      cmd->callback([scene, out, force] { run_layout(*scene, *out, *force); });
+    }};
 
 }  // namespace
 }  // namespace tightfit::app

@@ -32,8 +32,9 @@ const CommandRegistration kOptimize{
       auto resume = std::make_shared<std::string>();
       cmd->add_option("scene", *scene, "Scene file with an \"optimize\" section")->required();
       cmd->add_option("--out", *out,
-                      std::string(kOutHelp) + "; history.json and checkpoint.json are "
-                      "written there while the run goes on")
+                      std::string(kOutHelp) +
+                          "; history.json and checkpoint.json are "
+                          "written there while the run goes on")
           ->required();
       auto force = std::make_shared<bool>(false);
       cmd->add_flag("--force", *force, kForceHelp);

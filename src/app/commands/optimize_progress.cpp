@@ -48,14 +48,15 @@ std::string OptimizeProgress::header() const {
 
 std::string OptimizeProgress::row(const OptimizationIteration& it) const {
   const std::string iteration = format("%d/%d", it.iteration, max_iterations_);
-  std::string text = format("  %*s  %11.4e  %9.3e  %8.2e  %6d  %6d  %5d  %4d  %8s", iteration_width_,
-                            iteration.c_str(), it.value, it.gradient_norm, it.max_point_move,
-                            it.line_search_trials, it.newton_iterations, it.chord_steps,
-                            it.factorizations, format("%.1f s", it.seconds).c_str());
+  std::string text = format(
+      "  %*s  %11.4e  %9.3e  %8.2e  %6d  %6d  %5d  %4d  %8s", iteration_width_, iteration.c_str(),
+      it.value, it.gradient_norm, it.max_point_move, it.line_search_trials, it.newton_iterations,
+      it.chord_steps, it.factorizations, format("%.1f s", it.seconds).c_str());
   if (it.iteration > 0 && it.iteration < max_iterations_)
     text += "  " + duration_text(it.seconds / it.iteration * (max_iterations_ - it.iteration));
   if (it.failed_solves > 0) text += format("  (failed trials %d)", it.failed_solves);
-  if (it.hessian_shift > 0.0) text += format("  [adjoint H shifted by %.1e: inexact]", it.hessian_shift);
+  if (it.hessian_shift > 0.0)
+    text += format("  [adjoint H shifted by %.1e: inexact]", it.hessian_shift);
   return text + "\n";
 }
 
@@ -81,10 +82,11 @@ std::string OptimizeProgress::lines(const OptimizationIteration& it) const {
     std::string pieces;
     for (const std::string& p : r->pieces) pieces += (pieces.empty() ? "" : ", ") + p;
     if (r->failure.empty())
-      text += format("    remeshed %s (min angle %.1f -> %.1f deg): T %.6e, %d design parameters, "
-                     "%d garment vertices, newton %d, %.1f s\n",
-                     pieces.c_str(), r->min_angle_before, r->min_angle_after, r->value,
-                     r->parameters, r->garment_vertices, r->newton_iterations, r->seconds);
+      text += format(
+          "    remeshed %s (min angle %.1f -> %.1f deg): T %.6e, %d design parameters, "
+          "%d garment vertices, newton %d, %.1f s\n",
+          pieces.c_str(), r->min_angle_before, r->min_angle_after, r->value, r->parameters,
+          r->garment_vertices, r->newton_iterations, r->seconds);
     else
       text += "    remeshing " + pieces + " failed and was undone: " + r->failure + "\n";
   }

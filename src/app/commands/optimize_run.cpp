@@ -42,8 +42,7 @@ struct LastCheckpoint {
 std::string failure_message(const std::string& stage, const std::string& what,
                             const LastCheckpoint& last, const std::string& scene_file) {
   std::string text = "optimize failed during " + stage + ": " + what + "; ";
-  if (last.file.empty())
-    return text + "no checkpoint was written (start again from the scene)";
+  if (last.file.empty()) return text + "no checkpoint was written (start again from the scene)";
   const fs::path folder = last.file.has_parent_path() ? last.file.parent_path() : fs::path(".");
   return text + (last.resumed ? "last checkpoint: " : "last good checkpoint: ") +
          last.file.string() + " (iteration " + std::to_string(last.iteration) +
@@ -159,20 +158,20 @@ void run_optimize(const OptimizeRequest& request) {
     nlohmann::json& result_json = state.result;
     result_json["run"] = run_identity_json("optimize");
     result_json["scene"] = scene_file;
-    result_json["optimization"] = {{"converged", result.converged},
-                                   {"interrupted", result.interrupted},
-                                   {"stop_reason", result.stop_reason},
-                                   {"iterations", result.iterations},
-                                   {"objective_initial", history.front().value},
-                                   {"objective_final", history.back().value},
-                                   {"terms_initial", initial_terms},
-                                   {"terms_final", final_terms},
-                                   {"gradient_norm_initial", history.front().gradient_norm},
-                                   {"gradient_norm_final", history.back().gradient_norm},
-                                   {"design_parameters", problem.num_parameters()},
-                                   {"force_residual_n",
-                                    sim->problem().force_norm(sim->problem().gradient())},
-                                   {"seconds_optimization", history.back().seconds}};
+    result_json["optimization"] = {
+        {"converged", result.converged},
+        {"interrupted", result.interrupted},
+        {"stop_reason", result.stop_reason},
+        {"iterations", result.iterations},
+        {"objective_initial", history.front().value},
+        {"objective_final", history.back().value},
+        {"terms_initial", initial_terms},
+        {"terms_final", final_terms},
+        {"gradient_norm_initial", history.front().gradient_norm},
+        {"gradient_norm_final", history.back().gradient_norm},
+        {"design_parameters", problem.num_parameters()},
+        {"force_residual_n", sim->problem().force_norm(sim->problem().gradient())},
+        {"seconds_optimization", history.back().seconds}};
     result_json["compute"] = compute_json();
     result_json["counts"] = {{"body_vertices", scene->body.num_vertices()},
                              {"body_tets", scene->body.volume.num_tets()},
@@ -194,9 +193,10 @@ void run_optimize(const OptimizeRequest& request) {
     for (const auto& f : files) std::printf("  %s\n", (out / f).c_str());
     if (result.interrupted) {
       const int signal = interrupt_signal();
-      std::printf("  interrupted by %s: the files above hold the pattern of iteration %d; "
-                  "continue with\n    tightfit optimize %s --out DIR --resume %s\n",
-                  signal_name(signal), result.iterations, scene_file.c_str(), out.c_str());
+      std::printf(
+          "  interrupted by %s: the files above hold the pattern of iteration %d; "
+          "continue with\n    tightfit optimize %s --out DIR --resume %s\n",
+          signal_name(signal), result.iterations, scene_file.c_str(), out.c_str());
       std::fflush(stdout);
       throw Interrupted{signal};
     }

@@ -2,10 +2,10 @@
 
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/finite_output.hpp"
-#include "tightfit/io/body_up.hpp"
 #include "tightfit/common/parallel.hpp"
 #include "tightfit/common/version.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/io/body_up.hpp"
 #include "tightfit/io/ease_json.hpp"
 #include "tightfit/io/ease_outputs.hpp"
 #include "tightfit/io/pattern_outputs.hpp"
@@ -36,10 +36,8 @@ std::string pattern_date(const RunState& state) {
 }  // namespace
 
 std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& folder,
-                                               const GarmentSimulation& sim,
-                                               const FitAnalysis& fit,
-                                               ShapeOperatorKind pressure_operator,
-                                               RunState& state,
+                                               const GarmentSimulation& sim, const FitAnalysis& fit,
+                                               ShapeOperatorKind pressure_operator, RunState& state,
                                                const Pattern* initial_pattern) {
   std::vector<std::string> files = {"garment.ply", "body.ply"};
   write_fit_meshes(folder, sim, fit, pressure_operator);
@@ -69,9 +67,9 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
       sim, {scene.pressure_regions, scene.pressure_rig.get(), scene.pressure_rig_radius},
       state.scene_file);
   state.result["fit"] = fit_statistics(sim, fit, pressure_operator, regions);
-  const std::optional<ShapeComparison> shape = compare_to_shape_target(
-      scene, state.scene_file, sim.garment_positions(),
-      state.initial_garment ? &*state.initial_garment : nullptr);
+  const std::optional<ShapeComparison> shape =
+      compare_to_shape_target(scene, state.scene_file, sim.garment_positions(),
+                              state.initial_garment ? &*state.initial_garment : nullptr);
   if (shape) state.result["fit"]["shape"] = shape_statistics_json(*shape);
   state.result["measurements"] = ease_table_json(ease);
   PoseOutputs poses = write_pose_outputs(folder, sim, scene);
@@ -96,7 +94,8 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   view.up = body_up_direction(scene.body);
   if (!poses.views.empty()) {
     view.poses = std::move(poses.views);
-    view.garment_fields.push_back({std::string(fit_fields::kSlidingExcess), "N", poses.worst_excess});
+    view.garment_fields.push_back(
+        {std::string(fit_fields::kSlidingExcess), "N", poses.worst_excess});
   }
   // A state whose solve did not converge (simulate --keep-failed): where it failed.
   if (const auto n = state.result.find("newton");
@@ -105,11 +104,13 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
     const Triangles& faces = sim.garment().garment_triangles;
     MatX per_face(faces.rows(), 1);
     for (Eigen::Index f = 0; f < faces.rows(); ++f)
-      per_face(f, 0) = (residual[faces(f, 0)] + residual[faces(f, 1)] + residual[faces(f, 2)]) / 3.0;
+      per_face(f, 0) =
+          (residual[faces(f, 0)] + residual[faces(f, 1)] + residual[faces(f, 2)]) / 3.0;
     view.garment_fields.push_back({std::string(fit_fields::kResidualForce), "N", per_face});
   }
   if (shape) {
-    view.garment_fields.push_back(shape_distance_field(sim.garment().garment_triangles, shape->distance));
+    view.garment_fields.push_back(
+        shape_distance_field(sim.garment().garment_triangles, shape->distance));
     view.shape_target = shape->target;
     if (state.initial_garment) view.initial_garment = *state.initial_garment;
   }
@@ -139,14 +140,14 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
 std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& folder,
                                                   const Garment& garment,
                                                   const LimitSurface& surface,
-                                                  const Points3& control,
-                                                  const RunState& state) {
+                                                  const Points3& control, const RunState& state) {
   Points3 x(garment.num_garment_vertices, 3);
   for (int i = 0; i < garment.num_garment_vertices; ++i)
     x.row(i) = surface.position(garment.embedding[i], control).transpose();
   const SceneSpec scene = run_state_scene(state, state.scene_file);
-  std::vector<std::string> files = write_pattern_files(
-      folder, garment.pattern, scene_pattern_export_options(scene, garment, x, pattern_date(state)));
+  std::vector<std::string> files =
+      write_pattern_files(folder, garment.pattern,
+                          scene_pattern_export_options(scene, garment, x, pattern_date(state)));
   write_ply(folder / "garment_embedded.ply", TriMesh{x, garment.garment_triangles});
   write_json_atomically(folder / "layout.json", state.result, 2);
   write_run_state(folder / "state.json", state);
@@ -166,18 +167,22 @@ nlohmann::json report_summary(const RunState& state) {
       if (r["run"].contains(key)) s[key] = r["run"][key];
   if (const auto o = r.find("optimization"); o != r.end() && o->is_object()) {
     const bool interrupted = o->value("interrupted", false);
-    s["status"] = interrupted ? "interrupted" : o->value("converged", false) ? "converged" : "stopped";
-    for (const char* key : {"stop_reason", "iterations", "objective_initial", "objective_final",
-                            "force_residual_n"})
+    s["status"] = interrupted                    ? "interrupted"
+                  : o->value("converged", false) ? "converged"
+                                                 : "stopped";
+    for (const char* key :
+         {"stop_reason", "iterations", "objective_initial", "objective_final", "force_residual_n"})
       if (o->contains(key)) s[key] = (*o)[key];
     if (o->contains("seconds_optimization")) s["seconds"] = (*o)["seconds_optimization"];
   } else if (const auto n = r.find("newton"); n != r.end() && n->is_object()) {
     s["status"] = n->value("converged", false) ? "converged" : "not converged";
     if (n->contains("message")) s["stop_reason"] = (*n)["message"];
     if (n->contains("iterations")) s["newton_iterations"] = (*n)["iterations"];
-    if (n->contains("final_force_residual_n")) s["force_residual_n"] = (*n)["final_force_residual_n"];
+    if (n->contains("final_force_residual_n"))
+      s["force_residual_n"] = (*n)["final_force_residual_n"];
     if (n->contains("force_tolerance_n")) s["force_tolerance_n"] = (*n)["force_tolerance_n"];
-    if (r.contains("seconds") && r["seconds"].contains("total")) s["seconds"] = r["seconds"]["total"];
+    if (r.contains("seconds") && r["seconds"].contains("total"))
+      s["seconds"] = r["seconds"]["total"];
   }
   return s;
 }

@@ -33,10 +33,8 @@ constexpr size_t kMaxPatternPieces = kMaxReportedPieces;
 /// and headed by its run summary (report_summary). Returns the names of the files
 /// written.
 std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& folder,
-                                               const GarmentSimulation& sim,
-                                               const FitAnalysis& fit,
-                                               ShapeOperatorKind pressure_operator,
-                                               RunState& state,
+                                               const GarmentSimulation& sim, const FitAnalysis& fit,
+                                               ShapeOperatorKind pressure_operator, RunState& state,
                                                const Pattern* initial_pattern = nullptr);
 
 /// result.json's "run": {"command", "version", "date" (UTC, ISO 8601)}.
@@ -54,8 +52,7 @@ nlohmann::json report_summary(const RunState& state);
 std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& folder,
                                                   const Garment& garment,
                                                   const LimitSurface& surface,
-                                                  const Points3& control,
-                                                  const RunState& state);
+                                                  const Points3& control, const RunState& state);
 
 /// What the run computed on, for result.json's "compute": {"threads": N, "blas":
 /// {"name", "library", "config", "threads"}} (common/parallel.hpp).

@@ -52,8 +52,9 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir,
     throw;
   }
   const double t_solve = seconds_since(t0);
-  std::printf("  Newton converged in %d iterations, force residual %.3e N (tolerance %.3e N), %.2f s\n",
-              report.iterations, report.final_force_norm, report.tolerance, t_solve);
+  std::printf(
+      "  Newton converged in %d iterations, force residual %.3e N (tolerance %.3e N), %.2f s\n",
+      report.iterations, report.final_force_norm, report.tolerance, t_solve);
   t0 = Clock::now();
   const FitAnalysis fit = sim->analyze();
   const double t_analysis = seconds_since(t0);
@@ -94,29 +95,31 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir,
   for (const auto& f : files) std::printf("  %s/%s\n", out.target().c_str(), f.c_str());
 }
 
-const CommandRegistration kSimulate{"simulate", [](CLI::App& root) {
-  auto* cmd = root.add_subcommand(
-      "simulate",
-      "Static equilibrium of a garment on a body (Newton on the coupled cloth-body system). "
-      "Writes garment.ply and body.ply (per-face stretch, regime, pressure; per-vertex force) "
-      "and result.json (energies, residual, iterations, time split, pressure statistics), "
-      "report.html, fit.glb, the pattern files, and state.json (the run state for "
-      "`tightfit export`).");
-  cmd->footer("Example:\n  tightfit simulate examples/sleeve_two_panels.json --out out/sleeve");
-  auto scene = std::make_shared<std::string>();
-  auto out = std::make_shared<std::string>();
-  auto force = std::make_shared<bool>(false);
-  cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")
-      ->required();
-  cmd->add_option("--out", *out, kOutHelp)->required();
-  auto keep_failed = std::make_shared<std::string>();
-  cmd->add_option("--keep-failed", *keep_failed,
-                  "When the solve does not converge, write its last state to this folder: the "
-                  "fit outputs and garment_residual.ply / body_residual.ply (unbalanced force "
-                  "per vertex, N); --out stays untouched");
-  cmd->add_flag("--force", *force, kForceHelp);
-  cmd->callback([scene, out, keep_failed, force] { run_simulate(*scene, *out, *keep_failed, *force); });
-}};
+const CommandRegistration kSimulate{
+    "simulate", [](CLI::App& root) {
+      auto* cmd = root.add_subcommand(
+          "simulate",
+          "Static equilibrium of a garment on a body (Newton on the coupled cloth-body system). "
+          "Writes garment.ply and body.ply (per-face stretch, regime, pressure; per-vertex force) "
+          "and result.json (energies, residual, iterations, time split, pressure statistics), "
+          "report.html, fit.glb, the pattern files, and state.json (the run state for "
+          "`tightfit export`).");
+      cmd->footer("Example:\n  tightfit simulate examples/sleeve_two_panels.json --out out/sleeve");
+      auto scene = std::make_shared<std::string>();
+      auto out = std::make_shared<std::string>();
+      auto force = std::make_shared<bool>(false);
+      cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")
+          ->required();
+      cmd->add_option("--out", *out, kOutHelp)->required();
+      auto keep_failed = std::make_shared<std::string>();
+      cmd->add_option("--keep-failed", *keep_failed,
+                      "When the solve does not converge, write its last state to this folder: the "
+                      "fit outputs and garment_residual.ply / body_residual.ply (unbalanced force "
+                      "per vertex, N); --out stays untouched");
+      cmd->add_flag("--force", *force, kForceHelp);
+      cmd->callback(
+          [scene, out, keep_failed, force] { run_simulate(*scene, *out, *keep_failed, *force); });
+    }};
 
 }  // namespace
 }  // namespace tightfit::app

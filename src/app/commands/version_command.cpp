@@ -9,14 +9,15 @@
 namespace tightfit::app {
 namespace {
 
-const CommandRegistration kVersion{"version", [](CLI::App& root) {
-  auto* cmd = root.add_subcommand("version", "Print the tightfit version and library versions");
-  cmd->footer("Example:\n  tightfit version");
-  cmd->callback([] {
-    std::printf("tightfit %s (Eigen %d.%d.%d)\n", tightfit_version(), EIGEN_WORLD_VERSION,
-                EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION);
-  });
-}};
+const CommandRegistration kVersion{
+    "version", [](CLI::App& root) {
+      auto* cmd = root.add_subcommand("version", "Print the tightfit version and library versions");
+      cmd->footer("Example:\n  tightfit version");
+      cmd->callback([] {
+        std::printf("tightfit %s (Eigen %d.%d.%d)\n", tightfit_version(), EIGEN_WORLD_VERSION,
+                    EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION);
+      });
+    }};
 
 }  // namespace
 }  // namespace tightfit::app

@@ -11,9 +11,9 @@ namespace tightfit {
 /// vertices in the same order (surface vertex i == volume vertex i), so a body state y
 /// (volume.num_vertices()×3) also gives the control points of the limit surface.
 struct Body {
-  TriMesh surface;           ///< closed, outward-oriented control mesh (m)
-  TetMesh volume;            ///< tets over all body vertices (m)
-  std::vector<int> pinned;   ///< volume vertex indices held fixed (sorted, unique)
+  TriMesh surface;          ///< closed, outward-oriented control mesh (m)
+  TetMesh volume;           ///< tets over all body vertices (m)
+  std::vector<int> pinned;  ///< volume vertex indices held fixed (sorted, unique)
 
   int num_surface_vertices() const { return surface.num_vertices(); }
   int num_vertices() const { return volume.num_vertices(); }

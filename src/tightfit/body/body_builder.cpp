@@ -1,7 +1,7 @@
 #include "tightfit/body/body_builder.hpp"
 
-#include "tightfit/common/stopwatch.hpp"
 #include "tightfit/body/surface_distance.hpp"
+#include "tightfit/common/stopwatch.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
 
 namespace tightfit {
@@ -38,14 +38,16 @@ Body body_from_surface(const TriMesh& surface, const VolumeOptions& options, Bui
   const Points3 bone_points = bone_sample_points(options.core, distance);
   Body body;
   body.surface = surface;
-  body.volume = tetrahedralize_surface(surface, options.quality, bone_points, options.core.embedded_core);
+  body.volume =
+      tetrahedralize_surface(surface, options.quality, bone_points, options.core.embedded_core);
   if (report) {
     report->bone_points = static_cast<int>(bone_points.rows());
     report->tetgen_switches = tetgen_switches(options.quality);
     report->add_stage("tetrahedralize", clock.lap());
   }
-  body.pinned = pinned_core(body.volume, surface.num_vertices(), distance, options.core,
-                            options.core.embedded_core.num_vertices() + static_cast<int>(bone_points.rows()));
+  body.pinned =
+      pinned_core(body.volume, surface.num_vertices(), distance, options.core,
+                  options.core.embedded_core.num_vertices() + static_cast<int>(bone_points.rows()));
   if (report) report->add_stage("core", clock.lap());
   return body;
 }
@@ -78,7 +80,8 @@ Body cylinder_body(const CylinderParams& params, BuildReport* report) {
                        report);
 }
 
-Body cylinder_body(const CylinderParams& params, const VolumeOptions& options, BuildReport* report) {
+Body cylinder_body(const CylinderParams& params, const VolumeOptions& options,
+                   BuildReport* report) {
   return generated_body(params, options, report, cylinder_surface);
 }
 

@@ -31,21 +31,23 @@ VolumeOptions default_volume_options(double edge_length);
 struct BuildReport {
   /// Wall-clock seconds per stage, in the order the stages ran.
   std::vector<std::pair<std::string, double>> stage_seconds;
-  int input_vertices = 0;       ///< surface read or generated, before crop/remesh
+  int input_vertices = 0;  ///< surface read or generated, before crop/remesh
   int input_faces = 0;
-  double input_volume = 0.0;    ///< m³, enclosed by the input surface (after scaling)
-  double input_area = 0.0;      ///< m²
-  int feature_edges = 0;        ///< constrained edges kept by the remeshing
-  int remesh_refinements = 0;   ///< local refinement rounds against self-intersections
-  bool limit_fitted = false;    ///< whether control points were fitted to the limit surface
+  double input_volume = 0.0;   ///< m³, enclosed by the input surface (after scaling)
+  double input_area = 0.0;     ///< m²
+  int feature_edges = 0;       ///< constrained edges kept by the remeshing
+  int remesh_refinements = 0;  ///< local refinement rounds against self-intersections
+  bool limit_fitted = false;   ///< whether control points were fitted to the limit surface
   LimitFitResult limit_fit;
-  int bone_points = 0;          ///< bone samples inserted as volume vertices
+  int bone_points = 0;  ///< bone samples inserted as volume vertices
   std::string tetgen_switches;
   /// What the import did to the input that the user should know (parts left out, units
   /// guessed), one sentence each naming the file.
   std::vector<std::string> warnings;
 
-  void add_stage(const std::string& name, double seconds) { stage_seconds.emplace_back(name, seconds); }
+  void add_stage(const std::string& name, double seconds) {
+    stage_seconds.emplace_back(name, seconds);
+  }
   double total_seconds() const;
 };
 

@@ -9,10 +9,10 @@
 #include "tightfit/body/scan_import.hpp"
 #include "tightfit/body/skeleton.hpp"
 #include "tightfit/body/skeleton_anchor.hpp"
-#include "tightfit/common/mesh_budget.hpp"
-#include "tightfit/common/stopwatch.hpp"
 #include "tightfit/body/surface_distance.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/mesh_budget.hpp"
+#include "tightfit/common/stopwatch.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/mesh_validation.hpp"
@@ -43,20 +43,24 @@ std::string format_length(double x) {
 void check_body_size(JsonFields& f, double radius, double length) {
   constexpr double kLargestRadius = 2.0, kLargestLength = 5.0;  // m
   if (radius > kLargestRadius)
-    f.fail("a radius of " + format_length(radius) + " m is larger than any body part: lengths are in metres "
-           "(50 mm is 0.05)", "radius");
+    f.fail("a radius of " + format_length(radius) +
+               " m is larger than any body part: lengths are in metres "
+               "(50 mm is 0.05)",
+           "radius");
   if (length > kLargestLength)
-    f.fail("a length of " + format_length(length) + " m is longer than any body: lengths are in metres "
-           "(300 mm is 0.3)", "length");
+    f.fail("a length of " + format_length(length) +
+               " m is longer than any body: lengths are in metres "
+               "(300 mm is 0.3)",
+           "length");
 }
 
 void parse_cylinder(JsonFields& f, BodySpec& spec) {
   CylinderParams& c = spec.cylinder;
   c.radius = f.positive("radius");
   c.length = f.positive("length", std::nullopt, /*allow_zero=*/true);
-  c.caps = f.choice("caps", {"round", "flat"}, std::string("round")) == "flat" ? CapStyle::Flat
-                                                                             : CapStyle::Round;
-  if (c.caps == CapStyle::Flat && c.length == 0.0)
+  c.caps = f.choice("caps", {"round", "flat"}, std::string("round")) == "flat" ? CapStyle::kFlat
+                                                                               : CapStyle::kRound;
+  if (c.caps == CapStyle::kFlat && c.length == 0.0)
     f.fail("a cylinder with flat caps needs a positive length", "length");
   c.center = f.vec3("center", Vec3::Zero());
   c.axis = nonzero_vec3(f, "axis", Vec3::UnitZ());
@@ -65,8 +69,10 @@ void parse_cylinder(JsonFields& f, BodySpec& spec) {
   if (c.edge_length > c.radius) f.fail("the edge length must not exceed the radius", "edge_length");
   spec.edge_length = c.edge_length;
   check_body_size(f, c.radius, c.length);
-  const double area = 2.0 * std::numbers::pi * c.radius * c.length + 4.0 * std::numbers::pi * c.radius * c.radius;
-  if (const std::string problem = mesh_budget_problem(area, c.edge_length, "cylinder's surface"); !problem.empty())
+  const double area =
+      2.0 * std::numbers::pi * c.radius * c.length + 4.0 * std::numbers::pi * c.radius * c.radius;
+  if (const std::string problem = mesh_budget_problem(area, c.edge_length, "cylinder's surface");
+      !problem.empty())
     f.fail(problem, "edge_length");
 }
 
@@ -80,7 +86,8 @@ void parse_sphere(JsonFields& f, BodySpec& spec) {
   spec.edge_length = s.edge_length;
   check_body_size(f, s.radius, 0.0);
   const double area = 4.0 * std::numbers::pi * s.radius * s.radius;
-  if (const std::string problem = mesh_budget_problem(area, s.edge_length, "sphere's surface"); !problem.empty())
+  if (const std::string problem = mesh_budget_problem(area, s.edge_length, "sphere's surface");
+      !problem.empty())
     f.fail(problem, "edge_length");
 }
 
@@ -89,7 +96,8 @@ void parse_mesh(JsonFields& f, BodySpec& spec, const std::filesystem::path& base
   MeshImport& m = spec.mesh;
   const std::string file = f.string("mesh");
   if (file.empty()) f.fail("expected a file name", "mesh");
-  m.path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
+  m.path =
+      std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
   m.scale_given = f.has("scale");
   m.scale = f.positive("scale", 1.0);
   if (f.has("units")) {
@@ -111,15 +119,17 @@ void parse_mesh(JsonFields& f, BodySpec& spec, const std::filesystem::path& base
     parse_anchored_direction(plane, "normal", anchor, p.normal, along_bone);
     p.local = plane.boolean("local", false);
     if ((anchor || along_bone) && skeleton.bones == nullptr)
-      plane.fail("anchored on the skeleton, but there is none: give the body a \"skeleton\" "
-                 "(a joints file) or the scene a \"rig\"");
+      plane.fail(
+          "anchored on the skeleton, but there is none: give the body a \"skeleton\" "
+          "(a joints file) or the scene a \"rig\"");
     if (anchor)
       p.point = anchor_point(find_anchor_bone(*skeleton.bones, anchor->bone, plane.source(),
                                               plane.child_path("point") + "/bone", skeleton.source),
                              anchor->at);
     if (along_bone) {
       const std::string path = plane.child_path("normal");
-      p.normal = resolve_bone_direction(*along_bone, *skeleton.bones, plane.source(), path, skeleton.source);
+      p.normal = resolve_bone_direction(*along_bone, *skeleton.bones, plane.source(), path,
+                                        skeleton.source);
     }
     plane.finish();
     m.crop.push_back(p);
@@ -153,10 +163,11 @@ void parse_core(JsonFields& f, BodySpec& spec, const std::filesystem::path& base
   if (c.has("soft_tissue") || (!has_bones && !has_radius))
     core.soft_tissue = c.positive("soft_tissue", kDefaultSoftTissue);
   if (has_radius) {
-    if (spec.source == BodySource::Mesh) c.fail("an embedded core radius needs a generator body", "radius");
+    if (spec.source == BodySource::kMesh)
+      c.fail("an embedded core radius needs a generator body", "radius");
     const double radius = c.positive("radius");
     try {
-      core.embedded_core = spec.source == BodySource::Cylinder
+      core.embedded_core = spec.source == BodySource::kCylinder
                                ? cylinder_surface(cylinder_core(spec.cylinder, radius))
                                : sphere_surface(sphere_core(spec.sphere, radius));
     } catch (const std::invalid_argument& e) {
@@ -169,15 +180,16 @@ void parse_core(JsonFields& f, BodySpec& spec, const std::filesystem::path& base
         std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
     const auto skeleton = read_skeleton(skeleton_path);
     const nlohmann::json& bones = c.raw("bones");
-    if (!bones.is_array() || bones.empty()) c.fail("expected a non-empty array of bone names", "bones");
+    if (!bones.is_array() || bones.empty())
+      c.fail("expected a non-empty array of bone names", "bones");
     std::vector<std::string> names;
     for (size_t i = 0; i < bones.size(); ++i) {
       const std::string item = c.child_path("bones") + "/" + std::to_string(i);
       if (!bones[i].is_string()) throw InputError(c.source(), item + ": expected a bone name");
       names.push_back(bones[i].get<std::string>());
       if (!skeleton.count(names.back()))
-        throw InputError(c.source(), item + ": no bone \"" + names.back() + "\" in " +
-                                         skeleton_path.string());
+        throw InputError(c.source(),
+                         item + ": no bone \"" + names.back() + "\" in " + skeleton_path.string());
     }
     core.bones = select_bones(skeleton, names, where(c, "bones"));
   }
@@ -185,7 +197,8 @@ void parse_core(JsonFields& f, BodySpec& spec, const std::filesystem::path& base
   c.finish();
 }
 
-BodySpec parse_fields(JsonFields& f, const std::filesystem::path& base_dir, const SkeletonRef& rig) {
+BodySpec parse_fields(JsonFields& f, const std::filesystem::path& base_dir,
+                      const SkeletonRef& rig) {
   BodySpec spec;
   spec.source_file = f.source();
   spec.json_path = f.path();
@@ -193,19 +206,24 @@ BodySpec parse_fields(JsonFields& f, const std::filesystem::path& base_dir, cons
   if (has_generator == has_mesh) f.fail("expected exactly one of \"generator\" and \"mesh\"");
   if (has_generator) {
     const std::string kind = f.choice("generator", {"cylinder", "sphere"});
-    spec.source = kind == "cylinder" ? BodySource::Cylinder : BodySource::Sphere;
-    if (spec.source == BodySource::Cylinder) parse_cylinder(f, spec);
-    else parse_sphere(f, spec);
+    spec.source = kind == "cylinder" ? BodySource::kCylinder : BodySource::kSphere;
+    if (spec.source == BodySource::kCylinder)
+      parse_cylinder(f, spec);
+    else
+      parse_sphere(f, spec);
   } else {
-    spec.source = BodySource::Mesh;
+    spec.source = BodySource::kMesh;
     parse_mesh(f, spec, base_dir, rig);
   }
   const VolumeOptions defaults = default_volume_options(spec.edge_length);
   spec.volume = defaults;
-  spec.volume.quality.max_radius_edge = f.positive("max_radius_edge", defaults.quality.max_radius_edge);
+  spec.volume.quality.max_radius_edge =
+      f.positive("max_radius_edge", defaults.quality.max_radius_edge);
   if (spec.volume.quality.max_radius_edge < 1.0) f.fail("expected a value ≥ 1", "max_radius_edge");
-  spec.volume.quality.min_dihedral_deg = f.number("min_dihedral_deg", defaults.quality.min_dihedral_deg);
-  if (!(spec.volume.quality.min_dihedral_deg >= 0.0 && spec.volume.quality.min_dihedral_deg <= 18.0))
+  spec.volume.quality.min_dihedral_deg =
+      f.number("min_dihedral_deg", defaults.quality.min_dihedral_deg);
+  if (!(spec.volume.quality.min_dihedral_deg >= 0.0 &&
+        spec.volume.quality.min_dihedral_deg <= 18.0))
     f.fail("expected an angle in [0, 18] degrees", "min_dihedral_deg");
   const double interior = f.positive("interior_edge_length", 2.0 * spec.edge_length);
   spec.volume.quality.max_volume = regular_tet_volume(interior);
@@ -302,9 +320,12 @@ BodySpec parse_body_spec(JsonFields& fields, const std::filesystem::path& base_d
 Body build_body(const BodySpec& spec, BuildReport* report) {
   try {
     switch (spec.source) {
-      case BodySource::Cylinder: return cylinder_body(spec.cylinder, spec.volume, report);
-      case BodySource::Sphere: return sphere_body(spec.sphere, spec.volume, report);
-      case BodySource::Mesh: return body_from_surface(prepare_mesh(spec, report), spec.volume, report);
+      case BodySource::kCylinder:
+        return cylinder_body(spec.cylinder, spec.volume, report);
+      case BodySource::kSphere:
+        return sphere_body(spec.sphere, spec.volume, report);
+      case BodySource::kMesh:
+        return body_from_surface(prepare_mesh(spec, report), spec.volume, report);
     }
   } catch (const InputError& e) {
     // Errors about the processed surface (TetGen) point at the spec as a whole.

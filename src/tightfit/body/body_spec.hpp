@@ -55,7 +55,7 @@
 
 namespace tightfit {
 
-enum class BodySource { Cylinder, Sphere, Mesh };
+enum class BodySource { kCylinder, kSphere, kMesh };
 
 /// A skeleton by bone name (body/skeleton.hpp) and the file it came from, for messages.
 struct SkeletonRef {
@@ -65,28 +65,28 @@ struct SkeletonRef {
 
 /// A body imported from a surface mesh file.
 struct MeshImport {
-  std::filesystem::path path;     ///< resolved against the spec's base folder
-  double scale = 1.0;             ///< applied to the file's coordinates
+  std::filesystem::path path;  ///< resolved against the spec's base folder
+  double scale = 1.0;          ///< applied to the file's coordinates
   /// Metres per file unit ("units": "m" / "cm" / "mm"); 0: guessed from the body's size
   /// (scan_import.hpp) unless "scale" is given.
   double units = 0.0;
-  bool scale_given = false;       ///< "scale" was in the spec: no guessing
+  bool scale_given = false;  ///< "scale" was in the spec: no guessing
   std::vector<CropPlane> crop;
   bool remesh = true;
-  RemeshOptions remesh_options;   ///< edge_length is the spec's edge length
+  RemeshOptions remesh_options;  ///< edge_length is the spec's edge length
   bool fit_limit = false;
 };
 
 /// A parsed body spec; `build_body` turns it into a Body.
 struct BodySpec {
-  BodySource source = BodySource::Cylinder;
-  CylinderParams cylinder;        ///< when source == Cylinder
-  SphereParams sphere;            ///< when source == Sphere
-  MeshImport mesh;                ///< when source == Mesh
-  double edge_length = 0.0;       ///< resolved surface edge length (m)
+  BodySource source = BodySource::kCylinder;
+  CylinderParams cylinder;   ///< when source == Cylinder
+  SphereParams sphere;       ///< when source == Sphere
+  MeshImport mesh;           ///< when source == Mesh
+  double edge_length = 0.0;  ///< resolved surface edge length (m)
   VolumeOptions volume;
-  std::string source_file;        ///< file named in error messages
-  std::string json_path;          ///< JSON pointer of the spec in that file ("" = root)
+  std::string source_file;  ///< file named in error messages
+  std::string json_path;    ///< JSON pointer of the spec in that file ("" = root)
 };
 
 /// Parses `j` (an object). `json_path` is its JSON pointer in the document (e.g. "" for
@@ -96,8 +96,8 @@ struct BodySpec {
 /// `rig` is the skeleton that crops anchored on bones are placed on when the body names
 /// no "skeleton" of its own (a scene passes its "rig"'s joints).
 BodySpec parse_body_spec(const nlohmann::json& j, const std::string& json_path,
-                         const std::filesystem::path& base_dir,
-                         const std::string& source_file = "", const SkeletonRef& rig = {});
+                         const std::filesystem::path& base_dir, const std::string& source_file = "",
+                         const SkeletonRef& rig = {});
 /// Same, reading from an object reader of a larger document (calls `fields.finish()`).
 BodySpec parse_body_spec(JsonFields& fields, const std::filesystem::path& base_dir,
                          const SkeletonRef& rig = {});

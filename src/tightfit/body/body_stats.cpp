@@ -9,8 +9,9 @@ namespace tightfit {
 namespace {
 
 double min_dihedral_of_tet(const TetMesh& mesh, int t) {
-  const auto angles = tet_dihedral_angles(mesh.vertices.row(mesh.tets(t, 0)), mesh.vertices.row(mesh.tets(t, 1)),
-                                          mesh.vertices.row(mesh.tets(t, 2)), mesh.vertices.row(mesh.tets(t, 3)));
+  const auto angles =
+      tet_dihedral_angles(mesh.vertices.row(mesh.tets(t, 0)), mesh.vertices.row(mesh.tets(t, 1)),
+                          mesh.vertices.row(mesh.tets(t, 2)), mesh.vertices.row(mesh.tets(t, 3)));
   return *std::min_element(angles.begin(), angles.end());
 }
 
@@ -48,7 +49,8 @@ BodyStats compute_body_stats(const Body& body) {
 std::vector<MeshField> body_cell_fields(const Body& body) {
   MeshField volume{"volume", tet_volumes(body.volume)};
   MeshField dihedral{"min_dihedral", MatX(body.volume.num_tets(), 1)};
-  for (int t = 0; t < body.volume.num_tets(); ++t) dihedral.values(t, 0) = min_dihedral_of_tet(body.volume, t);
+  for (int t = 0; t < body.volume.num_tets(); ++t)
+    dihedral.values(t, 0) = min_dihedral_of_tet(body.volume, t);
   return {volume, dihedral};
 }
 
@@ -64,9 +66,12 @@ nlohmann::json body_summary_json(const BodyStats& s, const BuildReport& report) 
   nlohmann::json j;
   j["units"] = "SI: lengths m, areas m^2, volumes m^3, angles degrees, times s";
   j["warnings"] = report.warnings;
-  j["counts"] = {{"surface_vertices", s.surface_vertices}, {"surface_faces", s.surface_faces},
-                 {"volume_vertices", s.volume_vertices},   {"tets", s.tets},
-                 {"pinned_vertices", s.pinned},            {"bone_points", report.bone_points}};
+  j["counts"] = {{"surface_vertices", s.surface_vertices},
+                 {"surface_faces", s.surface_faces},
+                 {"volume_vertices", s.volume_vertices},
+                 {"tets", s.tets},
+                 {"pinned_vertices", s.pinned},
+                 {"bone_points", report.bone_points}};
   j["surface"] = {{"area", s.surface_area},
                   {"volume", s.surface_volume},
                   {"mean_edge_length", s.mean_surface_edge}};
@@ -75,17 +80,16 @@ nlohmann::json body_summary_json(const BodyStats& s, const BuildReport& report) 
                {"min_volume", s.min_tet_volume},
                {"min_dihedral", s.min_dihedral_deg},
                {"max_dihedral", s.max_dihedral_deg},
-               {"radius_edge", {{"min", s.min_radius_edge},
-                                {"mean", s.mean_radius_edge},
-                                {"p99", s.p99_radius_edge},
-                                {"max", s.max_radius_edge}}},
+               {"radius_edge",
+                {{"min", s.min_radius_edge},
+                 {"mean", s.mean_radius_edge},
+                 {"p99", s.p99_radius_edge},
+                 {"max", s.max_radius_edge}}},
                {"tetgen_switches", report.tetgen_switches}};
-  j["input"] = {{"vertices", report.input_vertices},
-                {"faces", report.input_faces},
-                {"volume", report.input_volume},
-                {"area", report.input_area},
-                {"feature_edges", report.feature_edges},
-                {"remesh_refinements", report.remesh_refinements}};
+  j["input"] = {
+      {"vertices", report.input_vertices},     {"faces", report.input_faces},
+      {"volume", report.input_volume},         {"area", report.input_area},
+      {"feature_edges", report.feature_edges}, {"remesh_refinements", report.remesh_refinements}};
   if (report.limit_fitted)
     j["limit_fit"] = {{"iterations", report.limit_fit.iterations},
                       {"max_residual", report.limit_fit.max_residual},

@@ -15,16 +15,16 @@ struct BodyStats {
   int volume_vertices = 0;
   int tets = 0;
   int pinned = 0;
-  double surface_area = 0.0;       ///< m²
-  double surface_volume = 0.0;     ///< m³, enclosed by the surface
-  double tet_volume = 0.0;         ///< m³, sum of signed tet volumes
-  int inverted_tets = 0;           ///< tets with volume ≤ 0
-  double min_tet_volume = 0.0;     ///< m³
+  double surface_area = 0.0;    ///< m²
+  double surface_volume = 0.0;  ///< m³, enclosed by the surface
+  double tet_volume = 0.0;      ///< m³, sum of signed tet volumes
+  int inverted_tets = 0;        ///< tets with volume ≤ 0
+  double min_tet_volume = 0.0;  ///< m³
   double min_dihedral_deg = 0.0;
   double max_dihedral_deg = 0.0;
-  double min_radius_edge = 0.0;    ///< circumradius / shortest edge (regular tet: 0.612)
+  double min_radius_edge = 0.0;  ///< circumradius / shortest edge (regular tet: 0.612)
   double mean_radius_edge = 0.0;
-  double p99_radius_edge = 0.0;    ///< 99th percentile
+  double p99_radius_edge = 0.0;  ///< 99th percentile
   double max_radius_edge = 0.0;
   double mean_surface_edge = 0.0;  ///< m
 };

@@ -101,7 +101,8 @@ std::string bvh_quote(std::string_view token) {
 bool bvh_equal_ignoring_case(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
+    if (std::tolower(static_cast<unsigned char>(a[i])) !=
+        std::tolower(static_cast<unsigned char>(b[i])))
       return false;
   return true;
 }
@@ -134,19 +135,26 @@ Mat3 bvh_axis_rotation(int axis, double degrees) {
   const double c = std::cos(radians);
   const double s = std::sin(radians);
   Mat3 r;
-  if (axis == 0) r << 1, 0, 0, 0, c, -s, 0, s, c;
-  else if (axis == 1) r << c, 0, s, 0, 1, 0, -s, 0, c;
-  else r << c, -s, 0, s, c, 0, 0, 0, 1;
+  if (axis == 0)
+    r << 1, 0, 0, 0, c, -s, 0, s, c;
+  else if (axis == 1)
+    r << c, 0, s, 0, 1, 0, -s, 0, c;
+  else
+    r << c, -s, 0, s, c, 0, 0, 0, 1;
   return r;
 }
 
 /// The rotation axis (0, 1, 2) of a rotation channel, -1 for a position channel.
 int bvh_rotation_axis(BvhChannel channel) {
   switch (channel) {
-    case BvhChannel::kXrotation: return 0;
-    case BvhChannel::kYrotation: return 1;
-    case BvhChannel::kZrotation: return 2;
-    default: return -1;
+    case BvhChannel::kXrotation:
+      return 0;
+    case BvhChannel::kYrotation:
+      return 1;
+    case BvhChannel::kZrotation:
+      return 2;
+    default:
+      return -1;
   }
 }
 
@@ -167,9 +175,9 @@ class BvhParser {
  private:
   /// An open ROOT, JOINT or End Site block.
   struct Block {
-    int joint = -1;      ///< the joint, or the joint that owns the End Site
+    int joint = -1;  ///< the joint, or the joint that owns the End Site
     bool end_site = false;
-    int line = 0;        ///< where it opened
+    int line = 0;  ///< where it opened
     bool has_offset = false;
     bool has_channels = false;
     bool has_children = false;
@@ -207,7 +215,8 @@ class BvhParser {
   void parse_hierarchy() {
     const auto first = tokens_.next();
     if (!first) fail(1, "empty file, expected HIERARCHY");
-    if (first->text != "HIERARCHY") fail(first->line, "expected HIERARCHY, found " + bvh_quote(first->text));
+    if (first->text != "HIERARCHY")
+      fail(first->line, "expected HIERARCHY, found " + bvh_quote(first->text));
     const auto root = tokens_.next();
     if (!root || root->text == "MOTION") fail(tokens_.last_line(), "empty hierarchy: no ROOT");
     if (root->text != "ROOT") fail(root->line, "expected ROOT, found " + bvh_quote(root->text));
@@ -215,23 +224,33 @@ class BvhParser {
     while (!stack_.empty()) {
       const auto token = tokens_.next();
       if (!token)
-        fail(tokens_.last_line(), "unexpected end of file: missing '}' of " + block_name(stack_.back()) +
-                                      " (opened on line " + std::to_string(stack_.back().line) + ")");
+        fail(tokens_.last_line(), "unexpected end of file: missing '}' of " +
+                                      block_name(stack_.back()) + " (opened on line " +
+                                      std::to_string(stack_.back().line) + ")");
       parse_statement(*token);
     }
   }
 
   void parse_statement(const BvhToken& token) {
-    if (token.text == "OFFSET") parse_offset(token);
-    else if (token.text == "CHANNELS") parse_channels(token);
-    else if (token.text == "JOINT") open_joint(token);
-    else if (token.text == "End") open_end_site(token);
-    else if (token.text == "}") close_block(token);
-    else if (token.text == "ROOT") fail(token.line, "a second ROOT (a BVH file has exactly one)");
+    if (token.text == "OFFSET")
+      parse_offset(token);
+    else if (token.text == "CHANNELS")
+      parse_channels(token);
+    else if (token.text == "JOINT")
+      open_joint(token);
+    else if (token.text == "End")
+      open_end_site(token);
+    else if (token.text == "}")
+      close_block(token);
+    else if (token.text == "ROOT")
+      fail(token.line, "a second ROOT (a BVH file has exactly one)");
     else if (token.text == "MOTION")
       fail(token.line, "MOTION inside " + block_name(stack_.back()) + ": missing '}'");
-    else if (token.text == "{") fail(token.line, "unexpected '{' in " + block_name(stack_.back()));
-    else fail(token.line, "unknown keyword " + bvh_quote(token.text) + " in " + block_name(stack_.back()));
+    else if (token.text == "{")
+      fail(token.line, "unexpected '{' in " + block_name(stack_.back()));
+    else
+      fail(token.line,
+           "unknown keyword " + bvh_quote(token.text) + " in " + block_name(stack_.back()));
   }
 
   void push(const Block& block) {
@@ -250,7 +269,8 @@ class BvhParser {
   void open_joint(const BvhToken& keyword) {
     const std::string kind(keyword.text);
     if (!stack_.empty() && stack_.back().end_site)
-      fail(keyword.line, "JOINT inside " + block_name(stack_.back()) + " (an End Site has no joints)");
+      fail(keyword.line,
+           "JOINT inside " + block_name(stack_.back()) + " (an End Site has no joints)");
     const auto name = tokens_.peek();
     if (!name || name->line != keyword.line || name->text == "{" || name->text == "}")
       fail(keyword.line, kind + " without a name");
@@ -294,7 +314,8 @@ class BvhParser {
     if (values.size() != 3)
       fail(keyword.line, "OFFSET needs 3 numbers, found " + std::to_string(values.size()));
     Vec3 offset;
-    for (int i = 0; i < 3; ++i) offset[i] = finite_number(values[static_cast<std::size_t>(i)], "OFFSET");
+    for (int i = 0; i < 3; ++i)
+      offset[i] = finite_number(values[static_cast<std::size_t>(i)], "OFFSET");
     if (!block.end_site) motion_.joints[static_cast<std::size_t>(block.joint)].offset = offset;
     block.has_offset = true;
   }
@@ -302,7 +323,8 @@ class BvhParser {
   /// CHANNELS n c1 .. cn, all on one line, before the joint's children.
   void parse_channels(const BvhToken& keyword) {
     Block& block = stack_.back();
-    if (block.end_site) fail(keyword.line, "CHANNELS in " + block_name(block) + " (an End Site has none)");
+    if (block.end_site)
+      fail(keyword.line, "CHANNELS in " + block_name(block) + " (an End Site has none)");
     if (block.has_channels) fail(keyword.line, "a second CHANNELS in " + block_name(block));
     if (block.has_children)
       fail(keyword.line, "CHANNELS of " + block_name(block) + " after its child blocks");
@@ -310,7 +332,8 @@ class BvhParser {
     if (words.empty()) fail(keyword.line, "CHANNELS without a count");
     const auto count = text::to_int(words[0].text);
     if (!count || *count < 0 || *count > kBvhMaxJointChannels)
-      fail(keyword.line, "the channel count must be an integer in 0..6, found " + bvh_quote(words[0].text));
+      fail(keyword.line,
+           "the channel count must be an integer in 0..6, found " + bvh_quote(words[0].text));
     if (static_cast<std::int64_t>(words.size()) - 1 != *count)
       fail(keyword.line, "CHANNELS " + std::to_string(*count) + " but " +
                              std::to_string(words.size() - 1) + " channel names given");
@@ -319,7 +342,8 @@ class BvhParser {
       const auto channel = bvh_channel(words[i].text);
       if (!channel) fail(keyword.line, "unknown channel " + bvh_quote(words[i].text));
       for (const BvhChannel seen : joint.channels)
-        if (seen == *channel) fail(keyword.line, "channel " + bvh_quote(words[i].text) + " listed twice");
+        if (seen == *channel)
+          fail(keyword.line, "channel " + bvh_quote(words[i].text) + " listed twice");
       joint.channels.push_back(*channel);
     }
     joint.first_channel = motion_.num_channels;
@@ -341,7 +365,8 @@ class BvhParser {
   /// Frames: N. Returns N and its line.
   std::pair<std::int64_t, int> parse_frame_count() {
     const BvhToken keyword = next_or_fail("\"Frames:\"");
-    if (keyword.text != "Frames:") fail(keyword.line, "expected \"Frames:\", found " + bvh_quote(keyword.text));
+    if (keyword.text != "Frames:")
+      fail(keyword.line, "expected \"Frames:\", found " + bvh_quote(keyword.text));
     const BvhToken value = next_or_fail("the number of frames");
     const auto n = text::to_int(value.text);
     if (!n) fail(value.line, "Frames: " + bvh_quote(value.text) + " is not an integer");

@@ -31,26 +31,29 @@ enum class BvhChannel { kXposition, kYposition, kZposition, kXrotation, kYrotati
 /// One ROOT or JOINT block of the hierarchy.
 struct BvhJoint {
   std::string name;
-  int parent = -1;                    ///< index into BvhMotion::joints, -1 for the ROOT
-  Vec3 offset = Vec3::Zero();         ///< OFFSET, file units, in the parent's frame
-  std::vector<BvhChannel> channels;   ///< in file order (0..6 channels, each at most once)
-  int first_channel = 0;              ///< column of its first channel in a frame row
+  int parent = -1;                   ///< index into BvhMotion::joints, -1 for the ROOT
+  Vec3 offset = Vec3::Zero();        ///< OFFSET, file units, in the parent's frame
+  std::vector<BvhChannel> channels;  ///< in file order (0..6 channels, each at most once)
+  int first_channel = 0;             ///< column of its first channel in a frame row
 };
 
 /// A whole BVH file: the skeleton and its frames.
 struct BvhMotion {
-  std::vector<BvhJoint> joints;  ///< file order: every parent comes before its children. "End Site" blocks are NOT joints (skipped).
+  std::vector<BvhJoint> joints;  ///< file order: every parent comes before its children. "End Site"
+                                 ///< blocks are NOT joints (skipped).
   int num_channels = 0;          ///< total channels = columns of `frames`
   double frame_time = 0.0;       ///< s
-  MatX frames;                   ///< num_frames × num_channels, the values as written (positions in file units, rotations in degrees)
-  std::string source;            ///< the file, for messages
+  MatX frames;  ///< num_frames × num_channels, the values as written (positions in file units,
+                ///< rotations in degrees)
+  std::string source;  ///< the file, for messages
   int num_frames() const { return static_cast<int>(frames.rows()); }
   /// Index of the joint called `name`, -1 if none.
   int find(const std::string& name) const;
   /// The local rotation of joint `joint` in frame `frame`: the product of its rotation
-  /// channels in file order, R = R_a(θ_a) R_b(θ_b) R_c(θ_c) for "CHANNELS ... Arotation Brotation Crotation"
-  /// (the standard BVH convention: the last-listed channel acts on a vector first), angles in degrees.
-  /// Identity for a joint without rotation channels. Throws std::out_of_range for bad indices.
+  /// channels in file order, R = R_a(θ_a) R_b(θ_b) R_c(θ_c) for "CHANNELS ... Arotation Brotation
+  /// Crotation" (the standard BVH convention: the last-listed channel acts on a vector first),
+  /// angles in degrees. Identity for a joint without rotation channels. Throws std::out_of_range
+  /// for bad indices.
   Mat3 local_rotation(int joint, int frame) const;
 };
 

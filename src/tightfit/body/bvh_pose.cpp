@@ -9,14 +9,16 @@
 
 namespace tightfit {
 
-BvhFrameFit fit_bvh_frame(const BvhMotion& motion, const std::map<std::string, BoneSegment>& skeleton) {
+BvhFrameFit fit_bvh_frame(const BvhMotion& motion,
+                          const std::map<std::string, BoneSegment>& skeleton) {
   std::vector<Vec3> rest(motion.joints.size());
   BvhFrameFit fit;
   Eigen::Matrix3Xd from(3, 0), to(3, 0);
   std::vector<std::pair<Vec3, Vec3>> pairs;
   for (std::size_t j = 0; j < motion.joints.size(); ++j) {
     const BvhJoint& joint = motion.joints[j];
-    rest[j] = joint.offset + (joint.parent >= 0 ? rest[static_cast<std::size_t>(joint.parent)] : Vec3::Zero());
+    rest[j] = joint.offset +
+              (joint.parent >= 0 ? rest[static_cast<std::size_t>(joint.parent)] : Vec3::Zero());
     const auto bone = skeleton.find(joint.name);
     if (bone == skeleton.end()) {
       fit.unmatched_joints.push_back(joint.name);
@@ -59,22 +61,26 @@ BvhFrameFit fit_bvh_frame(const BvhMotion& motion, const std::map<std::string, B
   if (fit.max_residual > 0.05 * size)
     throw InputError(motion.source,
                      "the BVH's rest skeleton does not match the body's skeleton: after the best "
-                     "fit a joint is " + std::to_string(fit.max_residual) + " m from its bone (" +
-                         std::to_string(100.0 * fit.max_residual / size) + " % of the skeleton's size)");
+                     "fit a joint is " +
+                         std::to_string(fit.max_residual) + " m from its bone (" +
+                         std::to_string(100.0 * fit.max_residual / size) +
+                         " % of the skeleton's size)");
   return fit;
 }
 
 BoneRotations bvh_pose(const BvhMotion& motion, int frame, const BvhFrameFit& fit,
                        std::vector<std::string>* ignored) {
   if (frame < 0 || frame >= motion.num_frames())
-    throw InputError(motion.source, "frame " + std::to_string(frame) + " does not exist (the file has " +
-                                        std::to_string(motion.num_frames()) + " frames, counted from 0)");
+    throw InputError(motion.source,
+                     "frame " + std::to_string(frame) + " does not exist (the file has " +
+                         std::to_string(motion.num_frames()) + " frames, counted from 0)");
   BoneRotations out;
   for (std::size_t j = 0; j < motion.joints.size(); ++j) {
     const Mat3 R = motion.local_rotation(static_cast<int>(j), frame);
     if ((R - Mat3::Identity()).norm() == 0.0) continue;
     const std::string& name = motion.joints[j].name;
-    if (std::find(fit.unmatched_joints.begin(), fit.unmatched_joints.end(), name) != fit.unmatched_joints.end()) {
+    if (std::find(fit.unmatched_joints.begin(), fit.unmatched_joints.end(), name) !=
+        fit.unmatched_joints.end()) {
       const double angle = Eigen::AngleAxisd(R).angle();
       if (ignored && angle > EIGEN_PI / 180.0) ignored->push_back(name);
       continue;

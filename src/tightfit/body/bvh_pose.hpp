@@ -20,12 +20,12 @@ namespace tightfit {
 
 /// The fitted map from the BVH frame to the body frame, x_body ≈ s C x_bvh + t.
 struct BvhFrameFit {
-  double scale = 1.0;             ///< s (body metres per BVH unit)
+  double scale = 1.0;                ///< s (body metres per BVH unit)
   Mat3 rotation = Mat3::Identity();  ///< C
   Vec3 translation = Vec3::Zero();   ///< t (m)
-  double max_residual = 0.0;      ///< largest joint distance after the fit (m)
-  double rms_residual = 0.0;      ///< root mean square of those distances (m)
-  int common_joints = 0;          ///< joints fitted
+  double max_residual = 0.0;         ///< largest joint distance after the fit (m)
+  double rms_residual = 0.0;         ///< root mean square of those distances (m)
+  int common_joints = 0;             ///< joints fitted
   /// BVH joints that are not bones of the skeleton (their rotations are not used; the
   /// joints below them still are).
   std::vector<std::string> unmatched_joints;
@@ -37,7 +37,8 @@ struct BvhFrameFit {
 /// fewer than 3) are bones of the skeleton (a few are named), or when the fitted joints
 /// miss the bones' heads by more than 5 % of the skeleton's size (a BVH of another
 /// skeleton).
-BvhFrameFit fit_bvh_frame(const BvhMotion& motion, const std::map<std::string, BoneSegment>& skeleton);
+BvhFrameFit fit_bvh_frame(const BvhMotion& motion,
+                          const std::map<std::string, BoneSegment>& skeleton);
 
 /// The bone rotations of frame `frame` (0-based) in the body frame. Rotations of
 /// unmatched joints are left out; the names of those that rotate by more than 1° are

@@ -15,8 +15,7 @@ Mesh to_cgal(const TriMesh& m, const std::string& source) {
   for (int i = 0; i < m.num_vertices(); ++i)
     v[i] = mesh.add_vertex(Point(m.vertices(i, 0), m.vertices(i, 1), m.vertices(i, 2)));
   for (int f = 0; f < m.num_faces(); ++f)
-    if (mesh.add_face(v[m.faces(f, 0)], v[m.faces(f, 1)], v[m.faces(f, 2)]) ==
-        Mesh::null_face())
+    if (mesh.add_face(v[m.faces(f, 0)], v[m.faces(f, 1)], v[m.faces(f, 2)]) == Mesh::null_face())
       throw InputError(source, "face " + std::to_string(f) +
                                    " makes the surface non-manifold or inconsistently oriented");
   return mesh;

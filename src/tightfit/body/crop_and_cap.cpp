@@ -45,8 +45,9 @@ TriMesh crop_and_cap(const TriMesh& surface, const std::vector<CropPlane>& plane
       }
     }
     // CGAL keeps the negative side of its plane: flip the normal to keep the side it points to.
-    const Kernel::Plane_3 plane(Point(planes[i].point.x(), planes[i].point.y(), planes[i].point.z()),
-                                Kernel::Vector_3(-n.x(), -n.y(), -n.z()));
+    const Kernel::Plane_3 plane(
+        Point(planes[i].point.x(), planes[i].point.y(), planes[i].point.z()),
+        Kernel::Vector_3(-n.x(), -n.y(), -n.z()));
     bool manifold = false;
     try {
       manifold = PMP::clip(mesh, plane,
@@ -55,7 +56,8 @@ TriMesh crop_and_cap(const TriMesh& surface, const std::vector<CropPlane>& plane
       throw InputError(source, "the surface intersects itself near the cut");
     }
     if (!manifold) throw InputError(source, "the cut could not be closed into a manifold surface");
-    if (mesh.number_of_faces() == 0) throw InputError(source, "the plane removes the whole surface");
+    if (mesh.number_of_faces() == 0)
+      throw InputError(source, "the plane removes the whole surface");
     // Cuts through vertices or along edges leave zero-area faces: collapse them.
     if (!PMP::remove_degenerate_faces(mesh))
       throw InputError(source, "the cut left degenerate faces that could not be removed");

@@ -24,9 +24,9 @@ struct CropPlane {
 /// planar polygon; the caps have long, thin triangles until remeshed). Vertices closer
 /// to a plane than 1e-7 of the mesh's bounding-box diagonal are first pushed to that
 /// distance (on their side), so that no cut point nearly coincides with a vertex. Planes that miss
-/// the surface leave it unchanged (local planes: an InputError). Throws InputError (source "crop") if a plane removes
-/// the whole surface or the cut cannot be closed into a manifold, and when CGAL finds the
-/// surface self-intersecting near a cut.
+/// the surface leave it unchanged (local planes: an InputError). Throws InputError (source "crop")
+/// if a plane removes the whole surface or the cut cannot be closed into a manifold, and when CGAL
+/// finds the surface self-intersecting near a cut.
 TriMesh crop_and_cap(const TriMesh& surface, const std::vector<CropPlane>& planes);
 
 }  // namespace tightfit

@@ -64,7 +64,8 @@ void stitch_rings(const Ring& ra, const std::vector<int>& a, const Ring& rb,
   // Start B at the vertex closest in angle to A's first vertex; walk both rings in
   // angle order, always advancing the ring whose next vertex comes first.
   const double da = 2.0 * kPi / na, db = 2.0 * kPi / nb;
-  double rel = std::remainder(rb.phase - ra.phase, db);  // B's first angle near A[0], in (-db/2, db/2]
+  double rel =
+      std::remainder(rb.phase - ra.phase, db);  // B's first angle near A[0], in (-db/2, db/2]
   const int shift = static_cast<int>(std::lround((ra.phase + rel - rb.phase) / db));
   const int jb0 = ((shift % nb) + nb) % nb;
   int ca = 0, cb = 0;
@@ -99,7 +100,8 @@ TriMesh mesh_from_rings(const std::vector<Ring>& rings, const Vec3& center, cons
     stitch_rings(rings[k], ids[k], rings[k + 1], ids[k + 1], tris);
   TriMesh mesh;
   mesh.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
-  for (size_t i = 0; i < points.size(); ++i) mesh.vertices.row(static_cast<Eigen::Index>(i)) = points[i];
+  for (size_t i = 0; i < points.size(); ++i)
+    mesh.vertices.row(static_cast<Eigen::Index>(i)) = points[i];
   mesh.faces.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (size_t f = 0; f < tris.size(); ++f)
     for (int c = 0; c < 3; ++c) mesh.faces(static_cast<Eigen::Index>(f), c) = tris[f][c];
@@ -123,22 +125,23 @@ TriMesh cylinder_surface(const CylinderParams& p, LimitFitResult* fit) {
   const double h = resolved_edge(p.edge_length, p.radius);
   if (!(p.length >= 0.0) || !std::isfinite(p.length))
     throw std::invalid_argument("cylinder length must be non-negative");
-  if (p.caps == CapStyle::Flat && !(p.length > 0.0))
+  if (p.caps == CapStyle::kFlat && !(p.length > 0.0))
     throw std::invalid_argument("a cylinder with flat caps needs a positive length");
   const Frame frame = make_frame(p.axis);
   const double R = p.radius, half = 0.5 * p.length;
   const int n_side = ring_count(R, h);
-  const int n_rows = p.length > 0.0 ? std::max(1, static_cast<int>(std::lround(p.length / (kRowHeight * h)))) : 0;
+  const int n_rows =
+      p.length > 0.0 ? std::max(1, static_cast<int>(std::lround(p.length / (kRowHeight * h)))) : 0;
 
   std::vector<Ring> side;
   for (int k = 0; k <= n_rows; ++k)
-    side.push_back({n_rows > 0 ? -half + p.length * k / n_rows : 0.0, R, n_side,
-                    (k % 2) * kPi / n_side});
+    side.push_back(
+        {n_rows > 0 ? -half + p.length * k / n_rows : 0.0, R, n_side, (k % 2) * kPi / n_side});
 
   // Cap rings from the rim (exclusive) to the pole (inclusive), as (axial offset beyond
   // the rim, radius) pairs.
   std::vector<std::pair<double, double>> cap;
-  if (p.caps == CapStyle::Round) {
+  if (p.caps == CapStyle::kRound) {
     const int m = std::max(2, static_cast<int>(std::lround(0.5 * kPi * R / (kRowHeight * h))));
     for (int i = 1; i <= m; ++i) {
       const double theta = 0.5 * kPi * i / m;
@@ -188,21 +191,21 @@ TriMesh sphere_surface(const SphereParams& p, LimitFitResult* fit) {
   const double h = resolved_edge(p.edge_length, p.radius);
   // Unit icosahedron.
   const double g = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> corners = {{-1, g, 0}, {1, g, 0},  {-1, -g, 0}, {1, -g, 0},
-                               {0, -1, g}, {0, 1, g},  {0, -1, -g}, {0, 1, -g},
-                               {g, 0, -1}, {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
+  std::vector<Vec3> corners = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
+                               {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
+                               {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
   for (auto& c : corners) c.normalize();
   const std::vector<std::array<int, 3>> faces = {
-      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+      {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
       {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-      {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+      {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   const double ico_edge = (corners[0] - corners[1]).norm() * p.radius;
   // Projection stretches the middle of each face by about 1.2: compensate halfway.
   const int k = std::max(1, static_cast<int>(std::ceil(ico_edge * 1.1 / h - 0.5)));
 
   std::vector<Vec3> points(corners.begin(), corners.end());
   std::map<std::pair<int, int>, std::vector<int>> edge_points;  // (lo, hi) → ids from lo to hi
-  auto edge_point = [&](int u, int v, int step) {  // point `step` of k along u→v
+  auto edge_point = [&](int u, int v, int step) {               // point `step` of k along u→v
     const int lo = std::min(u, v), hi = std::max(u, v);
     auto it = edge_points.find({lo, hi});
     if (it == edge_points.end()) {
@@ -222,12 +225,18 @@ TriMesh sphere_surface(const SphereParams& p, LimitFitResult* fit) {
     std::vector<std::vector<int>> id(k + 1, std::vector<int>(k + 1, -1));
     for (int i = 0; i <= k; ++i)
       for (int j = 0; i + j <= k; ++j) {
-        if (i == 0 && j == 0) id[i][j] = a;
-        else if (i == k) id[i][j] = b;
-        else if (j == k) id[i][j] = c;
-        else if (j == 0) id[i][j] = edge_point(a, b, i);
-        else if (i == 0) id[i][j] = edge_point(a, c, j);
-        else if (i + j == k) id[i][j] = edge_point(b, c, j);
+        if (i == 0 && j == 0)
+          id[i][j] = a;
+        else if (i == k)
+          id[i][j] = b;
+        else if (j == k)
+          id[i][j] = c;
+        else if (j == 0)
+          id[i][j] = edge_point(a, b, i);
+        else if (i == 0)
+          id[i][j] = edge_point(a, c, j);
+        else if (i + j == k)
+          id[i][j] = edge_point(b, c, j);
         else {
           id[i][j] = static_cast<int>(points.size());
           points.push_back(corners[a] + (corners[b] - corners[a]) * (double(i) / k) +
@@ -268,10 +277,11 @@ CylinderParams cylinder_core(const CylinderParams& body, double core_radius) {
   core.edge_length = core_edge(body.edge_length, body.radius, core_radius);
   core.radius = core_radius;
   core.fit_limit = false;
-  if (body.caps == CapStyle::Flat) {
+  if (body.caps == CapStyle::kFlat) {
     core.length = body.length - 2.0 * (body.radius - core_radius);
     if (!(core.length > 0.0))
-      throw std::invalid_argument("the flat-capped core would have no length: use a larger core radius");
+      throw std::invalid_argument(
+          "the flat-capped core would have no length: use a larger core radius");
   }
   return core;
 }
@@ -292,15 +302,15 @@ Vec3 project_to_cylinder(const CylinderParams& p, const Vec3& x) {
   Vec3 radial = q - z * frame.axis;
   const double rho = radial.norm();
   const Vec3 dir = rho > 0.0 ? Vec3(radial / rho) : frame.e1;
-  if (p.caps == CapStyle::Round) {
+  if (p.caps == CapStyle::kRound) {
     const double t = std::clamp(z, -half, half);
     const Vec3 d = q - t * frame.axis;
     const double dn = d.norm();
     return p.center + t * frame.axis + p.radius * (dn > 0.0 ? Vec3(d / dn) : dir);
   }
   const Vec3 on_side = p.center + std::clamp(z, -half, half) * frame.axis + p.radius * dir;
-  const Vec3 on_disc = p.center + (z >= 0.0 ? half : -half) * frame.axis +
-                       std::min(rho, p.radius) * dir;
+  const Vec3 on_disc =
+      p.center + (z >= 0.0 ? half : -half) * frame.axis + std::min(rho, p.radius) * dir;
   return (x - on_side).squaredNorm() <= (x - on_disc).squaredNorm() ? on_side : on_disc;
 }
 
@@ -312,12 +322,12 @@ Vec3 project_to_sphere(const SphereParams& p, const Vec3& x) {
 
 double cylinder_volume(const CylinderParams& p) {
   const double r2 = p.radius * p.radius;
-  return kPi * r2 * p.length + (p.caps == CapStyle::Round ? 4.0 / 3.0 * kPi * r2 * p.radius : 0.0);
+  return kPi * r2 * p.length + (p.caps == CapStyle::kRound ? 4.0 / 3.0 * kPi * r2 * p.radius : 0.0);
 }
 
 double cylinder_area(const CylinderParams& p) {
   const double side = 2.0 * kPi * p.radius * p.length;
-  return side + (p.caps == CapStyle::Round ? 4.0 : 2.0) * kPi * p.radius * p.radius;
+  return side + (p.caps == CapStyle::kRound ? 4.0 : 2.0) * kPi * p.radius * p.radius;
 }
 
 double sphere_volume(const SphereParams& p) { return 4.0 / 3.0 * kPi * std::pow(p.radius, 3); }

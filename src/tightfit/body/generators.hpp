@@ -9,9 +9,9 @@
 /// on the analytic surface; the control points then lie slightly outside it (about
 /// R·α²/8 for a cylinder with angular vertex spacing α), and the tet volume (= volume of
 /// the control polyhedron) exceeds the analytic volume by about α²/12 (cylinder side).
+#include "tightfit/body/loop_limit.hpp"
 #include "tightfit/common/types.hpp"
 #include "tightfit/geometry/mesh.hpp"
-#include "tightfit/body/loop_limit.hpp"
 
 namespace tightfit {
 
@@ -19,32 +19,32 @@ namespace tightfit {
 enum class CapStyle {
   /// Hemispheres of the cylinder's radius (a capsule): the surface is smooth (C1), so
   /// the Loop limit surface can follow it everywhere. The default.
-  Round,
+  kRound,
   /// Flat discs. The rim is a 90° crease that the (crease-free) Loop limit surface
   /// rounds off over about one edge length; the limit fit still puts every vertex's
   /// limit point on the closed cylinder.
-  Flat,
+  kFlat,
 };
 
 /// A capped cylinder. The cylindrical side has length `length` between the two rims,
 /// centred at `center` along the unit `axis`. Round caps add a hemisphere of radius
 /// `radius` at each end (total length `length + 2 radius`); flat caps close the rims.
 struct CylinderParams {
-  double radius = 0.05;           ///< m, > 0
-  double length = 0.3;            ///< m, ≥ 0 (side length without the caps)
-  double edge_length = 0.0;       ///< target edge length (m); 0 → `2π radius / 48`
-  CapStyle caps = CapStyle::Round;
-  Vec3 center = Vec3::Zero();     ///< m
-  Vec3 axis = Vec3::UnitZ();      ///< direction of the axis (normalized on use)
-  bool fit_limit = true;          ///< fit the Loop limit surface to the analytic surface
+  double radius = 0.05;      ///< m, > 0
+  double length = 0.3;       ///< m, ≥ 0 (side length without the caps)
+  double edge_length = 0.0;  ///< target edge length (m); 0 → `2π radius / 48`
+  CapStyle caps = CapStyle::kRound;
+  Vec3 center = Vec3::Zero();  ///< m
+  Vec3 axis = Vec3::UnitZ();   ///< direction of the axis (normalized on use)
+  bool fit_limit = true;       ///< fit the Loop limit surface to the analytic surface
 };
 
 /// A sphere of radius `radius` around `center`.
 struct SphereParams {
-  double radius = 0.1;            ///< m, > 0
-  double edge_length = 0.0;       ///< target edge length (m); 0 → `2π radius / 48`
-  Vec3 center = Vec3::Zero();     ///< m
-  bool fit_limit = true;          ///< fit the Loop limit surface to the analytic surface
+  double radius = 0.1;         ///< m, > 0
+  double edge_length = 0.0;    ///< target edge length (m); 0 → `2π radius / 48`
+  Vec3 center = Vec3::Zero();  ///< m
+  bool fit_limit = true;       ///< fit the Loop limit surface to the analytic surface
 };
 
 /// Edge length used when `edge_length` is 0: 48 edges around a great circle, which puts

@@ -29,7 +29,8 @@ std::vector<std::array<int, 3>> triangulate_polygon(std::vector<int> loop,
     const std::array<Eigen::Vector2d, 3> p{points[a], points[b], points[c]};
     double smallest = 180.0;
     for (int k = 0; k < 3; ++k)
-      smallest = std::min(smallest, angle_between_deg(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]));
+      smallest =
+          std::min(smallest, angle_between_deg(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]));
     return smallest;
   };
   while (loop.size() > 3) {
@@ -54,7 +55,9 @@ std::vector<std::array<int, 3>> triangulate_polygon(std::vector<int> loop,
         best = static_cast<int>(i);
       }
     }
-    if (best < 0) throw InputError(source, "the cut loop is not a simple polygon in the plane; it cannot be capped");
+    if (best < 0)
+      throw InputError(source,
+                       "the cut loop is not a simple polygon in the plane; it cannot be capped");
     const size_t i = static_cast<size_t>(best);
     triangles.push_back({loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n]});
     loop.erase(loop.begin() + static_cast<std::ptrdiff_t>(i));
@@ -75,7 +78,8 @@ TriMesh crop_beyond_nearest_loop(const TriMesh& surface, const CropPlane& plane,
 
   // Signed distances, with vertices (almost) on the plane pushed off it.
   Points3 vertices = surface.vertices;
-  const Vec3 lo = vertices.colwise().minCoeff().transpose(), hi = vertices.colwise().maxCoeff().transpose();
+  const Vec3 lo = vertices.colwise().minCoeff().transpose(),
+             hi = vertices.colwise().maxCoeff().transpose();
   const double epsilon = 1e-7 * (hi - lo).norm();
   std::vector<double> side(static_cast<size_t>(nv));
   for (int v = 0; v < nv; ++v) {
@@ -132,7 +136,8 @@ TriMesh crop_beyond_nearest_loop(const TriMesh& surface, const CropPlane& plane,
     // The kept polygon's new boundary edge runs from one cut vertex to the other; the
     // cap uses it reversed.
     const size_t m = polygon.size();
-    const int first_cut = static_cast<int>(out_vertices.size()) - static_cast<int>(cut_vertex.size());
+    const int first_cut =
+        static_cast<int>(out_vertices.size()) - static_cast<int>(cut_vertex.size());
     for (size_t i = 0; i < m; ++i) {
       const int a = polygon[i], b = polygon[(i + 1) % m];
       if (a >= first_cut && b >= first_cut) cap_next[b] = a;
@@ -140,8 +145,12 @@ TriMesh crop_beyond_nearest_loop(const TriMesh& surface, const CropPlane& plane,
     if (m == 3) {
       out_faces.push_back({polygon[0], polygon[1], polygon[2]});
     } else {  // a quad: split along its shorter diagonal
-      const double d02 = (out_vertices[static_cast<size_t>(polygon[0])] - out_vertices[static_cast<size_t>(polygon[2])]).norm();
-      const double d13 = (out_vertices[static_cast<size_t>(polygon[1])] - out_vertices[static_cast<size_t>(polygon[3])]).norm();
+      const double d02 = (out_vertices[static_cast<size_t>(polygon[0])] -
+                          out_vertices[static_cast<size_t>(polygon[2])])
+                             .norm();
+      const double d13 = (out_vertices[static_cast<size_t>(polygon[1])] -
+                          out_vertices[static_cast<size_t>(polygon[3])])
+                             .norm();
       if (d02 <= d13) {
         out_faces.push_back({polygon[0], polygon[1], polygon[2]});
         out_faces.push_back({polygon[0], polygon[2], polygon[3]});
@@ -161,7 +170,8 @@ TriMesh crop_beyond_nearest_loop(const TriMesh& surface, const CropPlane& plane,
     const int next = cap_next.at(loop.back());
     if (next == loop.front()) break;
     if (loop.size() > cap_next.size())
-      throw InputError(source, "the cut loop is not simple; the surface is not a closed 2-manifold");
+      throw InputError(source,
+                       "the cut loop is not simple; the surface is not a closed 2-manifold");
     loop.push_back(next);
   }
   if (loop.size() != cap_next.size())
@@ -175,17 +185,21 @@ TriMesh crop_beyond_nearest_loop(const TriMesh& surface, const CropPlane& plane,
   double area = 0.0;
   for (size_t i = 0; i < loop.size(); ++i)
     area += signed_area(Eigen::Vector2d::Zero(), planar[static_cast<size_t>(loop[i])],
-                   planar[static_cast<size_t>(loop[(i + 1) % loop.size()])]);
+                        planar[static_cast<size_t>(loop[(i + 1) % loop.size()])]);
   if (!(area > 0.0))
-    throw InputError(source, "the cut loop winds the wrong way around the normal; is the surface outward-oriented?");
+    throw InputError(
+        source,
+        "the cut loop winds the wrong way around the normal; is the surface outward-oriented?");
   for (const auto& t : triangulate_polygon(loop, planar, source)) out_faces.push_back(t);
 
   TriMesh out;
   out.vertices.resize(static_cast<Eigen::Index>(out_vertices.size()), 3);
-  for (size_t i = 0; i < out_vertices.size(); ++i) out.vertices.row(static_cast<Eigen::Index>(i)) = out_vertices[i].transpose();
+  for (size_t i = 0; i < out_vertices.size(); ++i)
+    out.vertices.row(static_cast<Eigen::Index>(i)) = out_vertices[i].transpose();
   out.faces.resize(static_cast<Eigen::Index>(out_faces.size()), 3);
   for (size_t i = 0; i < out_faces.size(); ++i)
-    for (int k = 0; k < 3; ++k) out.faces(static_cast<Eigen::Index>(i), k) = out_faces[i][static_cast<size_t>(k)];
+    for (int k = 0; k < 3; ++k)
+      out.faces(static_cast<Eigen::Index>(i), k) = out_faces[i][static_cast<size_t>(k)];
   return out;
 }
 

@@ -38,8 +38,8 @@ struct LimitFitOptions {
 };
 
 struct LimitFitResult {
-  int iterations = 0;          ///< iterations done
-  double max_residual = 0.0;   ///< max |project(v∞) − v∞| after the fit (m)
+  int iterations = 0;             ///< iterations done
+  double max_residual = 0.0;      ///< max |project(v∞) − v∞| after the fit (m)
   double max_displacement = 0.0;  ///< max distance a control point moved (m)
 };
 

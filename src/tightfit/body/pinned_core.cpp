@@ -14,13 +14,15 @@ Points3 bone_sample_points(const CoreOptions& options, const SurfaceDistance& su
   if (options.bone_sample_spacing > 0.0)
     for (const BoneSegment& bone : options.bones) {
       const double length = (bone.tail - bone.head).norm();
-      const int segments = std::max(1, static_cast<int>(std::ceil(length / options.bone_sample_spacing)));
+      const int segments =
+          std::max(1, static_cast<int>(std::ceil(length / options.bone_sample_spacing)));
       for (int i = 0; i <= segments; ++i) {
         const Vec3 p = bone.head + (bone.tail - bone.head) * (double(i) / segments);
         const bool duplicate = std::any_of(points.begin(), points.end(), [&](const Vec3& q) {
           return (q - p).norm() < 0.5 * options.bone_sample_spacing;
         });
-        if (duplicate || surface.distance(p) < options.bone_sample_clearance || !surface.contains(p))
+        if (duplicate || surface.distance(p) < options.bone_sample_clearance ||
+            !surface.contains(p))
           continue;
         points.push_back(p);
       }
@@ -35,12 +37,14 @@ std::vector<int> pinned_core(const TetMesh& volume, int num_surface_vertices,
                              int num_always_pinned) {
   if (options.soft_tissue && !(*options.soft_tissue > 0.0))
     throw InputError(options.source, "the soft-tissue thickness must be positive");
-  if (!(options.bone_radius >= 0.0)) throw InputError(options.source, "the bone radius must be non-negative");
+  if (!(options.bone_radius >= 0.0))
+    throw InputError(options.source, "the bone radius must be non-negative");
   std::vector<int> pinned;
   double deepest = 0.0;
   const std::optional<SurfaceDistance> core =
-      options.embedded_core.num_faces() > 0 ? std::optional<SurfaceDistance>(std::in_place, options.embedded_core)
-                                            : std::nullopt;
+      options.embedded_core.num_faces() > 0
+          ? std::optional<SurfaceDistance>(std::in_place, options.embedded_core)
+          : std::nullopt;
   for (int v = num_surface_vertices; v < volume.num_vertices(); ++v) {
     const Vec3 p = volume.vertices.row(v);
     bool pin = v < num_surface_vertices + num_always_pinned || (core && core->contains(p));

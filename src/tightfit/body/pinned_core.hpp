@@ -18,9 +18,9 @@ namespace tightfit {
 ///  * the vertices of `embedded_core` and every vertex inside it.
 /// Surface vertices are never pinned.
 struct CoreOptions {
-  std::optional<double> soft_tissue;   ///< soft-tissue thickness (m), > 0
-  std::vector<BoneSegment> bones;      ///< bone segments (m), in the body's frame
-  double bone_radius = 0.01;           ///< pin radius around bone segments (m), ≥ 0
+  std::optional<double> soft_tissue;  ///< soft-tissue thickness (m), > 0
+  std::vector<BoneSegment> bones;     ///< bone segments (m), in the body's frame
+  double bone_radius = 0.01;          ///< pin radius around bone segments (m), ≥ 0
   /// Spacing (m) of the points sampled along the bones and inserted as volume vertices
   /// (so that every bone inside the body carries pinned vertices); 0 = no samples.
   double bone_sample_spacing = 0.0;

@@ -30,7 +30,8 @@ VecX tet_volumes(const Body& body, const Points3& y) {
 PosedBody pose_body(const Body& body, const Points3& y, const PointWeights& weights,
                     const std::map<std::string, RigidMotion>& bones, SkinningMethod method) {
   if (y.rows() != body.num_vertices() || weights.num_points() != body.num_vertices())
-    throw std::invalid_argument("pose_body: one position and one weight row per body vertex expected");
+    throw std::invalid_argument(
+        "pose_body: one position and one weight row per body vertex expected");
   PosedBody out;
   out.motions = blend_motions(weights, bones, method);
   out.positions = apply_motions(out.motions, y);
@@ -55,13 +56,15 @@ void check_posed_body(const PosedBody& posed, const Body& body, const std::strin
                       const std::string& source) {
   if (posed.inverted_tets > 0) {
     Vec3 c = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) c += body.volume.vertices.row(body.volume.tets(posed.worst_tet, k)).transpose() / 4.0;
+    for (int k = 0; k < 4; ++k)
+      c += body.volume.vertices.row(body.volume.tets(posed.worst_tet, k)).transpose() / 4.0;
     char where[96];
     std::snprintf(where, sizeof where, "(%.3f, %.3f, %.3f) m", c.x(), c.y(), c.z());
-    throw InputError(source, "pose \"" + pose_name + "\" inverts " + std::to_string(posed.inverted_tets) +
-                                 " of the body's " + std::to_string(body.volume.num_tets()) +
-                                 " tets, the worst at " + where +
-                                 " in the neutral body (a joint bent beyond what skinning can follow?)");
+    throw InputError(source,
+                     "pose \"" + pose_name + "\" inverts " + std::to_string(posed.inverted_tets) +
+                         " of the body's " + std::to_string(body.volume.num_tets()) +
+                         " tets, the worst at " + where +
+                         " in the neutral body (a joint bent beyond what skinning can follow?)");
   }
   if (posed.max_volume_ratio > kMaxTetGrowth)
     throw InputError(source, "pose \"" + pose_name + "\" pulls the body apart: a tet grows to " +

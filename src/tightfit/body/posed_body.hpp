@@ -25,13 +25,13 @@ namespace tightfit {
 
 /// A posed body and how its tets came through.
 struct PosedBody {
-  Points3 positions;                ///< y_i, n×3 (m)
+  Points3 positions;                 ///< y_i, n×3 (m)
   std::vector<PointMotion> motions;  ///< M_i(v) per body vertex
-  int inverted_tets = 0;            ///< tets with volume <= 0 in the pose
-  double min_volume_ratio = 1.0;    ///< smallest posed / neutral tet volume
-  int worst_tet = -1;               ///< the tet of min_volume_ratio (−1: no tets)
-  double max_volume_ratio = 1.0;    ///< largest posed / neutral tet volume
-  double volume_ratio = 1.0;        ///< posed / neutral volume of the whole body
+  int inverted_tets = 0;             ///< tets with volume <= 0 in the pose
+  double min_volume_ratio = 1.0;     ///< smallest posed / neutral tet volume
+  int worst_tet = -1;                ///< the tet of min_volume_ratio (−1: no tets)
+  double max_volume_ratio = 1.0;     ///< largest posed / neutral tet volume
+  double volume_ratio = 1.0;         ///< posed / neutral volume of the whole body
 };
 
 /// Poses the body state `y` (n×3, body.num_vertices() rows) with the bone motions

@@ -170,23 +170,31 @@ double guess_units_to_metres(const TriMesh& mesh, const std::string& source,
   const double extent =
       (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).maxCoeff();
   const std::string size = format("%.4g", extent);
-  const std::string ask = " (state the file's units in the body spec: \"units\": \"m\", \"cm\" or \"mm\")";
+  const std::string ask =
+      " (state the file's units in the body spec: \"units\": \"m\", \"cm\" or \"mm\")";
   if (!(extent >= 0.05) || extent > 3000.0)
-    throw InputError(source, "the body is " + size + " units across, no human body or body part "
-                             "in metres, centimetres or millimetres" + ask);
+    throw InputError(source, "the body is " + size +
+                                 " units across, no human body or body part "
+                                 "in metres, centimetres or millimetres" +
+                                 ask);
   if (extent <= 3.0) return 1.0;
   if (extent < 50.0) {
-    warnings.push_back(source + ": the body is " + size + " units across: read as centimetres "
-                       "(" + format("%.3g", extent / 100) + " m)" + ask);
+    warnings.push_back(source + ": the body is " + size +
+                       " units across: read as centimetres "
+                       "(" +
+                       format("%.3g", extent / 100) + " m)" + ask);
     return 0.01;
   }
   if (extent > 300.0) {
-    warnings.push_back(source + ": the body is " + size + " units across: read as millimetres "
-                       "(" + format("%.3g", extent / 1000) + " m)" + ask);
+    warnings.push_back(source + ": the body is " + size +
+                       " units across: read as millimetres "
+                       "(" +
+                       format("%.3g", extent / 1000) + " m)" + ask);
     return 0.001;
   }
   throw InputError(source, "the body is " + size + " units across: centimetres (a whole body of " +
-                               format("%.3g", extent / 100) + " m) or millimetres (a body part of " +
+                               format("%.3g", extent / 100) +
+                               " m) or millimetres (a body part of " +
                                format("%.3g", extent / 1000) + " m)?" + ask);
 }
 

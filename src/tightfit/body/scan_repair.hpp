@@ -33,7 +33,7 @@ struct SurfaceHole {
   double boundary_length = 0.0;  ///< sum of the loop's edge lengths
   int edges = 0;                 ///< edges on the loop
   Vec3 center = Vec3::Zero();    ///< mean of the loop's vertices
-  bool faired = false;  ///< filled and faired (CGAL's fairing can fail: then only refined)
+  bool faired = false;           ///< filled and faired (CGAL's fairing can fail: then only refined)
 };
 
 /// A connected surface after fill_small_holes.

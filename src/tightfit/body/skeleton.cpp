@@ -18,8 +18,10 @@ std::map<std::string, BoneSegment> read_skeleton(const std::filesystem::path& pa
     BoneSegment bone;
     bone.name = it.key();
     const nlohmann::json& parent = fields.raw("parent");
-    if (parent.is_string()) bone.parent = parent.get<std::string>();
-    else if (!parent.is_null()) fields.fail("expected a bone name or null", "parent");
+    if (parent.is_string())
+      bone.parent = parent.get<std::string>();
+    else if (!parent.is_null())
+      fields.fail("expected a bone name or null", "parent");
     bone.head = fields.vec3("head");
     bone.tail = fields.vec3("tail");
     fields.finish();
@@ -35,7 +37,8 @@ std::vector<BoneSegment> select_bones(const std::map<std::string, BoneSegment>& 
   std::vector<BoneSegment> out;
   for (const auto& name : names) {
     auto it = skeleton.find(name);
-    if (it == skeleton.end()) throw InputError(source, "no bone named \"" + name + "\" in the skeleton");
+    if (it == skeleton.end())
+      throw InputError(source, "no bone named \"" + name + "\" in the skeleton");
     out.push_back(it->second);
   }
   return out;

@@ -14,7 +14,7 @@ namespace tightfit {
 /// One bone: the segment from `head` to `tail` (m).
 struct BoneSegment {
   std::string name;
-  std::string parent;   ///< empty for the root
+  std::string parent;  ///< empty for the root
   Vec3 head = Vec3::Zero();
   Vec3 tail = Vec3::Zero();
 };

@@ -12,8 +12,8 @@ namespace {
 /// The body frame's axes by name (x to the body's left, y up, z forward).
 const std::map<std::string, Vec3>& body_axes() {
   static const std::map<std::string, Vec3> axes = {
-      {"left", Vec3::UnitX()}, {"right", -Vec3::UnitX()}, {"up", Vec3::UnitY()},
-      {"down", -Vec3::UnitY()}, {"front", Vec3::UnitZ()}, {"back", -Vec3::UnitZ()}};
+      {"left", Vec3::UnitX()},  {"right", -Vec3::UnitX()}, {"up", Vec3::UnitY()},
+      {"down", -Vec3::UnitY()}, {"front", Vec3::UnitZ()},  {"back", -Vec3::UnitZ()}};
   return axes;
 }
 
@@ -47,24 +47,31 @@ void parse_anchored_direction(JsonFields& f, const std::string& key,
     const std::string word = value.get<std::string>();
     if (word == "along_bone" || word == "-along_bone") {
       if (!point_anchor)
-        f.fail("\"" + word + "\" needs a bone anchor as \"point\" (or name the bone: "
-               "{\"along_bone\": NAME})", key);
+        f.fail("\"" + word +
+                   "\" needs a bone anchor as \"point\" (or name the bone: "
+                   "{\"along_bone\": NAME})",
+               key);
       along_bone = BoneDirection{point_anchor->bone, word[0] == '-' ? -1.0 : 1.0, ""};
     } else if (const auto it = body_axes().find(word); it != body_axes().end()) {
       direction = it->second;
     } else {
-      f.fail("expected [x, y, z], a body axis (left, right, up, down, front, back), "
-             "\"along_bone\" or \"-along_bone\", got \"" + word + "\"", key);
+      f.fail(
+          "expected [x, y, z], a body axis (left, right, up, down, front, back), "
+          "\"along_bone\" or \"-along_bone\", got \"" +
+              word + "\"",
+          key);
     }
   } else if (value.is_object()) {
     JsonFields nf(value, f.source(), f.child_path(key));
     BoneDirection d;
     if (nf.has("across_bones")) {
       const nlohmann::json& bones = nf.raw("across_bones");
-      if (!bones.is_array() || bones.size() != 2 || !bones[0].is_string() || !bones[1].is_string() ||
-          bones[0].get<std::string>().empty() || bones[1].get<std::string>().empty())
+      if (!bones.is_array() || bones.size() != 2 || !bones[0].is_string() ||
+          !bones[1].is_string() || bones[0].get<std::string>().empty() ||
+          bones[1].get<std::string>().empty())
         nf.fail("expected two bone names", "across_bones");
-      if (nf.has("along_bone")) nf.fail("give either \"along_bone\" or \"across_bones\"", "along_bone");
+      if (nf.has("along_bone"))
+        nf.fail("give either \"along_bone\" or \"across_bones\"", "along_bone");
       d.bone = bones[0].get<std::string>();
       d.across = bones[1].get<std::string>();
       if (d.bone == d.across) nf.fail("expected two different bones", "across_bones");
@@ -80,8 +87,10 @@ void parse_anchored_direction(JsonFields& f, const std::string& key,
     if (n.norm() < 1e-12) f.fail("the normal must not be zero", key);
     direction = n.normalized();
   } else {
-    f.fail("expected [x, y, z], a body axis, \"along_bone\", {\"along_bone\": NAME} or "
-           "{\"across_bones\": [A, B]}", key);
+    f.fail(
+        "expected [x, y, z], a body axis, \"along_bone\", {\"along_bone\": NAME} or "
+        "{\"across_bones\": [A, B]}",
+        key);
   }
 }
 
@@ -98,7 +107,9 @@ const BoneSegment& find_anchor_bone(const std::map<std::string, BoneSegment>& sk
                                (near.empty() ? "" : "; did you mean \"" + near + "\"?"));
 }
 
-Vec3 anchor_point(const BoneSegment& bone, double at) { return bone.head + at * (bone.tail - bone.head); }
+Vec3 anchor_point(const BoneSegment& bone, double at) {
+  return bone.head + at * (bone.tail - bone.head);
+}
 
 Vec3 resolve_bone_direction(const BoneDirection& direction,
                             const std::map<std::string, BoneSegment>& skeleton,
@@ -108,7 +119,8 @@ Vec3 resolve_bone_direction(const BoneDirection& direction,
     const BoneSegment& bone = find_anchor_bone(skeleton, name, source, path, skeleton_source);
     const Vec3 d = bone.tail - bone.head;
     if (!(d.norm() > 1e-9))
-      throw InputError(source, path + ": bone \"" + name + "\" has zero length: it gives no direction");
+      throw InputError(source,
+                       path + ": bone \"" + name + "\" has zero length: it gives no direction");
     return d.normalized();
   };
   const Vec3 along = unit_along(direction.bone);

@@ -13,7 +13,9 @@ Mat3 euler_rotation(const Vec3& degrees, std::string_view order) {
     throw std::invalid_argument("euler_rotation: order must be a permutation of XYZ");
   Mat3 R = Mat3::Identity();
   for (int k = 0; k < 3; ++k) {
-    const Vec3 axis = order[k] == 'X' ? Vec3::UnitX() : order[k] == 'Y' ? Vec3::UnitY() : Vec3::UnitZ();
+    const Vec3 axis = order[k] == 'X'   ? Vec3::UnitX()
+                      : order[k] == 'Y' ? Vec3::UnitY()
+                                        : Vec3::UnitZ();
     R = R * Eigen::AngleAxisd(degrees[k] * EIGEN_PI / 180.0, axis).toRotationMatrix();
   }
   return R;
@@ -51,7 +53,8 @@ std::map<std::string, RigidMotion> pose_skeleton(const std::map<std::string, Bon
                                                  const std::string& source) {
   for (const auto& [name, R] : rotations) {
     if (!skeleton.contains(name))
-      throw InputError(source, "the pose rotates \"" + name + "\", which is not a bone of the skeleton");
+      throw InputError(source,
+                       "the pose rotates \"" + name + "\", which is not a bone of the skeleton");
     if (!R.allFinite() || (R.transpose() * R - Mat3::Identity()).norm() > 1e-6 ||
         std::abs(R.determinant() - 1.0) > 1e-6)
       throw InputError(source, "the rotation of bone \"" + name + "\" is not a rotation matrix");

@@ -26,7 +26,8 @@ RigVertexWeights by_vertex(const SkinWeights& rig) {
     if (entries.empty()) continue;
     const int b = static_cast<int>(out.bones.size());
     out.bones.push_back(name);
-    for (const auto& [v, w] : entries) out.per_vertex[static_cast<std::size_t>(v)].emplace_back(b, w);
+    for (const auto& [v, w] : entries)
+      out.per_vertex[static_cast<std::size_t>(v)].emplace_back(b, w);
   }
   return out;
 }
@@ -73,8 +74,8 @@ PointWeights transfer_skin_weights(const SkinWeights& rig, const Points3& points
     double total = 0.0;
     for (const auto& e : entries) total += e.second;
     if (!(total > 0.0))
-      throw InputError(rig.source, "no skin weight near the point (" + std::to_string(p.x()) + ", " +
-                                       std::to_string(p.y()) + ", " + std::to_string(p.z()) +
+      throw InputError(rig.source, "no skin weight near the point (" + std::to_string(p.x()) +
+                                       ", " + std::to_string(p.y()) + ", " + std::to_string(p.z()) +
                                        ") m: the rig's nearest triangle has no weighted corner");
     out.add_point(entries);
   }
@@ -82,7 +83,8 @@ PointWeights transfer_skin_weights(const SkinWeights& rig, const Points3& points
   return out;
 }
 
-PointWeights body_skin_weights(const Body& body, const SkinWeights& rig, SkinTransferReport* report) {
+PointWeights body_skin_weights(const Body& body, const SkinWeights& rig,
+                               SkinTransferReport* report) {
   const int ns = body.num_surface_vertices(), n = body.num_vertices();
   const PointWeights surface = transfer_skin_weights(rig, body.surface.vertices, report);
   const int ni = n - ns;

@@ -32,6 +32,7 @@ struct SkinWeights {
 /// used) and the weights file `weights`. Throws InputError naming the file: unreadable
 /// files, a missing "weights" object, malformed entries, a negative or non-finite
 /// weight, a negative vertex index.
-SkinWeights read_skin_weights(const std::filesystem::path& mesh, const std::filesystem::path& weights);
+SkinWeights read_skin_weights(const std::filesystem::path& mesh,
+                              const std::filesystem::path& weights);
 
 }  // namespace tightfit

@@ -54,7 +54,8 @@ DualQuaternion to_dual_quaternion(const RigidMotion& m) {
 /// rotation of b_r/‖b_r‖, translation 2 (w_r v_d − w_d v_r + v_r × v_d)/‖b_r‖².
 PointMotion from_blend(const Eigen::Vector4d& real, const Eigen::Vector4d& dual) {
   const double n = real.norm();
-  const Eigen::Quaterniond r(real[3] / n, real[0] / n, real[1] / n, real[2] / n);  // coeffs: x y z w
+  const Eigen::Quaterniond r(real[3] / n, real[0] / n, real[1] / n,
+                             real[2] / n);  // coeffs: x y z w
   const Vec3 vr = real.head<3>() / n, vd = dual.head<3>() / n;
   const double wr = real[3] / n, wd = dual[3] / n;
   return {r.toRotationMatrix(), 2.0 * (wr * vd - wd * vr + vr.cross(vd))};

@@ -24,7 +24,8 @@ namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
 using namespace cgal_surface;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
+using Tree =
+    CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
 
 /// Projection of remeshed vertices onto the original input surface.
 struct ProjectOntoInput {
@@ -55,7 +56,8 @@ void keep_closed_feature_loops(const Mesh& mesh, EdgeFlags& flags, double min_le
     while (!stack.empty()) {
       const Mesh::Edge_index e = stack.back();
       stack.pop_back();
-      length += std::sqrt(CGAL::squared_distance(mesh.point(mesh.vertex(e, 0)), mesh.point(mesh.vertex(e, 1))));
+      length += std::sqrt(
+          CGAL::squared_distance(mesh.point(mesh.vertex(e, 0)), mesh.point(mesh.vertex(e, 1))));
       for (int end = 0; end < 2; ++end) {
         const Mesh::Vertex_index v = mesh.vertex(e, end);
         if (feature_degree(mesh, flags, v) != 2) loop = false;
@@ -115,7 +117,8 @@ RemeshResult remesh_isotropic(const TriMesh& surface, const RemeshOptions& optio
       bool on_plane = true;
       for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {
         const Point& p = mesh.point(v);
-        on_plane = on_plane && std::abs(n.dot(Vec3(p.x(), p.y(), p.z()) - plane.point)) <= tolerance;
+        on_plane =
+            on_plane && std::abs(n.dot(Vec3(p.x(), p.y(), p.z()) - plane.point)) <= tolerance;
       }
       if (on_plane) is_cap[f] = true;
     }
@@ -132,15 +135,17 @@ RemeshResult remesh_isotropic(const TriMesh& surface, const RemeshOptions& optio
   // Vertices where feature lines meet or end are kept fixed.
   auto corner = mesh.add_property_map<Mesh::Vertex_index, bool>("v:corner", false).first;
   int feature_edges = 0;
-  for (Mesh::Vertex_index v : mesh.vertices()) corner[v] = feature_degree(mesh, constrained, v) % 2 == 1 ||
-                                                             feature_degree(mesh, constrained, v) > 2;
+  for (Mesh::Vertex_index v : mesh.vertices())
+    corner[v] =
+        feature_degree(mesh, constrained, v) % 2 == 1 || feature_degree(mesh, constrained, v) > 2;
   for (Mesh::Edge_index e : mesh.edges()) feature_edges += constrained[e] ? 1 : 0;
 
   const Mesh input = mesh;
-  const auto params = CGAL::parameters::number_of_iterations(static_cast<unsigned int>(options.iterations))
-                          .edge_is_constrained_map(constrained)
-                          .vertex_is_constrained_map(corner)
-                          .protect_constraints(false);
+  const auto params =
+      CGAL::parameters::number_of_iterations(static_cast<unsigned int>(options.iterations))
+          .edge_is_constrained_map(constrained)
+          .vertex_is_constrained_map(corner)
+          .protect_constraints(false);
   PMP::isotropic_remeshing(mesh.faces(), options.edge_length, mesh, params);
   mesh.collect_garbage();
 
@@ -161,9 +166,10 @@ RemeshResult remesh_isotropic(const TriMesh& surface, const RemeshOptions& optio
   }
   if (!CGAL::is_closed(mesh)) throw InputError("remesh", "the remeshed surface is not closed");
   if (!region.empty())
-    throw InputError("remesh", "the surface remeshed at this edge length intersects itself (parts "
-                               "of the body are closer than the edge length): use a smaller edge "
-                               "length or crop that region");
+    throw InputError("remesh",
+                     "the surface remeshed at this edge length intersects itself (parts "
+                     "of the body are closer than the edge length): use a smaller edge "
+                     "length or crop that region");
   return {from_cgal(mesh), feature_edges, rounds};
 }
 

@@ -11,8 +11,8 @@
 namespace tightfit {
 
 struct RemeshOptions {
-  double edge_length = 0.015;   ///< target edge length (m), > 0
-  int iterations = 5;           ///< CGAL isotropic remeshing iterations (split, collapse, flip, relax)
+  double edge_length = 0.015;  ///< target edge length (m), > 0
+  int iterations = 5;  ///< CGAL isotropic remeshing iterations (split, collapse, flip, relax)
   /// Edges whose two faces' normals differ by more than this angle (degrees) are
   /// crease candidates; those that form closed loops at least `min_feature_loop_length`
   /// long (the rim of an existing cap) are feature edges. Open or short creases (toes,
@@ -29,8 +29,8 @@ struct RemeshOptions {
 /// Result of remeshing with the number of feature edges kept.
 struct RemeshResult {
   TriMesh mesh;
-  int feature_edges = 0;   ///< constrained edges of the input (before splitting)
-  int refinements = 0;     ///< local refinement rounds needed against self-intersections
+  int feature_edges = 0;  ///< constrained edges of the input (before splitting)
+  int refinements = 0;    ///< local refinement rounds needed against self-intersections
 };
 
 /// Isotropic remeshing (CGAL::Polygon_mesh_processing::isotropic_remeshing) of a closed

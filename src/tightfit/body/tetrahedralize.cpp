@@ -42,12 +42,18 @@ namespace {
 
 std::string tetgen_error_text(int code) {
   switch (code) {
-    case 1: return "TetGen ran out of memory";
-    case 3: return "the surface intersects itself";
-    case 4: return "the surface has a very small feature (nearly touching parts)";
-    case 5: return "the surface has two very close facets";
-    case 10: return "TetGen rejected the input";
-    default: return "TetGen failed with internal error " + std::to_string(code);
+    case 1:
+      return "TetGen ran out of memory";
+    case 3:
+      return "the surface intersects itself";
+    case 4:
+      return "the surface has a very small feature (nearly touching parts)";
+    case 5:
+      return "the surface has two very close facets";
+    case 10:
+      return "TetGen rejected the input";
+    default:
+      return "TetGen failed with internal error " + std::to_string(code);
   }
 }
 
@@ -91,20 +97,25 @@ void check_input(const TriMesh& surface, const TriMesh& internal, const Points3&
   if (internal.num_faces() > 0) {
     problems = surface_problems(internal);
     if (!problems.empty()) throw InputError("internal surface", problems.front());
-    problems = surface_problems(TriMesh{fixed.topRows(surface.num_vertices() + internal.num_vertices()), facets});
-    if (!problems.empty()) throw InputError("internal surface", "it touches the surface: " + problems.front());
+    problems = surface_problems(
+        TriMesh{fixed.topRows(surface.num_vertices() + internal.num_vertices()), facets});
+    if (!problems.empty())
+      throw InputError("internal surface", "it touches the surface: " + problems.front());
     for (int v = 0; v < internal.num_vertices(); ++v)
       if (!outer.contains(internal.vertices.row(v)))
-        throw InputError("internal surface", "vertex " + std::to_string(v) + " is outside the surface");
+        throw InputError("internal surface",
+                         "vertex " + std::to_string(v) + " is outside the surface");
   }
   if (interior.rows() > 0) {
     const SurfaceDistance inner(internal);
     for (Eigen::Index i = 0; i < interior.rows(); ++i) {
       const Vec3 p = interior.row(i);
       if (!outer.contains(p) || outer.distance(p) == 0.0)
-        throw InputError("interior points", "point " + std::to_string(i) + " is not strictly inside the surface");
+        throw InputError("interior points",
+                         "point " + std::to_string(i) + " is not strictly inside the surface");
       if (internal.num_faces() > 0 && inner.distance(p) == 0.0)
-        throw InputError("interior points", "point " + std::to_string(i) + " lies on the internal surface");
+        throw InputError("interior points",
+                         "point " + std::to_string(i) + " lies on the internal surface");
     }
   }
 }

@@ -14,8 +14,7 @@ namespace tightfit {
 /// about to write) becomes a SolverError "PATH: not written: WHERE". `binary` opens the
 /// stream in binary mode.
 void write_file_atomically(const std::filesystem::path& path,
-                           const std::function<void(std::ostream&)>& write,
-                           bool binary = false);
+                           const std::function<void(std::ostream&)>& write, bool binary = false);
 
 /// Writes `text` to `path` atomically.
 void write_text_atomically(const std::filesystem::path& path, const std::string& text);

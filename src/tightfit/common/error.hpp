@@ -11,8 +11,7 @@ class InputError : public std::runtime_error {
  public:
   /// `source` is the file name or JSON path, `what` says what is wrong with it.
   InputError(const std::string& source, const std::string& what)
-      : std::runtime_error(source.empty() ? what : source + ": " + what),
-        source_(source) {}
+      : std::runtime_error(source.empty() ? what : source + ": " + what), source_(source) {}
   const std::string& source() const { return source_; }
 
  private:

@@ -54,8 +54,9 @@ template <class T>
 void check_values(const T* values, std::size_t count, std::string_view what) {
   for (std::size_t i = 0; i < count; ++i)
     if (!std::isfinite(values[i]))
-      throw NonFiniteOutput("non-finite number (" + non_finite_name(static_cast<double>(values[i])) +
-                            ") in " + std::string(what) + ", element " + std::to_string(i));
+      throw NonFiniteOutput("non-finite number (" +
+                            non_finite_name(static_cast<double>(values[i])) + ") in " +
+                            std::string(what) + ", element " + std::to_string(i));
 }
 
 }  // namespace

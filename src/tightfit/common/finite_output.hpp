@@ -47,9 +47,9 @@ void require_finite_matrix(const Eigen::DenseBase<Derived>& m, std::string_view 
   for (Eigen::Index r = 0; r < m.rows(); ++r)
     for (Eigen::Index c = 0; c < m.cols(); ++c)
       if (!std::isfinite(static_cast<double>(m(r, c))))
-        throw NonFiniteOutput("non-finite number (" + non_finite_name(static_cast<double>(m(r, c))) +
-                              ") in " + std::string(what) + ", row " + std::to_string(r) +
-                              ", column " + std::to_string(c));
+        throw NonFiniteOutput(
+            "non-finite number (" + non_finite_name(static_cast<double>(m(r, c))) + ") in " +
+            std::string(what) + ", row " + std::to_string(r) + ", column " + std::to_string(c));
 }
 
 /// Writes `json.dump(indent)` and a newline to `path` atomically after

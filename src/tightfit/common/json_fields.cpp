@@ -14,8 +14,8 @@ std::string type_name(const nlohmann::json& j) { return j.type_name(); }
 JsonFields::JsonFields(const nlohmann::json& object, std::string source, std::string path)
     : object_(&object), source_(std::move(source)), path_(std::move(path)) {
   if (!object.is_object())
-    throw InputError(source_, (path_.empty() ? "/" : path_) + ": expected an object, got " +
-                                  type_name(object));
+    throw InputError(
+        source_, (path_.empty() ? "/" : path_) + ": expected an object, got " + type_name(object));
 }
 
 std::string JsonFields::child_path(const std::string& key) const { return path_ + "/" + key; }
@@ -30,8 +30,7 @@ void JsonFields::fail(const std::string& what, const std::string& key) const {
   throw InputError(source_, where + ": " + what);
 }
 
-const nlohmann::json& JsonFields::get(const std::string& key, const char* expected,
-                                      bool required) {
+const nlohmann::json& JsonFields::get(const std::string& key, const char* expected, bool required) {
   known_.insert(key);
   static const nlohmann::json null_json;
   auto it = object_->find(key);
@@ -63,8 +62,8 @@ double JsonFields::positive(const std::string& key, std::optional<double> fallba
   }
   const double v = number(key);
   if (allow_zero ? v < 0.0 : v <= 0.0)
-    fail(std::string("expected a ") + (allow_zero ? "non-negative" : "positive") +
-             " number, got " + std::to_string(v),
+    fail(std::string("expected a ") + (allow_zero ? "non-negative" : "positive") + " number, got " +
+             std::to_string(v),
          key);
   return v;
 }
@@ -142,7 +141,8 @@ std::vector<JsonFields> JsonFields::objects(const std::string& key, bool require
   if (!j.is_array()) fail("expected an array of objects, got " + type_name(j), key);
   for (size_t i = 0; i < j.size(); ++i) {
     const std::string p = child_path(key) + "/" + std::to_string(i);
-    if (!j[i].is_object()) throw InputError(source_, p + ": expected an object, got " + type_name(j[i]));
+    if (!j[i].is_object())
+      throw InputError(source_, p + ": expected an object, got " + type_name(j[i]));
     out.emplace_back(j[i], source_, p);
   }
   return out;
@@ -164,12 +164,16 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
   for (const char c : text) {
     if (c == '\n') ++line;
     if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
       continue;
     }
-    if (c == '"') in_string = true;
+    if (c == '"')
+      in_string = true;
     else if (c == '[' || c == '{') {
       if (++depth > kMaxJsonDepth)
         throw InputError(source, "invalid JSON: nested deeper than " +

@@ -16,7 +16,9 @@ namespace tightfit {
 inline constexpr double kMaxSurfaceTriangles = 2e6;
 
 /// Triangles of a surface of `area` (m²) meshed with equilateral triangles of edge `h` (m).
-inline double expected_triangles(double area, double h) { return area / (std::sqrt(3.0) / 4.0 * h * h); }
+inline double expected_triangles(double area, double h) {
+  return area / (std::sqrt(3.0) / 4.0 * h * h);
+}
 
 /// Why meshing `area` (m², e.g. of the "body surface") at edge length `h` (m) is refused
 /// (more than kMaxSurfaceTriangles triangles), or "" when it is not.
@@ -25,14 +27,16 @@ inline std::string mesh_budget_problem(double area, double h, const std::string&
   if (n <= kMaxSurfaceTriangles) return "";
   char text[256];
   std::snprintf(text, sizeof text,
-                "an edge length of %.3g m would mesh the %s (%.3g m²) into about %.3g triangles, more than %.3g: "
+                "an edge length of %.3g m would mesh the %s (%.3g m²) into about %.3g triangles, "
+                "more than %.3g: "
                 "lengths are in metres (5 mm is 0.005)",
                 h, what.c_str(), area, n, kMaxSurfaceTriangles);
   return text;
 }
 
 /// Throws InputError(source, mesh_budget_problem(…)) when there is one.
-inline void check_mesh_budget(double area, double h, const std::string& what, const std::string& source) {
+inline void check_mesh_budget(double area, double h, const std::string& what,
+                              const std::string& source) {
   if (const std::string problem = mesh_budget_problem(area, h, what); !problem.empty())
     throw InputError(source, problem);
 }

@@ -4,10 +4,10 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <regex>
 #include <atomic>
+#include <cerrno>
 #include <fstream>
+#include <regex>
 #include <utility>
 
 #include "tightfit/common/atomic_file.hpp"
@@ -43,7 +43,9 @@ long writer_pid(const std::string& name) {
   return std::stol(m[1].str());
 }
 
-bool process_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
+bool process_alive(long pid) {
+  return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+}
 
 }  // namespace
 
@@ -105,8 +107,8 @@ OutputDirectory::OutputDirectory(fs::path target, bool force, std::string comman
     : target_(std::move(target)), command_(std::move(command)) {
   created_target_ = prepare_output_folder(target_, force);
   static std::atomic<int> counter{0};
-  staging_ = target_ / (".tightfit-staging." + std::to_string(::getpid()) + "." +
-                        std::to_string(counter++));
+  staging_ = target_ /
+             (".tightfit-staging." + std::to_string(::getpid()) + "." + std::to_string(counter++));
   std::error_code ec;
   fs::create_directory(staging_, ec);
   if (ec) {

@@ -89,8 +89,8 @@ bool SparseCholesky::factorize(const SparseMatrix& A, const CholeskyOrdering* or
       // Only the given permutation (CHOLMOD's method 0), then the etree postorder.
       const int methods = d.common.nmethods;
       d.common.nmethods = 1;
-      d.factor = cholmod_analyze_p(&s, const_cast<int*>(ordering->permutation.data()), nullptr,
-                                   0, &d.common);
+      d.factor = cholmod_analyze_p(&s, const_cast<int*>(ordering->permutation.data()), nullptr, 0,
+                                   &d.common);
       d.common.nmethods = methods;
       if (d.factor && !(d.common.lnz <= max_fill_growth * ordering->factor_nonzeros))
         cholmod_free_factor(&d.factor, &d.common);
@@ -104,8 +104,7 @@ bool SparseCholesky::factorize(const SparseMatrix& A, const CholeskyOrdering* or
                                static_cast<const int*>(d.factor->Perm) + d.factor->n);
     d.found.factor_nonzeros = d.common.lnz;
     d.pattern_outer.assign(d.upper.outerIndexPtr(), d.upper.outerIndexPtr() + d.upper.cols() + 1);
-    d.pattern_inner.assign(d.upper.innerIndexPtr(),
-                           d.upper.innerIndexPtr() + d.upper.nonZeros());
+    d.pattern_inner.assign(d.upper.innerIndexPtr(), d.upper.innerIndexPtr() + d.upper.nonZeros());
     d.n = A.rows();
     ++d.analyses;
   }

@@ -71,7 +71,7 @@ struct ShiftSequence {
   double initial = 1e-8;  ///< relative to mean |diag(A)|
   double growth = 10.0;
   int attempts = 30;
-  bool try_unshifted = true;  ///< try A itself before the first shift
+  bool try_unshifted = true;     ///< try A itself before the first shift
   double diagonal_floor = 1e-6;  ///< smallest |A_ii| a shift is scaled by, relative to the mean
 };
 

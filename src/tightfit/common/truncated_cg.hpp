@@ -17,11 +17,11 @@ struct TruncatedCgOptions {
 };
 
 struct TruncatedCgReport {
-  bool converged = false;            ///< the tolerance was reached
-  bool negative_curvature = false;   ///< stopped on a direction p with pᵀA p ≤ 0
-  int iterations = 0;                ///< products with A
-  double relative_residual = 0.0;    ///< ‖b − A x‖ / ‖b‖ of the returned x (by the CG
-                                     ///< recurrence: equal up to round-off)
+  bool converged = false;           ///< the tolerance was reached
+  bool negative_curvature = false;  ///< stopped on a direction p with pᵀA p ≤ 0
+  int iterations = 0;               ///< products with A
+  double relative_residual = 0.0;   ///< ‖b − A x‖ / ‖b‖ of the returned x (by the CG
+                                    ///< recurrence: equal up to round-off)
 };
 
 /// Returns x ≈ A⁻¹ b (see above); `preconditioner` applies M⁻¹ (symmetric positive

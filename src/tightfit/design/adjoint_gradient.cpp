@@ -45,10 +45,14 @@ SimulationDesignState::SimulationDesignState(const GarmentSimulation& sim)
 
 const char* adjoint_method_name(AdjointMethod method) {
   switch (method) {
-    case AdjointMethod::kNone: return "none";
-    case AdjointMethod::kDirect: return "direct";
-    case AdjointMethod::kPreconditioned: return "preconditioned";
-    case AdjointMethod::kFallback: return "fallback";
+    case AdjointMethod::kNone:
+      return "none";
+    case AdjointMethod::kDirect:
+      return "direct";
+    case AdjointMethod::kPreconditioned:
+      return "preconditioned";
+    case AdjointMethod::kFallback:
+      return "fallback";
   }
   return "unknown";
 }
@@ -90,12 +94,13 @@ AdjointResult AdjointSolver::rest_gradient(GarmentSimulation& sim, const DesignT
     if (!d_s.allFinite() || !d_y.allFinite())
       throw SolverError("adjoint: the gradient of '" + term.name() + "' is not finite");
     for (int i = 0; i < problem.num_garment_vertices(); ++i)
-      if (const int dof = problem.garment_dof(i); dof >= 0) rhs.segment<2>(dof) += d_s.segment<2>(2 * i);
+      if (const int dof = problem.garment_dof(i); dof >= 0)
+        rhs.segment<2>(dof) += d_s.segment<2>(2 * i);
     for (Eigen::Index k = 0; k < ds.body.rows(); ++k)
       if (const int dof = problem.body_dof(static_cast<int>(k)); dof >= 0)
         rhs.segment<3>(dof) += d_y.segment<3>(3 * k);
   }
-  if (rhs.squaredNorm() == 0.0) return r;         // x depends on no free DOF
+  if (rhs.squaredNorm() == 0.0) return r;  // x depends on no free DOF
   const AdjointSolve a = solve(sim, rhs);
   r.hessian_shift = a.hessian_shift;
   r.adjoint_residual = a.residual;
@@ -116,8 +121,9 @@ std::optional<double> AdjointSolver::factorize_held(const SparseMatrix& H_newton
                              options_.max_regularizations};
   ++generation_;
   held_ordering_ = next_ordering_;
-  const auto shift = factorize_shifted(newton_factor_, H_newton, shifts, factorizations, nullptr,
-                                       held_ordering_.permutation.empty() ? nullptr : &held_ordering_);
+  const auto shift =
+      factorize_shifted(newton_factor_, H_newton, shifts, factorizations, nullptr,
+                        held_ordering_.permutation.empty() ? nullptr : &held_ordering_);
   held_valid_ = shift.has_value();
   if (held_valid_) next_ordering_ = newton_factor_.ordering();
   return shift;
@@ -160,9 +166,8 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
     gmres.relative_tolerance = options_.iterative_tolerance;
     gmres.max_iterations = options_.max_iterative_iterations;
     VecX lambda = newton_factor_.solve(rhs);  // the solution where nothing was projected
-    const GmresReport report =
-        preconditioned_gmres(apply_exact, [&](const VecX& v) { return newton_factor_.solve(v); },
-                             rhs, lambda, gmres);
+    const GmresReport report = preconditioned_gmres(
+        apply_exact, [&](const VecX& v) { return newton_factor_.solve(v); }, rhs, lambda, gmres);
     out.krylov_iterations = report.iterations;
     if (report.converged && lambda.allFinite()) {
       out.lambda = std::move(lambda);
@@ -173,7 +178,8 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
       return out;
     }
   }
-  const SparseMatrix H = problem.projects_hessians() ? problem.hessian(HessianKind::kExact) : H_newton;
+  const SparseMatrix H =
+      problem.projects_hessians() ? problem.hessian(HessianKind::kExact) : H_newton;
   double last = 0.0;
   const auto shift = factorize_shifted(exact_factor_, H, shifts, out.factorizations, &last);
   if (!shift)

@@ -39,9 +39,9 @@
 /// stiffness along a direction the objective cares about). GMRES solves an indefinite
 /// but regular system exactly. In the fallback, if the Cholesky factorization of H fails,
 /// H + δS (S: ShiftSequence's diagonal scaling) is factorized with the smallest δ of a
-/// growing sequence (as in Newton) and the result reports δ > 0: that gradient is then NOT the exact derivative (it is the
-/// gradient of a problem whose equilibrium is stiffened by δ), only a descent-ish
-/// direction. Callers should surface `hessian_shift`.
+/// growing sequence (as in Newton) and the result reports δ > 0: that gradient is then NOT the
+/// exact derivative (it is the gradient of a problem whose equilibrium is stiffened by δ), only a
+/// descent-ish direction. Callers should surface `hessian_shift`.
 ///
 /// Terms that do not depend on x (the regularizers) need no linear solve.
 #include <optional>
@@ -86,8 +86,8 @@ struct AdjointResult {
   double hessian_shift = 0.0;     ///< absolute diagonal shift δ (N/m); 0: exact gradient
   double adjoint_residual = 0.0;  ///< ‖H λ − ∂T/∂q‖ / ‖∂T/∂q‖ with the exact H
   AdjointMethod method = AdjointMethod::kNone;
-  int krylov_iterations = 0;      ///< GMRES iterations (kPreconditioned, kFallback)
-  int factorizations = 0;         ///< Cholesky factorizations done for this gradient
+  int krylov_iterations = 0;  ///< GMRES iterations (kPreconditioned, kFallback)
+  int factorizations = 0;     ///< Cholesky factorizations done for this gradient
 };
 
 /// The exact Hessian ∂g/∂q (n_dofs × n_dofs, N/m) of the simulation's total energy at

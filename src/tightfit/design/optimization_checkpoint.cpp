@@ -115,27 +115,27 @@ nlohmann::json iteration_json(const OptimizationIteration& it,
                               const std::vector<std::string>& term_names) {
   const nlohmann::json terms = terms_json(it.term_values, term_names);
   nlohmann::json j = {{"iteration", it.iteration},
-          {"objective", it.value},
-          {"terms", terms},
-          {"gradient_norm", it.gradient_norm},
-          {"step_norm", it.step_norm},
-          {"max_point_move", it.max_point_move},
-          {"max_solved_move", it.max_solved_move},
-          {"step_factor", it.step_factor},
-          {"line_search_trials", it.line_search_trials},
-          {"failed_solves", it.failed_solves},
-          {"newton_iterations", it.newton_iterations},
-          {"chord_steps", it.chord_steps},
-          {"factorizations", it.factorizations},
-          {"adjoint_method", it.adjoint_method},
-          {"krylov_iterations", it.krylov_iterations},
-          {"hessian_shift", it.hessian_shift},
-          {"seconds", it.seconds},
-          {"seconds_forward", it.seconds_forward},
-          {"seconds_objective", it.seconds_objective},
-          {"seconds_adjoint", it.seconds_adjoint},
-          {"seconds_assembly", it.seconds_assembly},
-          {"seconds_factorization", it.seconds_factorization}};
+                      {"objective", it.value},
+                      {"terms", terms},
+                      {"gradient_norm", it.gradient_norm},
+                      {"step_norm", it.step_norm},
+                      {"max_point_move", it.max_point_move},
+                      {"max_solved_move", it.max_solved_move},
+                      {"step_factor", it.step_factor},
+                      {"line_search_trials", it.line_search_trials},
+                      {"failed_solves", it.failed_solves},
+                      {"newton_iterations", it.newton_iterations},
+                      {"chord_steps", it.chord_steps},
+                      {"factorizations", it.factorizations},
+                      {"adjoint_method", it.adjoint_method},
+                      {"krylov_iterations", it.krylov_iterations},
+                      {"hessian_shift", it.hessian_shift},
+                      {"seconds", it.seconds},
+                      {"seconds_forward", it.seconds_forward},
+                      {"seconds_objective", it.seconds_objective},
+                      {"seconds_adjoint", it.seconds_adjoint},
+                      {"seconds_assembly", it.seconds_assembly},
+                      {"seconds_factorization", it.seconds_factorization}};
   if (it.remesh) j["remesh"] = remesh_json(*it.remesh, term_names);
   return j;
 }
@@ -260,8 +260,7 @@ OptimizationCheckpoint checkpoint_from_json(const nlohmann::json& j,
     for (size_t i = 0; i < perm.size(); ++i) {
       const nlohmann::json& e = perm[i];
       if (!e.is_number_integer() || e.get<std::int64_t>() < 0 ||
-          e.get<std::int64_t>() >= static_cast<std::int64_t>(perm.size()) ||
-          seen[e.get<size_t>()])
+          e.get<std::int64_t>() >= static_cast<std::int64_t>(perm.size()) || seen[e.get<size_t>()])
         throw InputError(source, "/held_ordering/permutation/" + std::to_string(i) +
                                      ": not a permutation of 0 … " +
                                      std::to_string(perm.size() - 1));

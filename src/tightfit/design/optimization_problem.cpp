@@ -124,10 +124,12 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
   std::vector<Points2> mesh_rest = mesh_rest_;
   for (int k : r.remeshed) {
     mesh_rest[static_cast<size_t>(k)] = r.garment.pattern.pieces[static_cast<size_t>(k)].rest;
-    out.min_angle_before = std::min(out.min_angle_before,
-                                    piece_quality(old_garment.pattern.pieces[static_cast<size_t>(k)]).min_angle_deg);
+    out.min_angle_before =
+        std::min(out.min_angle_before,
+                 piece_quality(old_garment.pattern.pieces[static_cast<size_t>(k)]).min_angle_deg);
     fresh[static_cast<size_t>(k)] = piece_quality(r.garment.pattern.pieces[static_cast<size_t>(k)]);
-    out.min_angle_after = std::min(out.min_angle_after, fresh[static_cast<size_t>(k)].min_angle_deg);
+    out.min_angle_after =
+        std::min(out.min_angle_after, fresh[static_cast<size_t>(k)].min_angle_deg);
   }
 
   // Keep everything needed to undo.
@@ -207,34 +209,35 @@ void DesignProblem::restore_remeshed_design(const RemeshedDesign& design,
   const Pattern& scene = sim_.garment().pattern;
   const Pattern& p = design.pattern;
   auto mismatch = [&](const std::string& path, const std::string& what) {
-    throw InputError(source, "/remeshed/pattern/" + path + ": " + what +
-                                 " (a checkpoint of another garment?)");
+    throw InputError(
+        source, "/remeshed/pattern/" + path + ": " + what + " (a checkpoint of another garment?)");
   };
   if (p.pieces.size() != scene.pieces.size())
     mismatch("pieces", std::to_string(p.pieces.size()) + " pieces, the scene's garment has " +
                            std::to_string(scene.pieces.size()));
   for (size_t k = 0; k < p.pieces.size(); ++k)
     if (p.pieces[k].name != scene.pieces[k].name)
-      mismatch("pieces/" + std::to_string(k) + "/name",
-               "\"" + p.pieces[k].name + "\", the scene's piece is \"" + scene.pieces[k].name + "\"");
+      mismatch(
+          "pieces/" + std::to_string(k) + "/name",
+          "\"" + p.pieces[k].name + "\", the scene's piece is \"" + scene.pieces[k].name + "\"");
   if (p.seams.size() != scene.seams.size())
     mismatch("seams", std::to_string(p.seams.size()) + " seams, the scene's garment has " +
                           std::to_string(scene.seams.size()));
   for (size_t k = 0; k < p.seams.size(); ++k)
     if (p.seams[k].name != scene.seams[k].name || p.seams[k].a.piece != scene.seams[k].a.piece ||
         p.seams[k].b.piece != scene.seams[k].b.piece)
-      mismatch("seams/" + std::to_string(k),
-               "seam \"" + p.seams[k].name + "\" differs from the scene's \"" +
-                   scene.seams[k].name + "\" (name or pieces)");
+      mismatch("seams/" + std::to_string(k), "seam \"" + p.seams[k].name +
+                                                 "\" differs from the scene's \"" +
+                                                 scene.seams[k].name + "\" (name or pieces)");
   if (p.pinned.size() != scene.pinned.size())
     mismatch("pinned", std::to_string(p.pinned.size()) +
                            " pinned boundaries, the scene's garment has " +
                            std::to_string(scene.pinned.size()));
   for (size_t k = 0; k < p.pinned.size(); ++k)
     if (p.pinned[k].name != scene.pinned[k].name || p.pinned[k].piece != scene.pinned[k].piece)
-      mismatch("pinned/" + std::to_string(k),
-               "pinned boundary \"" + p.pinned[k].name + "\" differs from the scene's \"" +
-                   scene.pinned[k].name + "\" (name or piece)");
+      mismatch("pinned/" + std::to_string(k), "pinned boundary \"" + p.pinned[k].name +
+                                                  "\" differs from the scene's \"" +
+                                                  scene.pinned[k].name + "\" (name or piece)");
   if (design.mesh_rest.size() != p.pieces.size())
     throw InputError(source, "/remeshed/mesh_rest: " + std::to_string(design.mesh_rest.size()) +
                                  " pieces, the pattern has " + std::to_string(p.pieces.size()));
@@ -259,7 +262,8 @@ void DesignProblem::restore_remeshed_design(const RemeshedDesign& design,
     throw InputError(source, std::string("/remeshed: ") + e.what());
   } catch (const SolverError& e) {
     throw InputError(source, std::string("/remeshed: the biharmonic coordinates of the mesh "
-                                         "rest positions failed: ") + e.what());
+                                         "rest positions failed: ") +
+                                 e.what());
   }
   if (static_cast<int>(state.garment.size()) != garment.num_garment_vertices ||
       state.body.rows() != sim_.body().volume.vertices.rows())

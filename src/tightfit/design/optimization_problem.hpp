@@ -15,8 +15,9 @@
 /// first one is the first-order prediction Δq = −H⁻¹ (∂g/∂p) Δp of the new
 /// equilibrium, and while the chord steps contract fast the forward solve needs no
 /// factorization of its own. Everything a trial starts from is a function of the
-/// accepted point, so a resumed run repeats an uninterrupted one exactly. The gradient comes from the adjoint (adjoint_gradient.hpp) and the
-/// biharmonic pull-back, dT/dp = Wᵀ dT/dXbar. A trial fails, without throwing, when
+/// accepted point, so a resumed run repeats an uninterrupted one exactly. The gradient comes from
+/// the adjoint (adjoint_gradient.hpp) and the biharmonic pull-back, dT/dp = Wᵀ dT/dXbar. A trial
+/// fails, without throwing, when
 ///  * a rest triangle flips or shrinks below `min_area_ratio` of its initial area,
 ///  * the rest-dependent energies reject the rest shape (InputError),
 ///  * the forward Newton solve does not converge (SolverError or report),
@@ -66,7 +67,6 @@ struct DesignProblemOptions {
 using ObjectiveFactory =
     std::function<std::shared_ptr<const DesignTermSum>(const GarmentSimulation&)>;
 
-
 /// One evaluation of the design problem at parameters p.
 struct DesignEvaluation {
   bool ok = false;                  ///< converged equilibrium, valid pattern, finite T
@@ -81,29 +81,29 @@ struct DesignEvaluation {
   int factorizations = 0;           ///< Cholesky factorizations of the forward solve
   int adjoint_factorizations = 0;   ///< and of the gradient
   AdjointMethod adjoint_method = AdjointMethod::kNone;
-  int krylov_iterations = 0;        ///< GMRES iterations of the adjoint solve
-  double force_residual = 0.0;      ///< N, final force norm of the forward solve
+  int krylov_iterations = 0;           ///< GMRES iterations of the adjoint solve
+  double force_residual = 0.0;         ///< N, final force norm of the forward solve
   double seconds_assembly = 0.0;       ///< of seconds_forward: gradients and Hessians (s)
   double seconds_factorization = 0.0;  ///< of seconds_forward: Cholesky factorizations (s)
-  double seconds_forward = 0.0;    ///< forward Newton solve (s)
-  double seconds_objective = 0.0;  ///< evaluating T at the equilibrium (s)
-  double seconds_adjoint = 0.0;    ///< dT/dp: term gradients, adjoint solve, pull-back (s)
+  double seconds_forward = 0.0;        ///< forward Newton solve (s)
+  double seconds_objective = 0.0;      ///< evaluating T at the equilibrium (s)
+  double seconds_adjoint = 0.0;        ///< dT/dp: term gradients, adjoint solve, pull-back (s)
 };
 
 /// What one remeshing did.
 struct RemeshOutcome {
   bool ok = false;
-  std::string failure;             ///< why it was undone (when !ok)
-  std::vector<int> pieces;         ///< remeshed pieces (the degraded ones and their seam partners)
-  double min_angle_before = 0.0;   ///< degrees, smallest angle over those pieces before
-  double min_angle_after = 0.0;    ///< and after remeshing
+  std::string failure;            ///< why it was undone (when !ok)
+  std::vector<int> pieces;        ///< remeshed pieces (the degraded ones and their seam partners)
+  double min_angle_before = 0.0;  ///< degrees, smallest angle over those pieces before
+  double min_angle_after = 0.0;   ///< and after remeshing
   int parameters_before = 0;
   int parameters_after = 0;
   int garment_vertices_before = 0;
   int garment_vertices_after = 0;
-  int triangles_after = 0;         ///< pattern triangles of the new garment
-  double seconds = 0.0;            ///< wall time of remeshing, transfer and re-solve (s)
-  DesignEvaluation evaluation;     ///< at the remeshed pattern, with gradient (when ok)
+  int triangles_after = 0;      ///< pattern triangles of the new garment
+  double seconds = 0.0;         ///< wall time of remeshing, transfer and re-solve (s)
+  DesignEvaluation evaluation;  ///< at the remeshed pattern, with gradient (when ok)
 };
 
 class DesignProblem {
@@ -205,10 +205,10 @@ class DesignProblem {
   VecX initial_areas_;  // signed rest areas of the pattern triangles
   double mean_boundary_edge_ = 0.0;
   ObjectiveFactory make_objective_;
-  std::vector<double> target_edge_;     // per piece (m)
-  std::vector<PieceQuality> fresh_;     // per piece: quality of its last fresh mesh
-  std::vector<Points2> mesh_rest_;      // per piece: rest positions its mesh was made with
-  bool remeshed_ = false;               // a remesh() succeeded (or one was restored)
+  std::vector<double> target_edge_;  // per piece (m)
+  std::vector<PieceQuality> fresh_;  // per piece: quality of its last fresh mesh
+  std::vector<Points2> mesh_rest_;   // per piece: rest positions its mesh was made with
+  bool remeshed_ = false;            // a remesh() succeeded (or one was restored)
   VecX accepted_p_;
   EmbeddedState accepted_state_;
   CholeskyOrdering accepted_ordering_;

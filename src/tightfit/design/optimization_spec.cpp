@@ -118,7 +118,8 @@ OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const st
       s.friction = o->positive("friction", s.friction, true);
       const nlohmann::json& poses = o->raw("poses");
       if (!poses.is_null()) {
-        if (!poses.is_array() || poses.empty()) o->fail("expected a non-empty array of pose names", "poses");
+        if (!poses.is_array() || poses.empty())
+          o->fail("expected a non-empty array of pose names", "poses");
         for (const nlohmann::json& name : poses) {
           if (!name.is_string()) o->fail("expected a non-empty array of pose names", "poses");
           s.poses.push_back(name.get<std::string>());
@@ -158,15 +159,13 @@ OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const st
   f.finish();
 
   const RegularizerWeights& w = spec.regularizers;
-  const bool any = (spec.stretch && spec.stretch->weight > 0) ||
-                   (spec.directional_stretch && spec.directional_stretch->bounds.weight > 0) ||
-                   (spec.shape && spec.shape->weight > 0) ||
-                   (spec.pressure && spec.pressure->weight > 0) ||
-                   (spec.seam_traction && spec.seam_traction->weight > 0) ||
-                   (spec.sliding && spec.sliding->weight > 0) || w.seam_length > 0 ||
-                   w.boundary_spacing > 0 || w.boundary_smoothness > 0 || w.corner_angle > 0 ||
-                   w.compactness > 0 ||
-                   w.pinned_traction > 0;
+  const bool any =
+      (spec.stretch && spec.stretch->weight > 0) ||
+      (spec.directional_stretch && spec.directional_stretch->bounds.weight > 0) ||
+      (spec.shape && spec.shape->weight > 0) || (spec.pressure && spec.pressure->weight > 0) ||
+      (spec.seam_traction && spec.seam_traction->weight > 0) ||
+      (spec.sliding && spec.sliding->weight > 0) || w.seam_length > 0 || w.boundary_spacing > 0 ||
+      w.boundary_smoothness > 0 || w.corner_angle > 0 || w.compactness > 0 || w.pinned_traction > 0;
   if (!any) f.fail("no objective or regularizer with a positive weight");
   return spec;
 }

@@ -42,9 +42,10 @@
 ///                "smoothing_iterations": 10}
 ///   }
 ///
-/// Units of the terms (see each term's header): stretch and directional stretch m², shape m², pressure Pa²·m²,
-/// seam traction N, sliding N², pinned traction N², seam length and boundary spacing m², boundary smoothness 1/m,
-/// compactness dimensionless. Weights are >= 0; weight 0 switches a term off.
+/// Units of the terms (see each term's header): stretch and directional stretch m², shape m²,
+/// pressure Pa²·m², seam traction N, sliding N², pinned traction N², seam length and boundary
+/// spacing m², boundary smoothness 1/m, compactness dimensionless. Weights are >= 0; weight 0
+/// switches a term off.
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -52,27 +53,28 @@
 #include <string>
 #include <vector>
 
-#include "tightfit/design/optimization_problem.hpp"
 #include "tightfit/body/skeleton_pose.hpp"
 #include "tightfit/body/skin_weights.hpp"
 #include "tightfit/body/skinning.hpp"
-#include "tightfit/design/pressure_region.hpp"
+#include "tightfit/design/optimization_problem.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
+#include "tightfit/design/pressure_region.hpp"
 #include "tightfit/design/regularizer_compactness.hpp"
 
 namespace tightfit {
 
 struct StretchObjectiveSpec {
   double weight = 1.0;
-  bool all_poses = false;  ///< "poses": "all": also in every scene pose (objectives/all_poses_term.hpp)
+  bool all_poses =
+      false;  ///< "poses": "all": also in every scene pose (objectives/all_poses_term.hpp)
   double min_stretch = 1.0;
   std::optional<double> max_stretch;  ///< none: no upper bound
 };
 
 /// Stretch bounds on one fabric direction of every piece (DirectionalStretchObjective).
 struct DirectionalStretchObjectiveSpec {
-  StretchObjectiveSpec bounds;   ///< weight and stretch range
-  bool across_grain = true;      ///< false: along the grain
+  StretchObjectiveSpec bounds;  ///< weight and stretch range
+  bool across_grain = true;     ///< false: along the grain
 };
 
 struct ShapeObjectiveSpec {
@@ -92,10 +94,10 @@ struct PressureObjectiveSpec {
   /// (copied into `regions` by read_optimization_scene). Else [min_pa, max_pa] on the
   /// whole garment.
   bool scene_regions = false;
-  double min_pa = 0.0;  ///< Pa (min_mmhg converted)
-  double max_pa = 0.0;  ///< Pa
-  std::vector<PressureRegion> regions;  ///< when scene_regions
-  std::string regions_source;           ///< the scene file, for errors about the regions
+  double min_pa = 0.0;                     ///< Pa (min_mmhg converted)
+  double max_pa = 0.0;                     ///< Pa
+  std::vector<PressureRegion> regions;     ///< when scene_regions
+  std::string regions_source;              ///< the scene file, for errors about the regions
   std::shared_ptr<const SkinWeights> rig;  ///< skin weights of bone regions (may be null)
   double rig_radius = 0.03;                ///< m
 };

@@ -27,8 +27,8 @@ PatternOptimizer::PatternOptimizer(DesignProblem& problem, PatternOptimizerOptio
   if (!(options_.armijo > 0.0 && options_.armijo < 0.5))
     throw std::invalid_argument("PatternOptimizer: armijo must be in (0, 0.5)");
   if (!(options_.max_step >= 0.0) || !(options_.max_step_fraction > 0.0) ||
-      !(options_.step_growth >= 0.0) ||
-      !(options_.gradient_tolerance >= 0.0) || !(options_.relative_gradient_tolerance >= 0.0) ||
+      !(options_.step_growth >= 0.0) || !(options_.gradient_tolerance >= 0.0) ||
+      !(options_.relative_gradient_tolerance >= 0.0) ||
       !(options_.relative_decrease_tolerance >= 0.0) || std::isnan(options_.value_tolerance))
     throw std::invalid_argument("PatternOptimizer: tolerances and step limits must be >= 0");
 }
@@ -73,26 +73,28 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
   for (const OptimizationIteration& it : checkpoint.history)
     remeshed = remeshed || (it.remesh && it.remesh->failure.empty());
   if (remeshed && !checkpoint.remeshed)
-    throw InputError("checkpoint", "its history has a remeshing but it holds no remeshed "
-                                   "pattern (/remeshed)");
+    throw InputError("checkpoint",
+                     "its history has a remeshing but it holds no remeshed "
+                     "pattern (/remeshed)");
   if (!remeshed && checkpoint.remeshed)
-    throw InputError("checkpoint", "it holds a remeshed pattern (/remeshed) but its history "
-                                   "has no remeshing");
+    throw InputError("checkpoint",
+                     "it holds a remeshed pattern (/remeshed) but its history "
+                     "has no remeshing");
   if (checkpoint.history.empty())
     throw InputError("checkpoint", "it has no history (not even the initial iteration)");
   const GarmentSimulation& sim = problem_.simulation();
   check_surface_points(checkpoint.state.garment, sim.surface().num_faces(), "checkpoint",
                        "/state/garment");
   if (checkpoint.state.body.rows() != sim.body_positions().rows())
-    throw InputError("checkpoint", "its body state has " +
-                                       std::to_string(checkpoint.state.body.rows()) +
-                                       " positions, the body has " +
-                                       std::to_string(sim.body_positions().rows()) +
-                                       " vertices (another body?)");
+    throw InputError("checkpoint",
+                     "its body state has " + std::to_string(checkpoint.state.body.rows()) +
+                         " positions, the body has " + std::to_string(sim.body_positions().rows()) +
+                         " vertices (another body?)");
   if (checkpoint.remeshed) {
     if (!problem_.can_remesh())
-      throw InputError("checkpoint", "it was written after a remeshing, and this problem "
-                                     "cannot rebuild its objective for a remeshed pattern");
+      throw InputError("checkpoint",
+                       "it was written after a remeshing, and this problem "
+                       "cannot rebuild its objective for a remeshed pattern");
     problem_.restore_remeshed_design(*checkpoint.remeshed, checkpoint.state);
   }
   const Eigen::Index n = problem_.num_parameters();
@@ -107,11 +109,11 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
       throw InputError("checkpoint", "its L-BFGS memory does not match the design parameters");
   if (static_cast<int>(checkpoint.state.garment.size()) !=
       problem_.simulation().garment().num_garment_vertices)
-    throw InputError("checkpoint", "its state has " +
-                                       std::to_string(checkpoint.state.garment.size()) +
-                                       " garment surface points, the garment has " +
-                                       std::to_string(problem_.simulation().garment().num_garment_vertices) +
-                                       " vertices (another garment or mesh?)");
+    throw InputError("checkpoint",
+                     "its state has " + std::to_string(checkpoint.state.garment.size()) +
+                         " garment surface points, the garment has " +
+                         std::to_string(problem_.simulation().garment().num_garment_vertices) +
+                         " vertices (another garment or mesh?)");
   problem_.set_accepted(checkpoint.parameters, checkpoint.state, checkpoint.held_ordering);
   memory_ = checkpoint.memory;
   while (static_cast<int>(memory_.s.size()) > options_.memory) {
@@ -136,9 +138,8 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
 
 void PatternOptimizer::update_counters(double value_before, const OptimizationIteration& record) {
   const double decrease = value_before - record.value;
-  stalled_ = decrease <= options_.relative_decrease_tolerance * std::abs(value_before)
-                 ? stalled_ + 1
-                 : 0;
+  stalled_ =
+      decrease <= options_.relative_decrease_tolerance * std::abs(value_before) ? stalled_ + 1 : 0;
   if (const auto& r = record.remesh) {
     if (r->failure.empty())
       stalled_ = 0;
@@ -168,10 +169,10 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
   VecX p = problem_.accepted_parameters();
   DesignEvaluation current = problem_.evaluate(p, true);
   if (!current.ok)
-    throw SolverError("initial equilibrium" +
-                      (resumed_ ? " (resumed at iteration " + std::to_string(iteration_) + ")"
-                                : std::string()) +
-                      ": the starting pattern cannot be evaluated: " + current.failure);
+    throw SolverError(
+        "initial equilibrium" +
+        (resumed_ ? " (resumed at iteration " + std::to_string(iteration_) + ")" : std::string()) +
+        ": the starting pattern cannot be evaluated: " + current.failure);
   problem_.accept();
   if (!resumed_) {
     history_.clear();
@@ -243,9 +244,10 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
     // nothing about the solver, and capping by it would shrink the steps geometrically
     // once a few line searches backtrack (the run then stops as "stalled").
     const OptimizationIteration& last = history_.back();
-    const double previous_move = history_.size() > 1 && !(last.remesh && last.remesh->failure.empty())
-                                     ? std::max(last.max_solved_move, last.max_point_move)
-                                     : 0.0;
+    const double previous_move =
+        history_.size() > 1 && !(last.remesh && last.remesh->failure.empty())
+            ? std::max(last.max_solved_move, last.max_point_move)
+            : 0.0;
     OptimizationIteration rec;
     DesignEvaluation trial;
     VecX d;
@@ -315,9 +317,9 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
     }
     if (stopped_in_line_search) {
       problem_.restore_accepted();
-      reason << "interrupted during the line search of iteration " << iteration_ + 1
-             << " (" << rec.line_search_trials << " trials); the pattern of iteration "
-             << iteration_ << " is kept";
+      reason << "interrupted during the line search of iteration " << iteration_ + 1 << " ("
+             << rec.line_search_trials << " trials); the pattern of iteration " << iteration_
+             << " is kept";
       result.interrupted = true;
       break;
     }
@@ -360,7 +362,8 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
         }
         RemeshRecord r;
         for (int k : o.pieces.empty() ? degraded : o.pieces)
-          r.pieces.push_back(problem_.simulation().garment().pattern.pieces[static_cast<size_t>(k)].name);
+          r.pieces.push_back(
+              problem_.simulation().garment().pattern.pieces[static_cast<size_t>(k)].name);
         r.min_angle_before = o.min_angle_before;
         r.min_angle_after = o.min_angle_after;
         r.newton_iterations = o.evaluation.newton_iterations;

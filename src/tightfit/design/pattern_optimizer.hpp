@@ -70,7 +70,7 @@ struct PatternOptimizerOptions {
 };
 
 struct OptimizationResult {
-  bool converged = false;  ///< stopped by a tolerance (not by the iteration limit/failure)
+  bool converged = false;    ///< stopped by a tolerance (not by the iteration limit/failure)
   bool interrupted = false;  ///< stopped because `stop_requested` said so
   std::string stop_reason;
   int iterations = 0;  ///< last accepted iteration
@@ -127,8 +127,8 @@ class PatternOptimizer {
   int iteration_ = 0;
   double seconds_before_ = 0.0;  // wall time of earlier runs (resume)
   bool resumed_ = false;
-  int stalled_ = 0;                 // consecutive steps below the relative decrease tolerance
-  int remesh_blocked_until_ = -1;   // no remeshing attempt up to this iteration
+  int stalled_ = 0;                // consecutive steps below the relative decrease tolerance
+  int remesh_blocked_until_ = -1;  // no remeshing attempt up to this iteration
 };
 
 }  // namespace tightfit

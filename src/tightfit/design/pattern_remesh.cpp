@@ -36,7 +36,7 @@ struct SeamSample {
 /// One seam side as a run of the boundary loop.
 struct SideRun {
   int piece = -1;
-  int dir = 1;               ///< +1: side order = loop order, −1: reversed
+  int dir = 1;                ///< +1: side order = loop order, −1: reversed
   std::vector<int> loop_pos;  ///< loop position of every side vertex
 };
 
@@ -56,8 +56,8 @@ SideRun side_run(const Loop& loop, const SeamSide& side, const PatternPiece& pie
   for (int v : side.vertices) {
     const int k = v >= 0 && v < static_cast<int>(loop.pos.size()) ? loop.pos[v] : -1;
     if (k < 0)
-      throw InputError(piece_source(piece), what + " has vertex " + std::to_string(v) +
-                                                " off the boundary loop");
+      throw InputError(piece_source(piece),
+                       what + " has vertex " + std::to_string(v) + " off the boundary loop");
     run.loop_pos.push_back(k);
   }
   if (run.loop_pos.size() >= 2) {
@@ -73,7 +73,8 @@ SideRun side_run(const Loop& loop, const SeamSide& side, const PatternPiece& pie
 /// Loop length (m, 2D rest) from loop position a to b going forward.
 double loop_length(const PatternPiece& piece, const Loop& loop, int a, int b) {
   double len = 0.0;
-  for (int k = a; k < b; ++k) len += (piece.rest.row(loop.at(k + 1)) - piece.rest.row(loop.at(k))).norm();
+  for (int k = a; k < b; ++k)
+    len += (piece.rest.row(loop.at(k + 1)) - piece.rest.row(loop.at(k))).norm();
   return len;
 }
 
@@ -108,7 +109,8 @@ PieceQuality piece_quality(const PatternPiece& piece) {
     for (int c = 0; c < 3; ++c) {
       angles[static_cast<size_t>(t)][static_cast<size_t>(c)] =
           angle_between_deg(p[(c + 1) % 3] - p[c], p[(c + 2) % 3] - p[c]);
-      corner_angle[static_cast<size_t>(piece.triangles(t, c))] += angles[static_cast<size_t>(t)][static_cast<size_t>(c)];
+      corner_angle[static_cast<size_t>(piece.triangles(t, c))] +=
+          angles[static_cast<size_t>(t)][static_cast<size_t>(c)];
     }
   }
   std::vector<char> sharp_corner(static_cast<size_t>(nv), 0);
@@ -125,7 +127,8 @@ PieceQuality piece_quality(const PatternPiece& piece) {
     }
     for (int c = 0; c < 3; ++c)
       if (!sharp_corner[static_cast<size_t>(piece.triangles(t, c))])
-        q.min_angle_deg = std::min(q.min_angle_deg, angles[static_cast<size_t>(t)][static_cast<size_t>(c)]);
+        q.min_angle_deg =
+            std::min(q.min_angle_deg, angles[static_cast<size_t>(t)][static_cast<size_t>(c)]);
   }
   if (piece.triangles.rows() == 0) q.min_area = 0.0;
   return q;
@@ -135,8 +138,11 @@ double mean_edge_length(const PatternPiece& piece) {
   double sum = 0.0;
   for (Eigen::Index t = 0; t < piece.triangles.rows(); ++t)
     for (int c = 0; c < 3; ++c)
-      sum += (piece.rest.row(piece.triangles(t, c)) - piece.rest.row(piece.triangles(t, (c + 1) % 3))).norm();
-  return piece.triangles.rows() > 0 ? sum / (3.0 * static_cast<double>(piece.triangles.rows())) : 0.0;
+      sum +=
+          (piece.rest.row(piece.triangles(t, c)) - piece.rest.row(piece.triangles(t, (c + 1) % 3)))
+              .norm();
+  return piece.triangles.rows() > 0 ? sum / (3.0 * static_cast<double>(piece.triangles.rows()))
+                                    : 0.0;
 }
 
 // ----------------------------------------------------------------------------------
@@ -154,7 +160,8 @@ EmbeddingTransfer::EmbeddingTransfer(const Garment& old_garment, const EmbeddedS
 }
 
 int EmbeddingTransfer::garment_vertex(int piece, int v) const {
-  return old_.pattern_to_garment[static_cast<size_t>(old_.piece_offset[static_cast<size_t>(piece)] + v)];
+  return old_
+      .pattern_to_garment[static_cast<size_t>(old_.piece_offset[static_cast<size_t>(piece)] + v)];
 }
 
 SurfacePoint EmbeddingTransfer::project(const Vec3& point, int hint_garment_vertex) const {
@@ -208,9 +215,10 @@ SurfacePoint EmbeddingTransfer::at_rest_point(int piece, const Vec2& q) const {
 // ----------------------------------------------------------------------------------
 
 PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedState& state,
-                            const Points3& positions, const LimitSurface& surface,
-                            const std::vector<int>& pieces, const std::vector<double>& edge_length,
-                            int smoothing_iterations) {
+                                   const Points3& positions, const LimitSurface& surface,
+                                   const std::vector<int>& pieces,
+                                   const std::vector<double>& edge_length,
+                                   int smoothing_iterations) {
   const Pattern& pattern = old_garment.pattern;
   const int np = static_cast<int>(pattern.pieces.size());
   if (static_cast<int>(edge_length.size()) != np)
@@ -231,7 +239,8 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
     Loop& loop = loops[static_cast<size_t>(p)];
     loop.vertices = piece.boundary;
     loop.pos.assign(static_cast<size_t>(piece.rest.rows()), -1);
-    for (int k = 0; k < loop.size(); ++k) loop.pos[static_cast<size_t>(loop.vertices[static_cast<size_t>(k)])] = k;
+    for (int k = 0; k < loop.size(); ++k)
+      loop.pos[static_cast<size_t>(loop.vertices[static_cast<size_t>(k)])] = k;
     for (int c : piece.corners)
       if (c >= 0 && c < static_cast<int>(loop.pos.size()) && loop.pos[static_cast<size_t>(c)] >= 0)
         breaks[static_cast<size_t>(p)].insert(loop.pos[static_cast<size_t>(c)]);
@@ -250,7 +259,8 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
       sides[static_cast<size_t>(s)][static_cast<size_t>(k++)] = std::move(run);
     }
     if (seam.a.vertices.size() != seam.b.vertices.size() || seam.a.vertices.size() < 2)
-      throw InputError("pattern", "seam \"" + seam.name + "\" has sides of unequal or too few vertices");
+      throw InputError("pattern",
+                       "seam \"" + seam.name + "\" has sides of unequal or too few vertices");
   }
   // A pinned boundary on a hole's rim (its first vertex is not on the outer loop).
   auto on_hole = [&](const PinnedBoundary& pin) {
@@ -259,7 +269,9 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
   };
   for (const PinnedBoundary& pin : pattern.pinned) {
     const Loop& loop = loops[static_cast<size_t>(pin.piece)];
-    if (static_cast<int>(pin.vertices.size()) == loop.size() || pin.vertices.empty() || on_hole(pin)) continue;
+    if (static_cast<int>(pin.vertices.size()) == loop.size() || pin.vertices.empty() ||
+        on_hole(pin))
+      continue;
     const PatternPiece& piece = pattern.pieces[static_cast<size_t>(pin.piece)];
     const SideRun run = side_run(loop, SeamSide{pin.piece, pin.vertices}, piece,
                                  "pinned boundary \"" + pin.name + "\"");
@@ -274,7 +286,9 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
     int seam = -1, side = -1;
   };
   std::vector<std::vector<Cover>> cover(static_cast<size_t>(np));
-  for (int p = 0; p < np; ++p) cover[static_cast<size_t>(p)].assign(static_cast<size_t>(loops[static_cast<size_t>(p)].size()), {});
+  for (int p = 0; p < np; ++p)
+    cover[static_cast<size_t>(p)].assign(static_cast<size_t>(loops[static_cast<size_t>(p)].size()),
+                                         {});
   std::vector<std::vector<int>> splits(static_cast<size_t>(ns));
   std::vector<std::set<int>> unit_bounds = breaks;
   for (int s = 0; s < ns; ++s) {
@@ -283,9 +297,11 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
       const SideRun& run = sides[static_cast<size_t>(s)][static_cast<size_t>(k)];
       const int m = static_cast<int>(run.loop_pos.size()) - 1;
       for (int i = 0; i <= m; ++i)
-        if (breaks[static_cast<size_t>(run.piece)].count(run.loop_pos[static_cast<size_t>(i)])) split.insert(i);
+        if (breaks[static_cast<size_t>(run.piece)].count(run.loop_pos[static_cast<size_t>(i)]))
+          split.insert(i);
       for (int i = 0; i < m; ++i) {
-        const int edge = run.dir > 0 ? run.loop_pos[static_cast<size_t>(i)] : run.loop_pos[static_cast<size_t>(i + 1)];
+        const int edge = run.dir > 0 ? run.loop_pos[static_cast<size_t>(i)]
+                                     : run.loop_pos[static_cast<size_t>(i + 1)];
         Cover& c = cover[static_cast<size_t>(run.piece)][static_cast<size_t>(edge)];
         if (c.seam >= 0)
           throw InputError(piece_source(pattern.pieces[static_cast<size_t>(run.piece)]),
@@ -296,10 +312,13 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
     splits[static_cast<size_t>(s)].assign(split.begin(), split.end());
     for (int k = 0; k < 2; ++k) {
       const SideRun& run = sides[static_cast<size_t>(s)][static_cast<size_t>(k)];
-      for (int i : splits[static_cast<size_t>(s)]) unit_bounds[static_cast<size_t>(run.piece)].insert(run.loop_pos[static_cast<size_t>(i)]);
+      for (int i : splits[static_cast<size_t>(s)])
+        unit_bounds[static_cast<size_t>(run.piece)].insert(run.loop_pos[static_cast<size_t>(i)]);
     }
   }
-  auto units_of = [&](int p) { return static_cast<int>(unit_bounds[static_cast<size_t>(p)].size()); };
+  auto units_of = [&](int p) {
+    return static_cast<int>(unit_bounds[static_cast<size_t>(p)].size());
+  };
 
   // Seam samples: per seam, the samples of all sub-ranges concatenated (shared ends once).
   std::vector<std::vector<SeamSample>> seam_samples(static_cast<size_t>(ns));
@@ -324,15 +343,20 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
       const PatternPiece& A = pattern.pieces[static_cast<size_t>(pa)];
       const PatternPiece& B = pattern.pieces[static_cast<size_t>(pb)];
       for (int i = i0; i < i1; ++i) {
-        const int a0 = seam.a.vertices[static_cast<size_t>(i)], a1 = seam.a.vertices[static_cast<size_t>(i + 1)];
-        const int b0 = seam.b.vertices[static_cast<size_t>(i)], b1 = seam.b.vertices[static_cast<size_t>(i + 1)];
+        const int a0 = seam.a.vertices[static_cast<size_t>(i)],
+                  a1 = seam.a.vertices[static_cast<size_t>(i + 1)];
+        const int b0 = seam.b.vertices[static_cast<size_t>(i)],
+                  b1 = seam.b.vertices[static_cast<size_t>(i + 1)];
         la += (A.rest.row(a1) - A.rest.row(a0)).norm();
         lb += (B.rest.row(b1) - B.rest.row(b0)).norm();
-        const int g0 = old_garment.pattern_to_garment[static_cast<size_t>(old_garment.piece_offset[static_cast<size_t>(pa)] + a0)];
-        const int g1 = old_garment.pattern_to_garment[static_cast<size_t>(old_garment.piece_offset[static_cast<size_t>(pa)] + a1)];
+        const int g0 = old_garment.pattern_to_garment[static_cast<size_t>(
+            old_garment.piece_offset[static_cast<size_t>(pa)] + a0)];
+        const int g1 = old_garment.pattern_to_garment[static_cast<size_t>(
+            old_garment.piece_offset[static_cast<size_t>(pa)] + a1)];
         cum.push_back(cum.back() + (positions.row(g1) - positions.row(g0)).norm());
       }
-      const double h = 0.5 * (edge_length[static_cast<size_t>(pa)] + edge_length[static_cast<size_t>(pb)]);
+      const double h =
+          0.5 * (edge_length[static_cast<size_t>(pa)] + edge_length[static_cast<size_t>(pb)]);
       const int n = std::max({min_count(units_of(pa)), min_count(units_of(pb)),
                               static_cast<int>(std::lround(0.5 * (la + lb) / h))});
       out.push_back({i0, 0.0});
@@ -356,7 +380,8 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
   std::vector<std::array<std::vector<int>, 2>> new_side(static_cast<size_t>(ns));
   for (int s = 0; s < ns; ++s)
     for (int k = 0; k < 2; ++k)
-      new_side[static_cast<size_t>(s)][static_cast<size_t>(k)].assign(seam_samples[static_cast<size_t>(s)].size(), -1);
+      new_side[static_cast<size_t>(s)][static_cast<size_t>(k)].assign(
+          seam_samples[static_cast<size_t>(s)].size(), -1);
 
   for (int p = 0; p < np; ++p) {
     const PatternPiece& piece = pattern.pieces[static_cast<size_t>(p)];
@@ -366,7 +391,8 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
     if (!changed[static_cast<size_t>(p)]) {
       out = piece;
       result.unchanged[static_cast<size_t>(p)] = true;
-      for (Eigen::Index v = 0; v < piece.rest.rows(); ++v) o2n[static_cast<size_t>(v)] = static_cast<int>(v);
+      for (Eigen::Index v = 0; v < piece.rest.rows(); ++v)
+        o2n[static_cast<size_t>(v)] = static_cast<int>(v);
       continue;
     }
     result.remeshed.push_back(p);
@@ -387,11 +413,13 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
         so.from = from;
         so.to = to;
         so.t = t;
-        boundary.push_back((1.0 - t) * piece.rest.row(from).transpose() + t * piece.rest.row(to).transpose());
+        boundary.push_back((1.0 - t) * piece.rest.row(from).transpose() +
+                           t * piece.rest.row(to).transpose());
       }
       src.push_back(so);
     };
-    const std::vector<int> ub(unit_bounds[static_cast<size_t>(p)].begin(), unit_bounds[static_cast<size_t>(p)].end());
+    const std::vector<int> ub(unit_bounds[static_cast<size_t>(p)].begin(),
+                              unit_bounds[static_cast<size_t>(p)].end());
     const int nu = static_cast<int>(ub.size());
     for (int j = 0; j < nu; ++j) {
       const int u = ub[static_cast<size_t>(j)];
@@ -416,13 +444,16 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
       const SideRun& run = sides[static_cast<size_t>(c.seam)][static_cast<size_t>(c.side)];
       const std::vector<int>& side_vertices = c.side == 0 ? seam.a.vertices : seam.b.vertices;
       const std::vector<SeamSample>& samples = seam_samples[static_cast<size_t>(c.seam)];
-      std::vector<int>& ns_list = new_side[static_cast<size_t>(c.seam)][static_cast<size_t>(c.side)];
+      std::vector<int>& ns_list =
+          new_side[static_cast<size_t>(c.seam)][static_cast<size_t>(c.side)];
       // Side index of the unit's start.
-      const int iu = static_cast<int>(std::find(run.loop_pos.begin(), run.loop_pos.end(), u % nb) - run.loop_pos.begin());
+      const int iu = static_cast<int>(std::find(run.loop_pos.begin(), run.loop_pos.end(), u % nb) -
+                                      run.loop_pos.begin());
       const std::vector<int>& split = splits[static_cast<size_t>(c.seam)];
       const std::vector<int>& off = range_offset[static_cast<size_t>(c.seam)];
-      const int r = static_cast<int>(std::lower_bound(split.begin(), split.end(), iu) - split.begin()) -
-                    (run.dir > 0 ? 0 : 1);
+      const int r =
+          static_cast<int>(std::lower_bound(split.begin(), split.end(), iu) - split.begin()) -
+          (run.dir > 0 ? 0 : 1);
       const int k0 = off[static_cast<size_t>(r)], k1 = off[static_cast<size_t>(r + 1)];
       auto emit_sample = [&](int K) {
         const SeamSample& sm = samples[static_cast<size_t>(K)];
@@ -438,7 +469,8 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
     }
 
     Points2 polygon(static_cast<Eigen::Index>(boundary.size()), 2);
-    for (size_t i = 0; i < boundary.size(); ++i) polygon.row(static_cast<Eigen::Index>(i)) = boundary[i].transpose();
+    for (size_t i = 0; i < boundary.size(); ++i)
+      polygon.row(static_cast<Eigen::Index>(i)) = boundary[i].transpose();
     // Holes: each rim resampled at the edge length by even 2D arc length, starting at its
     // old first vertex; they follow the outer loop in the old order.
     std::vector<Points2> hole_polygons;
@@ -448,13 +480,15 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
       std::vector<double> cum(1, 0.0);
       for (int e = 0; e < m; ++e)
         cum.push_back(cum.back() + (piece.rest.row(hole[static_cast<size_t>((e + 1) % m)]) -
-                                    piece.rest.row(hole[static_cast<size_t>(e)])).norm());
+                                    piece.rest.row(hole[static_cast<size_t>(e)]))
+                                       .norm());
       const int n = std::max(3, static_cast<int>(std::lround(cum.back() / h)));
       Points2 hole_polygon(n, 2);
       std::vector<int> new_hole;
       for (int k = 0; k < n; ++k) {
         const auto [e, t] = locate_arc(cum, cum.back() * k / n);
-        const int from = hole[static_cast<size_t>(e % m)], to = hole[static_cast<size_t>((e + 1) % m)];
+        const int from = hole[static_cast<size_t>(e % m)],
+                  to = hole[static_cast<size_t>((e + 1) % m)];
         Source so;
         so.from = from;
         if (t == 0.0) {
@@ -477,8 +511,8 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
     try {
       mesh = mesh_piece(polygon, hole_polygons, h, smoothing_iterations);
     } catch (const std::invalid_argument& e) {
-      throw InputError(piece_source(piece), std::string("the remeshed boundary cannot be meshed (") +
-                                                e.what() + ")");
+      throw InputError(piece_source(piece),
+                       std::string("the remeshed boundary cannot be meshed (") + e.what() + ")");
     }
     out.name = piece.name;
     out.grain = piece.grain;
@@ -488,7 +522,8 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
     for (Eigen::Index i = 0; i < polygon.rows(); ++i) out.boundary.push_back(static_cast<int>(i));
     out.corners.clear();
     for (int corner : piece.corners)
-      if (corner >= 0 && corner < static_cast<int>(o2n.size()) && o2n[static_cast<size_t>(corner)] >= 0)
+      if (corner >= 0 && corner < static_cast<int>(o2n.size()) &&
+          o2n[static_cast<size_t>(corner)] >= 0)
         out.corners.push_back(o2n[static_cast<size_t>(corner)]);
     for (Eigen::Index v = num_loop_vertices; v < out.rest.rows(); ++v) {
       Source so;
@@ -530,14 +565,16 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
       if (on_hole(pin)) {
         const PatternPiece& old_piece = pattern.pieces[static_cast<size_t>(pin.piece)];
         for (size_t h = 0; h < old_piece.holes.size(); ++h)
-          if (std::find(old_piece.holes[h].begin(), old_piece.holes[h].end(), pin.vertices.front()) !=
-              old_piece.holes[h].end())
+          if (std::find(old_piece.holes[h].begin(), old_piece.holes[h].end(),
+                        pin.vertices.front()) != old_piece.holes[h].end())
             out.vertices = next.pieces[static_cast<size_t>(pin.piece)].holes[h];
-      } else if (static_cast<int>(pin.vertices.size()) == loops[static_cast<size_t>(pin.piece)].size()) {
+      } else if (static_cast<int>(pin.vertices.size()) ==
+                 loops[static_cast<size_t>(pin.piece)].size()) {
         for (int i = 0; i < nb; ++i) out.vertices.push_back(i);
       } else {
-        const SideRun run = side_run(loops[static_cast<size_t>(pin.piece)], SeamSide{pin.piece, pin.vertices},
-                                     pattern.pieces[static_cast<size_t>(pin.piece)], "pinned boundary");
+        const SideRun run =
+            side_run(loops[static_cast<size_t>(pin.piece)], SeamSide{pin.piece, pin.vertices},
+                     pattern.pieces[static_cast<size_t>(pin.piece)], "pinned boundary");
         const int first = o2n[static_cast<size_t>(pin.vertices.front())];
         const int last = o2n[static_cast<size_t>(pin.vertices.back())];
         if (first < 0 || last < 0) throw std::logic_error("remesh_garment: a pinned end was lost");
@@ -559,7 +596,8 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
   for (int p = 0; p < np; ++p) {
     const int n = static_cast<int>(g.pattern.pieces[static_cast<size_t>(p)].rest.rows());
     for (int v = 0; v < n; ++v) {
-      const int gv = g.pattern_to_garment[static_cast<size_t>(g.piece_offset[static_cast<size_t>(p)] + v)];
+      const int gv =
+          g.pattern_to_garment[static_cast<size_t>(g.piece_offset[static_cast<size_t>(p)] + v)];
       if (done[static_cast<size_t>(gv)]) continue;
       done[static_cast<size_t>(gv)] = true;
       SurfacePoint& sp = g.embedding[static_cast<size_t>(gv)];
@@ -569,9 +607,15 @@ PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedSta
       }
       const Source& so = sources[static_cast<size_t>(p)][static_cast<size_t>(v)];
       switch (so.kind) {
-        case Source::kOldVertex: sp = transfer.at_vertex(p, so.from); break;
-        case Source::kEdge: sp = transfer.on_edge(p, so.from, so.to, so.t); break;
-        case Source::kRestPoint: sp = transfer.at_rest_point(p, so.q); break;
+        case Source::kOldVertex:
+          sp = transfer.at_vertex(p, so.from);
+          break;
+        case Source::kEdge:
+          sp = transfer.on_edge(p, so.from, so.to, so.t);
+          break;
+        case Source::kRestPoint:
+          sp = transfer.at_rest_point(p, so.q);
+          break;
       }
     }
   }

@@ -61,7 +61,7 @@ struct PieceQuality {
   /// corners of the outline (boundary vertices whose triangles' angles sum below 60°):
   /// the corner bounds them and no remeshing can raise them.
   double min_angle_deg = 0.0;
-  double min_area = 0.0;       ///< smallest signed area (m²; <= 0: an inverted triangle)
+  double min_area = 0.0;  ///< smallest signed area (m²; <= 0: an inverted triangle)
 };
 
 /// Quality of `piece` at its current rest positions.
@@ -101,9 +101,9 @@ class EmbeddingTransfer {
 };
 
 struct PatternRemeshResult {
-  Garment garment;                ///< the new garment, welded, with its embedding
-  EmbeddedState state;            ///< transferred garment points, the old body positions
-  std::vector<int> remeshed;      ///< pieces whose mesh changed (sorted)
+  Garment garment;            ///< the new garment, welded, with its embedding
+  EmbeddedState state;        ///< transferred garment points, the old body positions
+  std::vector<int> remeshed;  ///< pieces whose mesh changed (sorted)
   /// Per new piece: the old piece is kept unchanged (same vertices and triangles).
   std::vector<bool> unchanged;
 };
@@ -114,8 +114,9 @@ struct PatternRemeshResult {
 /// InputError (source "pattern piece NAME") when a seam side or pinned boundary is not
 /// a run of consecutive boundary vertices, or a new boundary cannot be meshed.
 PatternRemeshResult remesh_garment(const Garment& old_garment, const EmbeddedState& state,
-                            const Points3& positions, const LimitSurface& surface,
-                            const std::vector<int>& pieces, const std::vector<double>& edge_length,
-                            int smoothing_iterations);
+                                   const Points3& positions, const LimitSurface& surface,
+                                   const std::vector<int>& pieces,
+                                   const std::vector<double>& edge_length,
+                                   int smoothing_iterations);
 
 }  // namespace tightfit

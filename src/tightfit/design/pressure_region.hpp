@@ -57,9 +57,9 @@ PressureRegion parse_pressure_region(JsonFields f);
 
 /// The rig files of bone regions, resolved against the scene folder.
 struct PressureRigSpec {
-  std::string mesh;     ///< path of the rig mesh
-  std::string weights;  ///< path of the skin weights file
-  double radius = 0.03; ///< m, interpolation radius of the weights
+  std::string mesh;      ///< path of the rig mesh
+  std::string weights;   ///< path of the skin weights file
+  double radius = 0.03;  ///< m, interpolation radius of the weights
 };
 
 }  // namespace tightfit

@@ -25,7 +25,9 @@ CornerEdges edges_at(const Points2& rest, const std::array<int, 3>& t) {
 }
 
 /// Turning angle (rad, in (−π, π]) from edge `in` to edge `out`.
-double turning_angle(const CornerEdges& e) { return std::atan2(cross2(e.in, e.out), e.in.dot(e.out)); }
+double turning_angle(const CornerEdges& e) {
+  return std::atan2(cross2(e.in, e.out), e.in.dot(e.out));
+}
 
 /// θ − θ⁰ taken into (−π, π], so that a corner turning through ±π is not a jump of 2π.
 double angle_difference(double theta, double reference) {

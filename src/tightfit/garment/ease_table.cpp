@@ -71,7 +71,9 @@ LevelMeasurement measure_level(const MeasurementLevel& level, const TriMesh& bod
     return m;
   }
   if (!loop.encloses || !cut.closed[static_cast<size_t>(loop.loop)]) {
-    m.skipped = "the garment does not go all the way around here (its edge or an opening crosses the level)";
+    m.skipped =
+        "the garment does not go all the way around here (its edge or an opening crosses the "
+        "level)";
     return m;
   }
   m.body_circumference = cut_loop_length(body, body_cut, body_loop);
@@ -81,8 +83,9 @@ LevelMeasurement measure_level(const MeasurementLevel& level, const TriMesh& bod
   std::vector<char> has(static_cast<size_t>(num_pieces), 0);
   for (const PlaneCut::Segment& s : cut.segments) {
     if (cut.loop[static_cast<size_t>(s.a)] != loop.loop) continue;
-    const double length =
-        (rest_crossing(garment, rest, cut, s.face, s.b) - rest_crossing(garment, rest, cut, s.face, s.a)).norm();
+    const double length = (rest_crossing(garment, rest, cut, s.face, s.b) -
+                           rest_crossing(garment, rest, cut, s.face, s.a))
+                              .norm();
     const auto piece = static_cast<size_t>(garment.triangle_piece[static_cast<size_t>(s.face)]);
     width[piece] += length;
     has[piece] = 1;
@@ -90,7 +93,8 @@ LevelMeasurement measure_level(const MeasurementLevel& level, const TriMesh& bod
   }
   for (int k = 0; k < num_pieces; ++k)
     if (has[static_cast<size_t>(k)])
-      m.pieces.push_back({garment.pattern.pieces[static_cast<size_t>(k)].name, width[static_cast<size_t>(k)]});
+      m.pieces.push_back(
+          {garment.pattern.pieces[static_cast<size_t>(k)].name, width[static_cast<size_t>(k)]});
   return m;
 }
 
@@ -109,12 +113,14 @@ std::string fixed(double value, int decimals) {
 std::optional<double> body_circumference(const TriMesh& body, const MeasurementLevel& level) {
   const PlaneCut cut = cut_by_plane(body, plane_side(body.vertices, level));
   if (cut.edges.empty()) return std::nullopt;
-  return cut_loop_length(body, cut, nearest_cut_loop(body, cut, level.point, level.normal.normalized()).loop);
+  return cut_loop_length(body, cut,
+                         nearest_cut_loop(body, cut, level.point, level.normal.normalized()).loop);
 }
 
 double LevelMeasurement::ease_percent() const {
-  return body_circumference > 0.0 ? (pattern_circumference - body_circumference) / body_circumference * 100.0
-                                  : 0.0;
+  return body_circumference > 0.0
+             ? (pattern_circumference - body_circumference) / body_circumference * 100.0
+             : 0.0;
 }
 
 double LevelMeasurement::fitted_stretch() const {

@@ -7,8 +7,8 @@
 /// A level is a plane (point + unit normal). At each level:
 /// * body circumference: the length of the loop along which the plane cuts the body
 ///   surface around the level's point (geometry/plane_loops.hpp; the point must lie
-///   inside the body's cross-section: on a bone, on a limb's axis), on the surface given: the callers pass
-///   the body's Loop limit surface at rest evaluated at the control vertices (the
+///   inside the body's cross-section: on a bone, on a limb's axis), on the surface given: the
+///   callers pass the body's Loop limit surface at rest evaluated at the control vertices (the
 ///   triangulated limit surface the garment lies on, before the garment compresses it:
 ///   what a tape measure gives on the bare body);
 /// * garment circumference: the length of the loop around the same point along which

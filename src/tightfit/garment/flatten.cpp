@@ -92,7 +92,8 @@ VecX solve_with_fixed(const SparseMatrix& M, const std::vector<char>& fixed, con
   Mff.setFromTriplets(trip.begin(), trip.end());
   SparseCholesky chol;
   if (!chol.factorize(Mff))
-    throw SolverError("flattening: the conformal system is not positive definite (degenerate triangles?)");
+    throw SolverError(
+        "flattening: the conformal system is not positive definite (degenerate triangles?)");
   const VecX zf = chol.solve(rhs);
   VecX z = z0;
   for (int i = 0; i < n; ++i)
@@ -104,8 +105,10 @@ bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) 
   auto orient = [](const Vec2& p, const Vec2& q, const Vec2& r) {
     return (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
   };
-  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
-  return ((o1 > 0) != (o2 > 0)) && ((o3 > 0) != (o4 > 0)) && o1 != 0 && o2 != 0 && o3 != 0 && o4 != 0;
+  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
+               o4 = orient(c, d, b);
+  return ((o1 > 0) != (o2 > 0)) && ((o3 > 0) != (o4 > 0)) && o1 != 0 && o2 != 0 && o3 != 0 &&
+         o4 != 0;
 }
 
 }  // namespace
@@ -115,7 +118,8 @@ DistortionReport measure_distortion(const TriMesh& mesh, const Points2& uv) {
   double weight = 0.0;
   for (int f = 0; f < mesh.num_faces(); ++f) {
     const LocalTriangle t = local_triangle(mesh, f);
-    const Vec2 u0 = uv.row(mesh.faces(f, 0)), u1 = uv.row(mesh.faces(f, 1)), u2 = uv.row(mesh.faces(f, 2));
+    const Vec2 u0 = uv.row(mesh.faces(f, 0)), u1 = uv.row(mesh.faces(f, 1)),
+               u2 = uv.row(mesh.faces(f, 2));
     Mat2 U, X;
     U << u1 - u0, u2 - u0;
     X << t.x[1] - t.x[0], t.x[2] - t.x[0];
@@ -177,7 +181,8 @@ double total_signed_area(const std::vector<std::array<int, 3>>& faces, const Poi
 }
 
 /// Triangles whose orientation in the map is not `orientation` (±1).
-int count_folds(const std::vector<std::array<int, 3>>& faces, const Points2& uv, double orientation) {
+int count_folds(const std::vector<std::array<int, 3>>& faces, const Points2& uv,
+                double orientation) {
   int folds = 0;
   for (const auto& f : faces) folds += orientation * signed_area2(f, uv) <= 0.0 ? 1 : 0;
   return folds;
@@ -203,7 +208,8 @@ Flattening flatten_panel(const TriMesh& mesh, const std::vector<std::vector<int>
                          const FlattenOptions& options) {
   const int n = mesh.num_vertices();
   const int nf = mesh.num_faces();
-  if (loops.empty() || loops[0].size() < 3) throw std::invalid_argument("flatten_panel: boundary loop too short");
+  if (loops.empty() || loops[0].size() < 3)
+    throw std::invalid_argument("flatten_panel: boundary loop too short");
   for (const auto& loop : loops)
     if (loop.size() < 3) throw std::invalid_argument("flatten_panel: hole loop too short");
   const std::vector<int>& boundary = loops[0];
@@ -289,7 +295,8 @@ Flattening flatten_panel(const TriMesh& mesh, const std::vector<std::vector<int>
     Lff.setFromTriplets(lff.begin(), lff.end());
     SparseCholesky chol;
     if (!chol.factorize(Lff))
-      throw SolverError("flattening: the ARAP system is not positive definite (degenerate triangles?)");
+      throw SolverError(
+          "flattening: the ARAP system is not positive definite (degenerate triangles?)");
     std::vector<Mat2> R(nf);
     double previous = std::numeric_limits<double>::infinity();
     const double orientation = total_signed_area(faces, out.uv) < 0.0 ? -1.0 : 1.0;
@@ -326,8 +333,8 @@ Flattening flatten_panel(const TriMesh& mesh, const std::vector<std::vector<int>
       for (int f = 0; f < nf; ++f)
         for (int k = 0; k < 3; ++k) {
           const int a = faces[f][(k + 1) % 3], b = faces[f][(k + 2) % 3];
-          const Vec2 r = tris[f].half_cot[k] *
-                         (R[f] * (tris[f].x[(k + 1) % 3] - tris[f].x[(k + 2) % 3]));
+          const Vec2 r =
+              tris[f].half_cot[k] * (R[f] * (tris[f].x[(k + 1) % 3] - tris[f].x[(k + 2) % 3]));
           if (id[a] >= 0) rhs.row(id[a]) += r.transpose();
           if (id[b] >= 0) rhs.row(id[b]) -= r.transpose();
         }
@@ -374,9 +381,11 @@ std::string find_overlap(const TriMesh& mesh, const std::vector<int>& boundary, 
   return find_overlap(mesh, std::vector<std::vector<int>>{boundary}, uv);
 }
 
-std::string find_overlap(const TriMesh& mesh, const std::vector<std::vector<int>>& loops, const Points2& uv) {
+std::string find_overlap(const TriMesh& mesh, const std::vector<std::vector<int>>& loops,
+                         const Points2& uv) {
   for (int f = 0; f < mesh.num_faces(); ++f) {
-    const Vec2 a = uv.row(mesh.faces(f, 0)), b = uv.row(mesh.faces(f, 1)), c = uv.row(mesh.faces(f, 2));
+    const Vec2 a = uv.row(mesh.faces(f, 0)), b = uv.row(mesh.faces(f, 1)),
+               c = uv.row(mesh.faces(f, 2));
     if ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() <= 0.0)
       return "a triangle is folded over near " + format_point(mesh.vertices.row(mesh.faces(f, 0)));
   }
@@ -394,15 +403,16 @@ std::string find_overlap(const TriMesh& mesh, const std::vector<std::vector<int>
       if (a == c || a == d || b == c || b == d) continue;  // neighbours along a loop
       if (!box[i].intersects(box[j])) continue;
       if (segments_cross(uv.row(a), uv.row(b), uv.row(c), uv.row(d)))
-        return "its boundary crosses itself: the edges near " + format_point(mesh.vertices.row(a)) + " and " +
-               format_point(mesh.vertices.row(c)) + " cross";
+        return "its boundary crosses itself: the edges near " + format_point(mesh.vertices.row(a)) +
+               " and " + format_point(mesh.vertices.row(c)) + " cross";
     }
   // Every hole must lie inside the outer loop (folded-free maps of an annulus can put
   // the "outer" loop inside the hole instead: a band around the body, not an opening).
   for (size_t h = 1; h < loops.size(); ++h) {
     const auto& outer = loops[0];
     const auto corner = [&](size_t i) -> Vec2 { return uv.row(outer[i]); };
-    if (!inside_polygon(outer.size(), corner, uv.row(loops[h][0]))) return "an opening lies outside its outer boundary (a band around the body?)";
+    if (!inside_polygon(outer.size(), corner, uv.row(loops[h][0])))
+      return "an opening lies outside its outer boundary (a band around the body?)";
   }
   return "";
 }

@@ -21,12 +21,13 @@ namespace tightfit {
 /// How far a flattening is from an isometry. Per triangle, J is the 2×2 Jacobian of
 /// the map from the 3D triangle (in its own plane) to 2D with singular values σ1 ≥ σ2.
 struct DistortionReport {
-  double area_3d = 0.0;              ///< m²
-  double area_2d = 0.0;              ///< m²
-  double area_error = 0.0;           ///< |area_2d − area_3d| / area_3d
-  double mean_area_distortion = 0.0; ///< area-weighted mean of |σ1 σ2 − 1|
-  double max_area_distortion = 0.0;  ///< max over triangles of |σ1 σ2 − 1|
-  double mean_angle_error_deg = 0.0; ///< area-weighted mean of the triangles' mean |θ2D − θ3D| (degrees)
+  double area_3d = 0.0;               ///< m²
+  double area_2d = 0.0;               ///< m²
+  double area_error = 0.0;            ///< |area_2d − area_3d| / area_3d
+  double mean_area_distortion = 0.0;  ///< area-weighted mean of |σ1 σ2 − 1|
+  double max_area_distortion = 0.0;   ///< max over triangles of |σ1 σ2 − 1|
+  double mean_angle_error_deg =
+      0.0;  ///< area-weighted mean of the triangles' mean |θ2D − θ3D| (degrees)
   double max_angle_error_deg = 0.0;  ///< max over all triangle corners of |θ2D − θ3D| (degrees)
   double mean_stretch = 0.0;         ///< area-weighted mean of max(σ1, 1/σ2) − 1
   int flipped = 0;                   ///< triangles with non-positive 2D area
@@ -36,8 +37,8 @@ struct DistortionReport {
 DistortionReport measure_distortion(const TriMesh& mesh, const Points2& uv);
 
 struct FlattenOptions {
-  int max_iterations = 200;        ///< ARAP iterations at most (0: LSCM only)
-  double tolerance = 1e-10;        ///< stop when the ARAP energy decreases by less (relative)
+  int max_iterations = 200;  ///< ARAP iterations at most (0: LSCM only)
+  double tolerance = 1e-10;  ///< stop when the ARAP energy decreases by less (relative)
   /// Weight w of the boundary-length term w Σ_e (|u_i − u_j| − ℓ_e)² added to the ARAP
   /// energy (ℓ_e: 3D length of boundary edge e), relative to the cotangent weights of
   /// the interior edges (½ cot, ≈ 0.3 for equilateral triangles). It keeps seam sides at
@@ -47,9 +48,9 @@ struct FlattenOptions {
 };
 
 struct Flattening {
-  Points2 uv;                      ///< n×2 flat positions (m); counter-clockwise triangles
+  Points2 uv;  ///< n×2 flat positions (m); counter-clockwise triangles
   DistortionReport report;
-  int iterations = 0;              ///< ARAP iterations done
+  int iterations = 0;  ///< ARAP iterations done
 };
 
 /// Flattens a disc (one boundary loop `boundary`, interior on its left as seen from the
@@ -71,6 +72,7 @@ std::string find_overlap(const TriMesh& mesh, const std::vector<int>& boundary, 
 
 /// The same for a panel with holes (loops as in flatten_panel): also two edges of
 /// different loops that cross, and a hole that lies outside the outer loop.
-std::string find_overlap(const TriMesh& mesh, const std::vector<std::vector<int>>& loops, const Points2& uv);
+std::string find_overlap(const TriMesh& mesh, const std::vector<std::vector<int>>& loops,
+                         const Points2& uv);
 
 }  // namespace tightfit

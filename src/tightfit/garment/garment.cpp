@@ -67,7 +67,8 @@ Garment weld_pattern(Pattern pattern) {
     check_side(pattern, seam.b, seam.name);
     if (seam.a.vertices.size() != seam.b.vertices.size())
       throw InputError("pattern", "seam \"" + seam.name + "\" has " +
-                                      std::to_string(seam.a.vertices.size()) + " vertices on one side and " +
+                                      std::to_string(seam.a.vertices.size()) +
+                                      " vertices on one side and " +
                                       std::to_string(seam.b.vertices.size()) + " on the other");
     for (size_t i = 0; i < seam.a.vertices.size(); ++i) {
       const int a = find_root(parent, g.piece_offset[seam.a.piece] + seam.a.vertices[i]);
@@ -84,7 +85,8 @@ Garment weld_pattern(Pattern pattern) {
   }
 
   int num_triangles = 0;
-  for (const auto& piece : pattern.pieces) num_triangles += static_cast<int>(piece.triangles.rows());
+  for (const auto& piece : pattern.pieces)
+    num_triangles += static_cast<int>(piece.triangles.rows());
   g.pattern_triangles.resize(num_triangles, 3);
   g.garment_triangles.resize(num_triangles, 3);
   int t = 0;
@@ -104,10 +106,12 @@ Garment weld_pattern(Pattern pattern) {
   }
   for (const PinnedBoundary& pin : pattern.pinned) {
     if (pin.piece < 0 || pin.piece >= static_cast<int>(pattern.pieces.size()))
-      throw InputError("pattern", "pinned boundary \"" + pin.name + "\" names a piece that does not exist");
+      throw InputError("pattern",
+                       "pinned boundary \"" + pin.name + "\" names a piece that does not exist");
     for (int v : pin.vertices) {
       if (v < 0 || v >= pattern.pieces[pin.piece].rest.rows())
-        throw InputError("pattern", "pinned boundary \"" + pin.name + "\" names a vertex out of range");
+        throw InputError("pattern",
+                         "pinned boundary \"" + pin.name + "\" names a vertex out of range");
       g.pinned.push_back(g.pattern_to_garment[g.piece_offset[pin.piece] + v]);
     }
   }

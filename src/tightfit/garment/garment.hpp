@@ -22,14 +22,15 @@ namespace tightfit {
 
 struct Garment {
   Pattern pattern;
-  std::vector<int> piece_offset;          ///< first global pattern vertex of each piece (+ total at the end)
-  std::vector<int> pattern_to_garment;    ///< global pattern vertex → garment vertex
+  std::vector<int>
+      piece_offset;  ///< first global pattern vertex of each piece (+ total at the end)
+  std::vector<int> pattern_to_garment;  ///< global pattern vertex → garment vertex
   int num_garment_vertices = 0;
-  Triangles pattern_triangles;            ///< all pieces' triangles in global pattern-vertex indices
-  Triangles garment_triangles;            ///< the same triangles in garment-vertex indices
-  std::vector<int> triangle_piece;        ///< piece of each triangle
-  std::vector<SurfacePoint> embedding;    ///< per garment vertex: where it lies on the limit surface
-  std::vector<int> pinned;                ///< garment vertices held at their embedding (sorted, unique)
+  Triangles pattern_triangles;          ///< all pieces' triangles in global pattern-vertex indices
+  Triangles garment_triangles;          ///< the same triangles in garment-vertex indices
+  std::vector<int> triangle_piece;      ///< piece of each triangle
+  std::vector<SurfacePoint> embedding;  ///< per garment vertex: where it lies on the limit surface
+  std::vector<int> pinned;  ///< garment vertices held at their embedding (sorted, unique)
 
   int num_pattern_vertices() const { return piece_offset.empty() ? 0 : piece_offset.back(); }
   /// Stacked rest positions of all pattern vertices (num_pattern_vertices × 2, m).

@@ -13,8 +13,8 @@ namespace {
 /// Closest point on the limit surface, started from the control face `body_face`
 /// (at the point of that control triangle closest to p) when known, else found by the
 /// projector's global search.
-SurfacePoint project(const LimitSurface& limit, const LimitProjector& projector, const TriMesh& control,
-                     const Vec3& p, int body_face) {
+SurfacePoint project(const LimitSurface& limit, const LimitProjector& projector,
+                     const TriMesh& control, const Vec3& p, int body_face) {
   if (body_face < 0) return projector.project(p);
   const Vec3 w = closest_point_weights(p, control.vertices.row(control.faces(body_face, 0)),
                                        control.vertices.row(control.faces(body_face, 1)),
@@ -24,8 +24,8 @@ SurfacePoint project(const LimitSurface& limit, const LimitProjector& projector,
   return refine_closest_point(limit, control.vertices, p, SurfacePoint{body_face, w[1], w[2]});
 }
 
-void move_layout_to_limit(Layout& layout, const LimitSurface& limit, const LimitProjector& projector,
-                          const TriMesh& control) {
+void move_layout_to_limit(Layout& layout, const LimitSurface& limit,
+                          const LimitProjector& projector, const TriMesh& control) {
   const int nv = layout.surface.num_vertices();
   std::vector<int> face_of_vertex(nv, -1);
   for (int f = 0; f < layout.surface.num_faces(); ++f)
@@ -37,16 +37,19 @@ void move_layout_to_limit(Layout& layout, const LimitSurface& limit, const Limit
   }
   for (auto& panel : layout.panels)
     for (size_t i = 0; i < panel.surface_vertex.size(); ++i)
-      panel.mesh.vertices.row(static_cast<Eigen::Index>(i)) = layout.surface.vertices.row(panel.surface_vertex[i]);
+      panel.mesh.vertices.row(static_cast<Eigen::Index>(i)) =
+          layout.surface.vertices.row(panel.surface_vertex[i]);
 }
 
 }  // namespace
 
-GarmentBuild build_garment(const TriMesh& control, const LimitSurface& limit, const LayoutSpec& spec,
-                           const PatternOptions& options, const LayoutRig& rig) {
+GarmentBuild build_garment(const TriMesh& control, const LimitSurface& limit,
+                           const LayoutSpec& spec, const PatternOptions& options,
+                           const LayoutRig& rig) {
   GarmentBuild out;
   const LayoutSpec absolute = resolve_layout_anchors(spec, control, rig);
-  out.layout = absolute.is_mesh_layout() ? layout_from_obj(absolute) : layout_from_rules(control, absolute);
+  out.layout =
+      absolute.is_mesh_layout() ? layout_from_obj(absolute) : layout_from_rules(control, absolute);
   const LimitProjector projector(limit, control.vertices);
   if (options.flatten_limit_surface) move_layout_to_limit(out.layout, limit, projector, control);
 
@@ -58,7 +61,8 @@ GarmentBuild build_garment(const TriMesh& control, const LimitSurface& limit, co
     // they go with it rather than being lost.
     if (out.layout.warnings.empty()) throw;
     std::string message = e.what();
-    if (const std::string prefix = e.source() + ": "; !e.source().empty() && message.rfind(prefix, 0) == 0)
+    if (const std::string prefix = e.source() + ": ";
+        !e.source().empty() && message.rfind(prefix, 0) == 0)
       message = message.substr(prefix.size());
     for (const std::string& w : out.layout.warnings) message += "\n  after the warning: " + w;
     throw InputError(e.source(), message);
@@ -89,8 +93,10 @@ GarmentBuild build_garment(const TriMesh& control, const LimitSurface& limit, co
   out.projection_distance.resize(ng);
   for (int v = 0; v < ng; ++v) {
     const int i = representative[v];
-    const int piece = static_cast<int>(std::upper_bound(g.piece_offset.begin(), g.piece_offset.end(), i) -
-                                       g.piece_offset.begin()) - 1;
+    const int piece =
+        static_cast<int>(std::upper_bound(g.piece_offset.begin(), g.piece_offset.end(), i) -
+                         g.piece_offset.begin()) -
+        1;
     const PieceMap& map = out.maps[piece];
     const PanelPoint& loc = map.location[i - g.piece_offset[piece]];
     const Vec3 p = panel_position(out.layout, map, loc);

@@ -27,7 +27,9 @@ std::string format_point(const Vec3& p) {
 
 Vec3 face_centroid(const TriMesh& m, int f) {
   return (m.vertices.row(m.faces(f, 0)) + m.vertices.row(m.faces(f, 1)) +
-          m.vertices.row(m.faces(f, 2))).transpose() / 3.0;
+          m.vertices.row(m.faces(f, 2)))
+             .transpose() /
+         3.0;
 }
 
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
@@ -39,9 +41,9 @@ double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 /// Everything the shared builder needs besides the surface.
 struct BuildInput {
-  TriMesh surface;                 // may contain faces outside the garment (panel −1)
+  TriMesh surface;  // may contain faces outside the garment (panel −1)
   std::vector<int> face_panel;
-  std::vector<int> body_face;      // or empty
+  std::vector<int> body_face;  // or empty
   std::vector<std::string> panel_names;
   std::vector<std::string> panel_paths;  // JSON path per panel (or the mesh source)
   /// Region-plane flags per vertex (rules layouts); empty for mesh layouts.
@@ -85,7 +87,8 @@ void compact(BuildInput& in, Layout& out) {
 }
 
 double face_area(const TriMesh& m, int f) {
-  const Vec3 a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), c = m.vertices.row(m.faces(f, 2));
+  const Vec3 a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)),
+             c = m.vertices.row(m.faces(f, 2));
   return 0.5 * (b - a).cross(c - a).norm();
 }
 
@@ -99,8 +102,8 @@ struct PanelParts {
   std::vector<int> largest;  ///< per panel: its largest part (−1: none)
 };
 
-PanelParts panel_parts(const TriMesh& m, const SurfaceTopology& topo, const std::vector<int>& face_panel,
-                       size_t num_panels) {
+PanelParts panel_parts(const TriMesh& m, const SurfaceTopology& topo,
+                       const std::vector<int>& face_panel, size_t num_panels) {
   const int nf = m.num_faces();
   PanelParts out;
   out.part.assign(static_cast<size_t>(nf), -1);
@@ -136,8 +139,9 @@ PanelParts panel_parts(const TriMesh& m, const SurfaceTopology& topo, const std:
 /// opening, the inside of a nostril): per panel, every connected part but the largest
 /// that touches an opening's rim goes with the openings (its faces get panel −1), with
 /// a warning naming the opening, the part's area and where it is.
-void drop_parts_cut_off_by_openings(const CutMesh& cut, const LayoutSpec& spec, size_t first_opening,
-                                    std::vector<int>& face_panel, std::vector<std::string>& warnings) {
+void drop_parts_cut_off_by_openings(const CutMesh& cut, const LayoutSpec& spec,
+                                    size_t first_opening, std::vector<int>& face_panel,
+                                    std::vector<std::string>& warnings) {
   const TriMesh& m = cut.mesh;
   const SurfaceTopology topo(m.faces, m.num_vertices());
   const int nf = m.num_faces();
@@ -160,11 +164,13 @@ void drop_parts_cut_off_by_openings(const CutMesh& cut, const LayoutSpec& spec, 
             if (cut.on_plane[first_opening + o][m.faces(f, c)]) touches[o] = 1;
     std::string names;
     for (size_t o = 0; o < spec.openings.size(); ++o)
-      if (touches[o]) names += std::string(names.empty() ? "" : ", ") + "\"" + spec.openings[o].name + "\"";
+      if (touches[o])
+        names += std::string(names.empty() ? "" : ", ") + "\"" + spec.openings[o].name + "\"";
     if (names.empty()) continue;  // not made by an opening: the topology check names it
-    warnings.push_back(spec.source + ": opening " + names + " cuts a part of " + std::to_string(part_area[k]) +
-                       " m² near " + format_point(face_centroid(m, part_face[k])) + " off panel \"" +
-                       spec.panels[part_panel[k]].name + "\"; it is left out of the garment with the opening");
+    warnings.push_back(
+        spec.source + ": opening " + names + " cuts a part of " + std::to_string(part_area[k]) +
+        " m² near " + format_point(face_centroid(m, part_face[k])) + " off panel \"" +
+        spec.panels[part_panel[k]].name + "\"; it is left out of the garment with the opening");
     drop[k] = 1;
   }
   for (int f = 0; f < nf; ++f)
@@ -181,11 +187,13 @@ void join_stray_parts(const TriMesh& m, const LayoutSpec& spec, std::vector<int>
   const SurfaceTopology topo(m.faces, m.num_vertices());
   const PanelParts parts = panel_parts(m, topo, face_panel, spec.panels.size());
   std::vector<double> panel_area(spec.panels.size(), 0.0);
-  for (size_t k = 0; k < parts.area.size(); ++k) panel_area[static_cast<size_t>(parts.panel[k])] += parts.area[k];
+  for (size_t k = 0; k < parts.area.size(); ++k)
+    panel_area[static_cast<size_t>(parts.panel[k])] += parts.area[k];
   std::vector<int> joins(parts.area.size(), -1);
   for (size_t k = 0; k < parts.area.size(); ++k) {
     const size_t panel = static_cast<size_t>(parts.panel[k]);
-    if (parts.largest[panel] == static_cast<int>(k) || parts.area[k] >= spec.stray_part_fraction * panel_area[panel])
+    if (parts.largest[panel] == static_cast<int>(k) ||
+        parts.area[k] >= spec.stray_part_fraction * panel_area[panel])
       continue;
     std::map<int, double> shared;  // neighbouring panel → length of the shared edges (m)
     for (int f = 0; f < m.num_faces(); ++f) {
@@ -193,15 +201,19 @@ void join_stray_parts(const TriMesh& m, const LayoutSpec& spec, std::vector<int>
       for (int i = 0; i < 3; ++i)
         for (int h : topo.edge_all_faces(topo.face_edge(f, i)))
           if (face_panel[h] >= 0 && face_panel[h] != face_panel[f])
-            shared[face_panel[h]] += (m.vertices.row(m.faces(f, i)) - m.vertices.row(m.faces(f, (i + 1) % 3))).norm();
+            shared[face_panel[h]] +=
+                (m.vertices.row(m.faces(f, i)) - m.vertices.row(m.faces(f, (i + 1) % 3))).norm();
     }
     if (shared.empty()) continue;
-    joins[k] = std::max_element(shared.begin(), shared.end(),
-                                [](const auto& a, const auto& b) { return a.second < b.second; })->first;
-    warnings.push_back(spec.source + ": panel \"" + spec.panels[panel].name + "\" has a stray part of " +
-                       std::to_string(parts.area[k] * 1e4) + " cm² near " +
-                       format_point(face_centroid(m, parts.face[k])) + " apart from the rest (a divider grazes the "
-                       "body there); it joins panel \"" + spec.panels[static_cast<size_t>(joins[k])].name + "\"");
+    joins[k] = std::max_element(shared.begin(), shared.end(), [](const auto& a, const auto& b) {
+                 return a.second < b.second;
+               })->first;
+    warnings.push_back(spec.source + ": panel \"" + spec.panels[panel].name +
+                       "\" has a stray part of " + std::to_string(parts.area[k] * 1e4) +
+                       " cm² near " + format_point(face_centroid(m, parts.face[k])) +
+                       " apart from the rest (a divider grazes the "
+                       "body there); it joins panel \"" +
+                       spec.panels[static_cast<size_t>(joins[k])].name + "\"");
   }
   for (int f = 0; f < m.num_faces(); ++f)
     if (parts.part[f] >= 0 && joins[static_cast<size_t>(parts.part[f])] >= 0)
@@ -214,8 +226,8 @@ struct OpenEdges {
   std::map<std::pair<int, int>, int> pin;  // (from, to) → pin index or −1
 };
 
-OpenEdges assign_pins(const Layout& layout, const SurfaceTopology& topo,
-                      const BuildInput& in, const LayoutSpec& spec) {
+OpenEdges assign_pins(const Layout& layout, const SurfaceTopology& topo, const BuildInput& in,
+                      const LayoutSpec& spec) {
   OpenEdges open;
   const TriMesh& m = layout.surface;
   for (int f = 0; f < m.num_faces(); ++f)
@@ -268,11 +280,11 @@ OpenEdges assign_pins(const Layout& layout, const SurfaceTopology& topo,
           }
         }
       if (best > pin.max_distance)
-        throw InputError(spec.source,
-                         pin.source_path + ": pinned boundary \"" + pin.name +
-                             "\" does not exist: the nearest open boundary is " +
-                             std::to_string(best) + " m from " + format_point(pin.point) +
-                             " (max_distance " + std::to_string(pin.max_distance) + " m)");
+        throw InputError(spec.source, pin.source_path + ": pinned boundary \"" + pin.name +
+                                          "\" does not exist: the nearest open boundary is " +
+                                          std::to_string(best) + " m from " +
+                                          format_point(pin.point) + " (max_distance " +
+                                          std::to_string(pin.max_distance) + " m)");
       for (const auto& e : loops[best_loop]) claim(e);
     } else {
       for (const auto& [e, p] : open.pin) {
@@ -281,15 +293,18 @@ OpenEdges assign_pins(const Layout& layout, const SurfaceTopology& topo,
           const auto& flags = in.on_region_plane[pin.region_plane];
           on = flags[e.first] && flags[e.second];
         } else {
-          on = std::abs(pin.plane.distance(m.vertices.row(e.first).transpose())) <= spec.plane_tolerance &&
-               std::abs(pin.plane.distance(m.vertices.row(e.second).transpose())) <= spec.plane_tolerance;
+          on = std::abs(pin.plane.distance(m.vertices.row(e.first).transpose())) <=
+                   spec.plane_tolerance &&
+               std::abs(pin.plane.distance(m.vertices.row(e.second).transpose())) <=
+                   spec.plane_tolerance;
         }
         if (on) claim(e);
       }
       if (claimed == 0) {
-        const std::string plane_name = pin.kind == PinRule::Kind::kOnRegionPlane
-                                           ? "region plane \"" + spec.region[pin.region_plane].name + "\""
-                                           : "the given plane";
+        const std::string plane_name =
+            pin.kind == PinRule::Kind::kOnRegionPlane
+                ? "region plane \"" + spec.region[pin.region_plane].name + "\""
+                : "the given plane";
         throw InputError(spec.source, pin.source_path + ": pinned boundary \"" + pin.name +
                                           "\" does not exist: no open garment boundary lies on " +
                                           plane_name);
@@ -309,11 +324,13 @@ void name_seams_top_down(Layout& layout) {
     by_pair[{layout.seams[k].panel_a, layout.seams[k].panel_b}].push_back(static_cast<int>(k));
   auto mean_height = [&](int k) {
     double sum = 0.0;
-    for (int v : layout.seams[static_cast<size_t>(k)].vertices) sum += layout.surface.vertices(v, 1);
+    for (int v : layout.seams[static_cast<size_t>(k)].vertices)
+      sum += layout.surface.vertices(v, 1);
     return sum / static_cast<double>(layout.seams[static_cast<size_t>(k)].vertices.size());
   };
   for (auto& [pair, seams] : by_pair) {
-    std::stable_sort(seams.begin(), seams.end(), [&](int a, int b) { return mean_height(a) > mean_height(b); });
+    std::stable_sort(seams.begin(), seams.end(),
+                     [&](int a, int b) { return mean_height(a) > mean_height(b); });
     for (size_t i = 0; i < seams.size(); ++i) {
       std::string name = layout.panels[static_cast<size_t>(pair.first)].name;
       name += '/';
@@ -329,13 +346,15 @@ void name_seams_top_down(Layout& layout) {
 
 /// Checks that a panel is a disc, possibly with holes: connected, manifold, one or more
 /// boundary loops, no handles.
-void check_panel_topology(const LayoutPanel& panel, const std::string& source, const std::string& path) {
+void check_panel_topology(const LayoutPanel& panel, const std::string& source,
+                          const std::string& path) {
   const std::string what = "panel \"" + panel.name + "\" is not a disc: ";
   const int nf = panel.mesh.num_faces();
   const SurfaceTopology topo(panel.mesh.faces, panel.mesh.num_vertices());
   const Vec3 at = face_centroid(panel.mesh, 0);
   if (!topo.non_manifold_edges().empty())
-    throw InputError(source, path + ": " + what + "it has non-manifold edges near " + format_point(at));
+    throw InputError(source,
+                     path + ": " + what + "it has non-manifold edges near " + format_point(at));
   // Connected?
   std::vector<char> seen(nf, 0);
   std::queue<int> queue;
@@ -385,8 +404,11 @@ int outer_loop(const LayoutPanel& panel, const std::vector<std::vector<int>>& lo
     bool all_on_opening = !on_opening.empty();
     const size_t n = loops[l].size();
     for (size_t i = 0; i < n; ++i) {
-      length += (panel.mesh.vertices.row(loops[l][i]) - panel.mesh.vertices.row(loops[l][(i + 1) % n])).norm();
-      if (!on_opening.empty() && !on_opening[panel.surface_vertex[loops[l][i]]]) all_on_opening = false;
+      length +=
+          (panel.mesh.vertices.row(loops[l][i]) - panel.mesh.vertices.row(loops[l][(i + 1) % n]))
+              .norm();
+      if (!on_opening.empty() && !on_opening[panel.surface_vertex[loops[l][i]]])
+        all_on_opening = false;
     }
     if (length > best_any_length) {
       best_any_length = length;
@@ -414,8 +436,9 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
   const auto nm = topo.non_manifold_edges();
   if (!nm.empty()) {
     const auto ev = topo.edge_vertices(nm[0]);
-    throw InputError(spec.source, "the layout surface has an edge shared by more than two faces at " +
-                                      format_point(surf.vertices.row(ev[0]).transpose()));
+    throw InputError(spec.source,
+                     "the layout surface has an edge shared by more than two faces at " +
+                         format_point(surf.vertices.row(ev[0]).transpose()));
   }
   const OpenEdges open = assign_pins(layout, topo, in, spec);
 
@@ -441,11 +464,13 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
                                         "\" is empty: no part of the surface lies on its sides");
     panel.mesh.vertices.resize(static_cast<Eigen::Index>(panel.surface_vertex.size()), 3);
     for (size_t i = 0; i < panel.surface_vertex.size(); ++i)
-      panel.mesh.vertices.row(static_cast<Eigen::Index>(i)) = surf.vertices.row(panel.surface_vertex[i]);
+      panel.mesh.vertices.row(static_cast<Eigen::Index>(i)) =
+          surf.vertices.row(panel.surface_vertex[i]);
     panel.mesh.faces.resize(static_cast<Eigen::Index>(panel.surface_face.size()), 3);
     for (size_t i = 0; i < panel.surface_face.size(); ++i)
       for (int c = 0; c < 3; ++c)
-        panel.mesh.faces(static_cast<Eigen::Index>(i), c) = local[surf.faces(panel.surface_face[i], c)];
+        panel.mesh.faces(static_cast<Eigen::Index>(i), c) =
+            local[surf.faces(panel.surface_face[i], c)];
     check_panel_topology(panel, spec.source, in.panel_paths[p]);
 
     // Label the boundary edges: (neighbour panel or −1, pin or −1).
@@ -476,22 +501,25 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
       if (!in.on_opening.empty())
         for (int v : loops[l])
           if (!in.on_opening[panel.surface_vertex[v]])
-            throw InputError(spec.source, in.panel_paths[p] + ": panel \"" + panel.name + "\" is not a disc: it has " +
-                                              std::to_string(loops.size()) +
-                                              " boundary loops, one of them near " + format_point(at) +
-                                              " not made by an opening (a band around the body? add a divider)");
+            throw InputError(spec.source,
+                             in.panel_paths[p] + ": panel \"" + panel.name +
+                                 "\" is not a disc: it has " + std::to_string(loops.size()) +
+                                 " boundary loops, one of them near " + format_point(at) +
+                                 " not made by an opening (a band around the body? add a divider)");
       const auto label = label_loop(loops[l]);
       for (const auto& [other, pin] : label)
         if (other >= 0)
-          throw InputError(spec.source, in.panel_paths[p] + ": panel \"" + panel.name + "\" surrounds panel \"" +
-                                            in.panel_names[other] + "\" (near " + format_point(at) +
-                                            "); a seam along a piece's inner boundary is not supported: "
-                                            "cut the surrounding panel with a divider through the inner one");
+          throw InputError(spec.source,
+                           in.panel_paths[p] + ": panel \"" + panel.name + "\" surrounds panel \"" +
+                               in.panel_names[other] + "\" (near " + format_point(at) +
+                               "); a seam along a piece's inner boundary is not supported: "
+                               "cut the surrounding panel with a divider through the inner one");
       for (const auto& entry : label)
         if (entry.second != label[0].second)
-          throw InputError(spec.source, in.panel_paths[p] + ": the opening of panel \"" + panel.name + "\" near " +
-                                            format_point(at) +
-                                            " is pinned along part of its rim only; pin the whole rim or none");
+          throw InputError(spec.source,
+                           in.panel_paths[p] + ": the opening of panel \"" + panel.name +
+                               "\" near " + format_point(at) +
+                               " is pinned along part of its rim only; pin the whole rim or none");
       panel.holes.push_back({loops[l], label[0].second});
     }
     std::vector<int> loop = loops[outer];
@@ -502,9 +530,11 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
       if (label[i] != label[(i + n - 1) % n]) start = i;
     if (start < 0) {
       if (label[0].first >= 0)
-        throw InputError(spec.source, in.panel_paths[p] + ": the seam between panels \"" + panel.name +
-                                          "\" and \"" + in.panel_names[label[0].first] +
-                                          "\" is a closed loop; split one of them so that the seam has two ends");
+        throw InputError(
+            spec.source,
+            in.panel_paths[p] + ": the seam between panels \"" + panel.name + "\" and \"" +
+                in.panel_names[label[0].first] +
+                "\" is a closed loop; split one of them so that the seam has two ends");
       start = 0;
     }
     std::rotate(loop.begin(), loop.begin() + start, loop.end());
@@ -527,7 +557,8 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
     const LayoutPanel& panel = layout.panels[p];
     const int n = static_cast<int>(panel.boundary.size());
     std::vector<int> v;
-    for (int i = 0; i <= s.count; ++i) v.push_back(panel.surface_vertex[panel.boundary[(s.first + i) % n]]);
+    for (int i = 0; i <= s.count; ++i)
+      v.push_back(panel.surface_vertex[panel.boundary[(s.first + i) % n]]);
     return v;
   };
   for (int p = 0; p < np; ++p) {
@@ -546,9 +577,11 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
         if (vb == va) match = static_cast<int>(sj);
       }
       if (match < 0)
-        throw InputError(spec.source, "panels \"" + layout.panels[p].name + "\" and \"" +
-                                          layout.panels[q].name + "\" meet along an edge chain that is not one seam on both sides (panels touching at a single vertex near " +
-                                          format_point(surf.vertices.row(va[0]).transpose()) + "?)");
+        throw InputError(spec.source,
+                         "panels \"" + layout.panels[p].name + "\" and \"" + layout.panels[q].name +
+                             "\" meet along an edge chain that is not one seam on both sides "
+                             "(panels touching at a single vertex near " +
+                             format_point(surf.vertices.row(va[0]).transpose()) + "?)");
       LayoutSeam seam;  // named by name_seams_top_down
       seam.panel_a = p;
       seam.segment_a = static_cast<int>(si);
@@ -583,7 +616,8 @@ std::vector<int> weld_vertices(const Points3& x, double tol, Points3& welded) {
   };
   const double cell = std::max(tol, 1e-12);
   auto key = [&](const Eigen::Vector3i& c) {
-    return (static_cast<long long>(c.x()) * 73856093LL) ^ (static_cast<long long>(c.y()) * 19349663LL) ^
+    return (static_cast<long long>(c.x()) * 73856093LL) ^
+           (static_cast<long long>(c.y()) * 19349663LL) ^
            (static_cast<long long>(c.z()) * 83492791LL);
   };
   std::unordered_multimap<long long, int> grid;
@@ -654,23 +688,30 @@ Layout layout_from_rules(const TriMesh& body_surface, const LayoutSpec& spec) {
       for (size_t d = 0; d < spec.dividers.size(); ++d)
         sides += std::string(sides.empty() ? "" : ", ") + (cut.side[nr + d][f] > 0 ? "+" : "-") +
                  spec.dividers[d].name;
-      throw InputError(spec.source, spec.path + "/panels: a gap: the surface near " + format_point(at) +
-                                        " (sides " + sides + ") is in no panel");
+      throw InputError(spec.source, spec.path + "/panels: a gap: the surface near " +
+                                        format_point(at) + " (sides " + sides + ") is in no panel");
     }
     if (matches.size() > 1)
-      throw InputError(spec.source, spec.path + "/panels: an overlap: the surface near " + format_point(at) +
-                                        " is in panels \"" + spec.panels[matches[0]].name + "\" and \"" +
+      throw InputError(spec.source, spec.path + "/panels: an overlap: the surface near " +
+                                        format_point(at) + " is in panels \"" +
+                                        spec.panels[matches[0]].name + "\" and \"" +
                                         spec.panels[matches[1]].name + "\"");
     in.face_panel[f] = matches[0];
   }
   if (!any_region)
-    throw InputError(spec.source, spec.path + "/region: no part of the body surface is on the kept side of every region plane");
+    throw InputError(
+        spec.source,
+        spec.path +
+            "/region: no part of the body surface is on the kept side of every region plane");
   for (size_t o = 0; o < spec.openings.size(); ++o)
     if (opening_faces[o] == 0)
-      throw InputError(spec.source, spec.openings[o].source_path + ": opening \"" + spec.openings[o].name +
-                                        "\" cuts nothing: no part of the garment's surface lies inside its ellipsoid");
+      throw InputError(
+          spec.source,
+          spec.openings[o].source_path + ": opening \"" + spec.openings[o].name +
+              "\" cuts nothing: no part of the garment's surface lies inside its ellipsoid");
   std::vector<std::string> warnings;
-  if (!spec.openings.empty()) drop_parts_cut_off_by_openings(cut, spec, first_opening, in.face_panel, warnings);
+  if (!spec.openings.empty())
+    drop_parts_cut_off_by_openings(cut, spec, first_opening, in.face_panel, warnings);
   join_stray_parts(cut.mesh, spec, in.face_panel, warnings);
   in.on_opening.assign(static_cast<size_t>(cut.mesh.num_vertices()), 0);
   for (size_t o = 0; o < spec.openings.size(); ++o)
@@ -694,7 +735,8 @@ Layout layout_from_groups(const TriMesh& mesh, const std::vector<int>& face_grou
   if (face_group.size() != static_cast<size_t>(mesh.num_faces()))
     throw std::invalid_argument("layout_from_groups: one group per face needed");
   BuildInput in;
-  const std::vector<int> id = weld_vertices(mesh.vertices, spec.weld_tolerance, in.surface.vertices);
+  const std::vector<int> id =
+      weld_vertices(mesh.vertices, spec.weld_tolerance, in.surface.vertices);
   in.surface.faces.resize(mesh.num_faces(), 3);
   std::map<std::array<int, 3>, int> seen;
   int no_panel = 0;
@@ -715,10 +757,12 @@ Layout layout_from_groups(const TriMesh& mesh, const std::vector<int>& face_grou
     auto [it, inserted] = seen.emplace(key, g);
     if (!inserted) {
       if (it->second == g)
-        throw InputError(mesh_source, "face " + std::to_string(f + 1) + " near " + format_point(at) +
-                                          " appears twice in group \"" + group_names[g] + "\"");
-      throw InputError(mesh_source, "an overlap: the face near " + format_point(at) + " is in panels \"" +
-                                        group_names[it->second] + "\" and \"" + group_names[g] + "\"");
+        throw InputError(mesh_source, "face " + std::to_string(f + 1) + " near " +
+                                          format_point(at) + " appears twice in group \"" +
+                                          group_names[g] + "\"");
+      throw InputError(mesh_source, "an overlap: the face near " + format_point(at) +
+                                        " is in panels \"" + group_names[it->second] + "\" and \"" +
+                                        group_names[g] + "\"");
     }
   }
   if (no_panel > 0)
@@ -754,15 +798,20 @@ Layout layout_from_groups(const TriMesh& mesh, const std::vector<int>& face_grou
     const double gap = 0.25 * mean_edge;
     for (size_t i = 0; i < boundary.size(); ++i)
       for (size_t j = i + 1; j < boundary.size(); ++j) {
-        if (boundary[i].second == boundary[j].second || boundary[i].first == boundary[j].first) continue;
-        const double d = (in.surface.vertices.row(boundary[i].first) - in.surface.vertices.row(boundary[j].first)).norm();
+        if (boundary[i].second == boundary[j].second || boundary[i].first == boundary[j].first)
+          continue;
+        const double d = (in.surface.vertices.row(boundary[i].first) -
+                          in.surface.vertices.row(boundary[j].first))
+                             .norm();
         if (d < gap)
-          throw InputError(mesh_source, "a gap between panels \"" + in.panel_names[boundary[i].second] +
-                                            "\" and \"" + in.panel_names[boundary[j].second] + "\" near " +
-                                            format_point(in.surface.vertices.row(boundary[i].first).transpose()) +
-                                            ": their boundaries are " + std::to_string(d) +
-                                            " m apart but not shared (weld_tolerance " +
-                                            std::to_string(spec.weld_tolerance) + " m)");
+          throw InputError(
+              mesh_source,
+              "a gap between panels \"" + in.panel_names[boundary[i].second] + "\" and \"" +
+                  in.panel_names[boundary[j].second] + "\" near " +
+                  format_point(in.surface.vertices.row(boundary[i].first).transpose()) +
+                  ": their boundaries are " + std::to_string(d) +
+                  " m apart but not shared (weld_tolerance " + std::to_string(spec.weld_tolerance) +
+                  " m)");
       }
   }
   return build_layout(std::move(in), spec);

@@ -63,16 +63,16 @@ struct LayoutSeam {
 
 /// A laid-out garment (before flattening).
 struct Layout {
-  std::string source;                 ///< spec source, for error messages
-  TriMesh surface;                    ///< all panel faces (m)
-  std::vector<int> face_panel;        ///< per surface face: its panel
+  std::string source;           ///< spec source, for error messages
+  TriMesh surface;              ///< all panel faces (m)
+  std::vector<int> face_panel;  ///< per surface face: its panel
   /// Per surface face: the body control face it was cut from (rules layouts), or −1.
   std::vector<int> body_face;
   std::vector<LayoutPanel> panels;
   std::vector<LayoutSeam> seams;
-  std::vector<std::string> pin_names; ///< one per PinRule of the spec
-  double seam_tolerance = 0.05;       ///< copied from the spec
-  double area_tolerance = 0.5;        ///< copied from the spec
+  std::vector<std::string> pin_names;  ///< one per PinRule of the spec
+  double seam_tolerance = 0.05;        ///< copied from the spec
+  double area_tolerance = 0.5;         ///< copied from the spec
   /// What the builder changed that the user should know (e.g. surface an opening cut
   /// off and left out), prefixed with the spec source.
   std::vector<std::string> warnings;

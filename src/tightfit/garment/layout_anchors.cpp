@@ -54,7 +54,8 @@ class Resolver {
     if (plane.along_bone) {
       const std::string path = plane.source_path + "/normal";
       find_bone(plane.along_bone->bone, path);  // a rig must be given
-      plane.normal = resolve_bone_direction(*plane.along_bone, *rig_.skeleton, spec_.source, path, rig_.source);
+      plane.normal = resolve_bone_direction(*plane.along_bone, *rig_.skeleton, spec_.source, path,
+                                            rig_.source);
       plane.along_bone.reset();
     }
     if (plane.is_field()) {
@@ -75,25 +76,28 @@ class Resolver {
 
   const BoneSegment& find_bone(const std::string& name, const std::string& path) const {
     if (rig_.skeleton == nullptr)
-      fail(path, "bone \"" + name + "\": the layout is anchored on the skeleton, but no skeleton "
-                 "is given (the scene's \"rig\": {\"mesh\", \"weights\", \"joints\"})");
+      fail(path, "bone \"" + name +
+                     "\": the layout is anchored on the skeleton, but no skeleton "
+                     "is given (the scene's \"rig\": {\"mesh\", \"weights\", \"joints\"})");
     return find_anchor_bone(*rig_.skeleton, name, spec_.source, path, rig_.source);
   }
 
   std::vector<double> bone_field(const LayoutPlane& plane) {
     const std::string path = plane.source_path + "/bones";
     if (rig_.weights == nullptr)
-      fail(path, "bone region \"" + plane.name + "\" needs skin weights, but none are given "
-                 "(the scene's \"rig\": {\"mesh\", \"weights\", \"joints\"})");
+      fail(path, "bone region \"" + plane.name +
+                     "\" needs skin weights, but none are given "
+                     "(the scene's \"rig\": {\"mesh\", \"weights\", \"joints\"})");
     for (std::size_t i = 0; i < plane.bones.size(); ++i)
       if (!rig_.weights->bones.contains(plane.bones[i]))
         fail(path + "/" + std::to_string(i),
-             "unknown bone \"" + plane.bones[i] + "\" (no skin weights for it in " + rig_.weights->source + ")" +
-                 suggestion(plane.bones[i], rig_.weights->bones));
+             "unknown bone \"" + plane.bones[i] + "\" (no skin weights for it in " +
+                 rig_.weights->source + ")" + suggestion(plane.bones[i], rig_.weights->bones));
     if (!surface_weights_) surface_weights_ = transfer_skin_weights(*rig_.weights, body_.vertices);
     const VecX summed = surface_weights_->summed(plane.bones);
     std::vector<double> field(static_cast<std::size_t>(summed.size()));
-    for (Eigen::Index v = 0; v < summed.size(); ++v) field[static_cast<std::size_t>(v)] = summed[v] - 0.5;
+    for (Eigen::Index v = 0; v < summed.size(); ++v)
+      field[static_cast<std::size_t>(v)] = summed[v] - 0.5;
     return field;
   }
 
@@ -118,7 +122,7 @@ class Resolver {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (int v = 0; v < body_.num_vertices(); ++v) {
       const double d = plane.is_field() ? plane.field[static_cast<std::size_t>(v)]
-                                              : plane.distance(body_.vertices.row(v).transpose());
+                                        : plane.distance(body_.vertices.row(v).transpose());
       lo = std::min(lo, d);
       hi = std::max(hi, d);
     }
@@ -127,11 +131,10 @@ class Resolver {
     if (plane.is_bone_region()) {
       std::string bones;
       for (const std::string& b : plane.bones) bones += (bones.empty() ? "" : ", ") + b;
-      fail(plane.source_path, name + "the bones " + bones + " dominate " +
-                                  (hi > 0.0 ? "all" : "no part") +
-                                  " of the body surface (summed skin weight " +
-                                  format_number(lo + 0.5) + " to " + format_number(hi + 0.5) +
-                                  "; the region is where it is >= 1/2)");
+      fail(plane.source_path,
+           name + "the bones " + bones + " dominate " + (hi > 0.0 ? "all" : "no part") +
+               " of the body surface (summed skin weight " + format_number(lo + 0.5) + " to " +
+               format_number(hi + 0.5) + "; the region is where it is >= 1/2)");
     }
     if (body_.num_vertices() == 0) fail(plane.source_path, name + "the body surface is empty");
     fail(plane.source_path,
@@ -156,7 +159,8 @@ LayoutSpec resolve_layout_anchors(const LayoutSpec& spec, const TriMesh& body_su
   for (LayoutPlane& plane : out.region) resolver.resolve(plane, "region plane");
   for (LayoutPlane& plane : out.dividers) resolver.resolve(plane, "divider");
   for (PinRule& pin : out.pins)
-    if (pin.kind == PinRule::Kind::kOnPlane) resolver.resolve(pin.plane, "the plane of pinned boundary");
+    if (pin.kind == PinRule::Kind::kOnPlane)
+      resolver.resolve(pin.plane, "the plane of pinned boundary");
   return out;
 }
 

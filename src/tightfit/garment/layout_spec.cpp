@@ -11,11 +11,13 @@ namespace {
 /// "bones": [NAME, ...] of a bone region.
 std::vector<std::string> parse_bone_list(JsonFields& f) {
   const nlohmann::json& bones = f.raw("bones");
-  if (!bones.is_array() || bones.empty()) f.fail("expected a non-empty array of bone names", "bones");
+  if (!bones.is_array() || bones.empty())
+    f.fail("expected a non-empty array of bone names", "bones");
   std::vector<std::string> out;
   for (size_t i = 0; i < bones.size(); ++i) {
     const std::string where = "bones/" + std::to_string(i);
-    if (!bones[i].is_string() || bones[i].get<std::string>().empty()) f.fail("expected a bone name", where);
+    if (!bones[i].is_string() || bones[i].get<std::string>().empty())
+      f.fail("expected a bone name", where);
     const std::string name = bones[i].get<std::string>();
     if (std::find(out.begin(), out.end(), name) != out.end())
       f.fail("bone \"" + name + "\" listed twice", where);
@@ -31,10 +33,12 @@ LayoutPlane parse_plane(JsonFields& f, bool named) {
   if (named) plane.name = f.string("name");
   if (f.has("bones")) {
     if (!named)
-      f.fail("a pin's plane cannot be a bone region; pin on a bone region of \"region\" by its name",
-             "bones");
+      f.fail(
+          "a pin's plane cannot be a bone region; pin on a bone region of \"region\" by its name",
+          "bones");
     for (const char* key : {"point", "normal"})
-      if (f.has(key)) f.fail("not allowed in a bone region (it is cut where the bones' skin weight is 1/2)", key);
+      if (f.has(key))
+        f.fail("not allowed in a bone region (it is cut where the bones' skin weight is 1/2)", key);
     plane.bones = parse_bone_list(f);
   } else {
     parse_anchored_point(f, "point", plane.point, plane.anchor);
@@ -161,8 +165,8 @@ LayoutSpec parse_layout_spec(JsonFields& f, const std::string& base_dir) {
     spec.dividers = parse_planes(f, "dividers");
     for (const auto& d : spec.dividers)
       if (find_plane(spec.region, d.name) >= 0)
-        throw InputError(spec.source, d.source_path + ": name \"" + d.name +
-                                          "\" is also a region plane");
+        throw InputError(spec.source,
+                         d.source_path + ": name \"" + d.name + "\" is also a region plane");
     std::set<std::string> names;
     for (auto& pf : f.objects("panels", true)) {
       spec.panels.push_back(parse_panel(pf, spec.dividers));
@@ -186,7 +190,8 @@ LayoutSpec parse_layout_spec(JsonFields& f, const std::string& base_dir) {
   spec.seam_tolerance = f.positive("seam_tolerance", spec.seam_tolerance);
   spec.area_tolerance = f.positive("area_tolerance", spec.area_tolerance);
   spec.stray_part_fraction = f.positive("stray_part_fraction", spec.stray_part_fraction, true);
-  if (spec.stray_part_fraction >= 0.5) f.fail("must be below 0.5 (a share of the panel's area)", "stray_part_fraction");
+  if (spec.stray_part_fraction >= 0.5)
+    f.fail("must be below 0.5 (a share of the panel's area)", "stray_part_fraction");
   spec.plane_tolerance = f.positive("plane_tolerance", spec.plane_tolerance);
   f.finish();
   return spec;

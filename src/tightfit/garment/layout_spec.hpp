@@ -87,9 +87,9 @@ namespace tightfit {
 /// garment/layout_anchors.hpp before cutting.
 struct LayoutPlane {
   std::string name;
-  Vec3 point = Vec3::Zero();   ///< a point on the plane (m)
-  Vec3 normal = Vec3::UnitY(); ///< unit normal
-  std::string source_path;     ///< JSON path, for error messages
+  Vec3 point = Vec3::Zero();                ///< a point on the plane (m)
+  Vec3 normal = Vec3::UnitY();              ///< unit normal
+  std::string source_path;                  ///< JSON path, for error messages
   std::optional<BoneAnchor> anchor;         ///< unresolved: `point` comes from the skeleton
   std::optional<BoneDirection> along_bone;  ///< unresolved: `normal` comes from the skeleton
   std::vector<std::string> bones;           ///< a bone region instead of a plane
@@ -147,28 +147,29 @@ struct PinRule {
   enum class Kind { kOnRegionPlane, kOnPlane, kNearest };
   std::string name;
   Kind kind = Kind::kNearest;
-  int region_plane = -1;                 ///< kOnRegionPlane: index into LayoutSpec::region
-  LayoutPlane plane;                     ///< kOnPlane: the plane
-  Vec3 point = Vec3::Zero();             ///< kNearest: the point (m)
+  int region_plane = -1;      ///< kOnRegionPlane: index into LayoutSpec::region
+  LayoutPlane plane;          ///< kOnPlane: the plane
+  Vec3 point = Vec3::Zero();  ///< kNearest: the point (m)
   double max_distance = std::numeric_limits<double>::infinity();  ///< kNearest (m)
   std::string source_path;
 };
 
 /// A parsed layout. Exactly one of the two forms: rules (mesh_file empty) or mesh.
 struct LayoutSpec {
-  std::string source;                    ///< spec file name (or scene file) for errors
-  std::string path;                      ///< JSON path of the spec inside `source`
+  std::string source;  ///< spec file name (or scene file) for errors
+  std::string path;    ///< JSON path of the spec inside `source`
   std::vector<LayoutPlane> region;
   std::vector<LayoutPlane> dividers;
   std::vector<PanelRule> panels;
-  std::vector<LayoutOpening> openings;   ///< rules layouts only
-  std::string mesh_file;                 ///< OBJ layout (resolved path); empty for rules
+  std::vector<LayoutOpening> openings;  ///< rules layouts only
+  std::string mesh_file;                ///< OBJ layout (resolved path); empty for rules
   std::vector<PinRule> pins;
-  double seam_tolerance = 0.05;          ///< relative seam side length difference
-  double area_tolerance = 0.5;           ///< relative flattened area difference of a panel
-  double stray_part_fraction = 0.05;     ///< stray parts below this share of their panel join a neighbour
-  double plane_tolerance = 1e-4;         ///< m, for "on_plane" with an inline plane
-  double weld_tolerance = 1e-6;          ///< m, coincident OBJ vertices are welded
+  double seam_tolerance = 0.05;  ///< relative seam side length difference
+  double area_tolerance = 0.5;   ///< relative flattened area difference of a panel
+  double stray_part_fraction =
+      0.05;                       ///< stray parts below this share of their panel join a neighbour
+  double plane_tolerance = 1e-4;  ///< m, for "on_plane" with an inline plane
+  double weld_tolerance = 1e-6;   ///< m, coincident OBJ vertices are welded
 
   bool is_mesh_layout() const { return !mesh_file.empty(); }
   /// JSON path of the first plane that needs the skeleton or skin weights (see

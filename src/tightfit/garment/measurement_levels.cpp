@@ -73,19 +73,22 @@ std::vector<MeasurementLevel> parse_measurement_levels(JsonFields& f, const std:
     level.origin = "scene";
     level.name = entry.string("name");
     if (level.name.empty()) entry.fail("expected a name", "name");
-    if (!names.insert(level.name).second) entry.fail("a second level named \"" + level.name + "\"", "name");
+    if (!names.insert(level.name).second)
+      entry.fail("a second level named \"" + level.name + "\"", "name");
     std::optional<BoneAnchor> anchor;
     std::optional<BoneDirection> along_bone;
     parse_anchored_point(entry, "point", level.point, anchor);
     parse_anchored_direction(entry, "normal", anchor, level.normal, along_bone);
     entry.finish();
     if ((anchor || along_bone) && skeleton.bones == nullptr)
-      entry.fail("anchored on the skeleton, but there is none: give the body a \"skeleton\" (a joints "
-                 "file) or the scene a \"rig\"");
+      entry.fail(
+          "anchored on the skeleton, but there is none: give the body a \"skeleton\" (a joints "
+          "file) or the scene a \"rig\"");
     if (anchor) {
       const std::string path = entry.child_path("point") + "/bone";
       level.point = anchor_point(
-          find_anchor_bone(*skeleton.bones, anchor->bone, entry.source(), path, skeleton.source), anchor->at);
+          find_anchor_bone(*skeleton.bones, anchor->bone, entry.source(), path, skeleton.source),
+          anchor->at);
       level.anchor = anchor->bone + " at " + number_text("%g", anchor->at);
     } else {
       level.anchor = "point";
@@ -150,7 +153,8 @@ std::vector<MeasurementLevel> plane_levels(const TriMesh& garment, const Vec3& u
     std::vector<Vec3> centroid(static_cast<size_t>(cut.num_loops), Vec3::Zero());
     std::vector<int> count(static_cast<size_t>(cut.num_loops), 0);
     for (size_t i = 0; i < cut.edges.size(); ++i) {
-      centroid[static_cast<size_t>(cut.loop[i])] += crossing_point(garment, cut, static_cast<int>(i));
+      centroid[static_cast<size_t>(cut.loop[i])] +=
+          crossing_point(garment, cut, static_cast<int>(i));
       ++count[static_cast<size_t>(cut.loop[i])];
     }
     int closed = 0;

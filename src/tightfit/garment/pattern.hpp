@@ -11,15 +11,15 @@ namespace tightfit {
 /// One flat pattern piece, meshed.
 struct PatternPiece {
   std::string name;
-  Points2 rest;                 ///< n×2 rest positions (m) of the piece's vertices
-  Triangles triangles;          ///< counter-clockwise in the (x, y) plane
-  std::vector<int> boundary;    ///< the outer boundary loop, counter-clockwise, vertex indices
+  Points2 rest;               ///< n×2 rest positions (m) of the piece's vertices
+  Triangles triangles;        ///< counter-clockwise in the (x, y) plane
+  std::vector<int> boundary;  ///< the outer boundary loop, counter-clockwise, vertex indices
   /// Openings (a mask's eye holes): loops inside the outer one, each clockwise (the
   /// piece's interior on its left), vertex indices. Their rims are open garment
   /// boundaries: free unless a PinnedBoundary holds them. Empty for most pieces.
   std::vector<std::vector<int>> holes;
-  std::vector<int> corners;     ///< boundary vertices that are corners (seam ends, sharp turns)
-  Vec2 grain = Vec2::UnitY();   ///< grain-line direction (unit) in piece coordinates
+  std::vector<int> corners;    ///< boundary vertices that are corners (seam ends, sharp turns)
+  Vec2 grain = Vec2::UnitY();  ///< grain-line direction (unit) in piece coordinates
 
   /// All boundary loops: the outer one first, then the holes.
   std::vector<std::vector<int>> loops() const {

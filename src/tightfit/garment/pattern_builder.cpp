@@ -31,10 +31,14 @@ int loop_vertex(const LayoutPanel& panel, int i) {
   return panel.boundary[((i % n) + n) % n];
 }
 
-double flat_length(const LayoutPanel& panel, const BoundarySegment& s, const Points2& flat, const Mat2& linear) {
+double flat_length(const LayoutPanel& panel, const BoundarySegment& s, const Points2& flat,
+                   const Mat2& linear) {
   double len = 0.0;
   for (int e = 0; e < s.count; ++e)
-    len += (linear * (flat.row(loop_vertex(panel, s.first + e + 1)) - flat.row(loop_vertex(panel, s.first + e))).transpose()).norm();
+    len += (linear * (flat.row(loop_vertex(panel, s.first + e + 1)) -
+                      flat.row(loop_vertex(panel, s.first + e)))
+                         .transpose())
+               .norm();
   return len;
 }
 
@@ -42,7 +46,8 @@ double length_3d(const LayoutPanel& panel, const BoundarySegment& s) {
   double len = 0.0;
   for (int e = 0; e < s.count; ++e)
     len += (panel.mesh.vertices.row(loop_vertex(panel, s.first + e + 1)) -
-            panel.mesh.vertices.row(loop_vertex(panel, s.first + e))).norm();
+            panel.mesh.vertices.row(loop_vertex(panel, s.first + e)))
+               .norm();
   return len;
 }
 
@@ -68,7 +73,8 @@ Vec2 grain_direction(const LayoutPanel& panel, const Points2& flat, const Patter
       if (area2 <= 0) continue;
       // Tangential part of the grain in edge coordinates, mapped to the flat triangle.
       const Vec2 ab = (E.transpose() * E).ldlt().solve(E.transpose() * *options.grain);
-      const Vec2 q0 = flat.row(m.faces(f, 0)), q1 = flat.row(m.faces(f, 1)), q2 = flat.row(m.faces(f, 2));
+      const Vec2 q0 = flat.row(m.faces(f, 0)), q1 = flat.row(m.faces(f, 1)),
+                 q2 = flat.row(m.faces(f, 2));
       sum += 0.5 * area2 * (ab.x() * (q1 - q0) + ab.y() * (q2 - q0));
     }
     if (sum.norm() > 0) return sum.normalized();
@@ -79,7 +85,8 @@ Vec2 grain_direction(const LayoutPanel& panel, const Points2& flat, const Patter
   Vec2 c = Vec2::Zero();
   Mat2 second = Mat2::Zero();
   for (int f = 0; f < m.num_faces(); ++f) {
-    const Vec2 q0 = flat.row(m.faces(f, 0)), q1 = flat.row(m.faces(f, 1)), q2 = flat.row(m.faces(f, 2));
+    const Vec2 q0 = flat.row(m.faces(f, 0)), q1 = flat.row(m.faces(f, 1)),
+               q2 = flat.row(m.faces(f, 2));
     const double a = std::abs(signed_area(q0, q1, q2));
     for (const Vec2& q : {q0, q1, q2}) {
       c += a / 3.0 * q;
@@ -109,7 +116,8 @@ class FlatLocator {
       for (int c = 0; c < 3; ++c) b.extend(flat.row(mesh.faces(f, c)).transpose());
       const auto lo = cell(b.min()), hi = cell(b.max());
       for (int i = lo.first; i <= hi.first; ++i)
-        for (int j = lo.second; j <= hi.second; ++j) grid_[static_cast<size_t>(i * cells_ + j)].push_back(f);
+        for (int j = lo.second; j <= hi.second; ++j)
+          grid_[static_cast<size_t>(i * cells_ + j)].push_back(f);
     }
   }
 
@@ -125,7 +133,8 @@ class FlatLocator {
     int best = 0;
     double best_d = std::numeric_limits<double>::infinity();
     for (int f = 0; f < mesh_.num_faces(); ++f) {
-      const Vec2 a = flat_.row(mesh_.faces(f, 0)), b = flat_.row(mesh_.faces(f, 1)), c = flat_.row(mesh_.faces(f, 2));
+      const Vec2 a = flat_.row(mesh_.faces(f, 0)), b = flat_.row(mesh_.faces(f, 1)),
+                 c = flat_.row(mesh_.faces(f, 2));
       const Vec3 w = closest_point_weights_2d(q, a, b, c);
       const double d = (w[0] * a + w[1] * b + w[2] * c - q).squaredNorm();
       if (d < best_d) {
@@ -138,11 +147,14 @@ class FlatLocator {
 
  private:
   std::pair<int, int> cell(const Vec2& q) const {
-    const Vec2 s = (q - box_.min()).cwiseQuotient((box_.max() - box_.min()).cwiseMax(1e-300)) * cells_;
-    return {std::clamp(static_cast<int>(s.x()), 0, cells_ - 1), std::clamp(static_cast<int>(s.y()), 0, cells_ - 1)};
+    const Vec2 s =
+        (q - box_.min()).cwiseQuotient((box_.max() - box_.min()).cwiseMax(1e-300)) * cells_;
+    return {std::clamp(static_cast<int>(s.x()), 0, cells_ - 1),
+            std::clamp(static_cast<int>(s.y()), 0, cells_ - 1)};
   }
   Vec3 weights(int f, const Vec2& q) const {
-    return barycentric_2d(q, flat_.row(mesh_.faces(f, 0)), flat_.row(mesh_.faces(f, 1)), flat_.row(mesh_.faces(f, 2)));
+    return barycentric_2d(q, flat_.row(mesh_.faces(f, 0)), flat_.row(mesh_.faces(f, 1)),
+                          flat_.row(mesh_.faces(f, 2)));
   }
 
   const TriMesh& mesh_;
@@ -159,11 +171,13 @@ struct BoundarySample {
 };
 
 /// Samples at 3D arc-length fractions k/n, k = 0..n−1, of a segment.
-std::vector<BoundarySample> sample_segment(const LayoutPanel& panel, const BoundarySegment& s, int n) {
+std::vector<BoundarySample> sample_segment(const LayoutPanel& panel, const BoundarySegment& s,
+                                           int n) {
   std::vector<double> cum(1, 0.0);
   for (int e = 0; e < s.count; ++e)
     cum.push_back(cum.back() + (panel.mesh.vertices.row(loop_vertex(panel, s.first + e + 1)) -
-                                panel.mesh.vertices.row(loop_vertex(panel, s.first + e))).norm());
+                                panel.mesh.vertices.row(loop_vertex(panel, s.first + e)))
+                                   .norm());
   std::vector<BoundarySample> out;
   int e = 0;
   for (int k = 0; k < n; ++k) {
@@ -177,11 +191,13 @@ std::vector<BoundarySample> sample_segment(const LayoutPanel& panel, const Bound
 
 /// Samples at 3D arc-length fractions k/n, k = 0..n−1, of a closed loop starting at
 /// loop[0]; sample edge e runs from loop[e] to loop[(e + 1) % size].
-std::vector<BoundarySample> sample_closed_loop(const TriMesh& mesh, const std::vector<int>& loop, int n) {
+std::vector<BoundarySample> sample_closed_loop(const TriMesh& mesh, const std::vector<int>& loop,
+                                               int n) {
   const int m = static_cast<int>(loop.size());
   std::vector<double> cum(1, 0.0);
   for (int e = 0; e < m; ++e)
-    cum.push_back(cum.back() + (mesh.vertices.row(loop[(e + 1) % m]) - mesh.vertices.row(loop[e])).norm());
+    cum.push_back(cum.back() +
+                  (mesh.vertices.row(loop[(e + 1) % m]) - mesh.vertices.row(loop[e])).norm());
   std::vector<BoundarySample> out;
   int e = 0;
   for (int k = 0; k < n; ++k) {
@@ -197,7 +213,8 @@ std::vector<BoundarySample> sample_closed_loop(const TriMesh& mesh, const std::v
 double flat_loop_length(const std::vector<int>& loop, const Points2& flat, const Mat2& linear) {
   double len = 0.0;
   for (size_t e = 0; e < loop.size(); ++e)
-    len += (linear * (flat.row(loop[(e + 1) % loop.size()]) - flat.row(loop[e])).transpose()).norm();
+    len +=
+        (linear * (flat.row(loop[(e + 1) % loop.size()]) - flat.row(loop[e])).transpose()).norm();
   return len;
 }
 
@@ -224,13 +241,16 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     Flattening flat = flatten_panel(panel.mesh, loops, options.flatten);
     const std::string why = find_overlap(panel.mesh, loops, flat.uv);
     if (!why.empty())
-      throw InputError(layout.source, "panel \"" + panel.name + "\" overlaps itself when flattened (" + why +
+      throw InputError(layout.source, "panel \"" + panel.name +
+                                          "\" overlaps itself when flattened (" + why +
                                           "); split it with a divider into less curved panels");
     if (flat.report.area_error > layout.area_tolerance)
-      throw InputError(layout.source, "panel \"" + panel.name + "\" is too curved to flatten: its flat area differs from "
-                                      "its area on the body by " + percent(flat.report.area_error) +
-                                      " (area_tolerance " + percent(layout.area_tolerance) +
-                                      "); split it with a divider into less curved panels");
+      throw InputError(layout.source, "panel \"" + panel.name +
+                                          "\" is too curved to flatten: its flat area differs from "
+                                          "its area on the body by " +
+                                          percent(flat.report.area_error) + " (area_tolerance " +
+                                          percent(layout.area_tolerance) +
+                                          "); split it with a divider into less curved panels");
     PieceMap& map = out.maps[p];
     map.panel = p;
     map.flat = std::move(flat.uv);
@@ -249,18 +269,23 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     SeamReport r;
     r.name = seam.name;
     r.length_3d = length_3d(pa, pa.segments[seam.segment_a]);
-    r.length_a = flat_length(pa, pa.segments[seam.segment_a], out.maps[seam.panel_a].flat, Mat2::Identity());
-    r.length_b = flat_length(pb, pb.segments[seam.segment_b], out.maps[seam.panel_b].flat, Mat2::Identity());
+    r.length_a =
+        flat_length(pa, pa.segments[seam.segment_a], out.maps[seam.panel_a].flat, Mat2::Identity());
+    r.length_b =
+        flat_length(pb, pb.segments[seam.segment_b], out.maps[seam.panel_b].flat, Mat2::Identity());
     r.relative_difference = std::abs(r.length_a - r.length_b) / std::max(r.length_a, r.length_b);
     // A difference below one pattern edge is below what the pattern mesh resolves (and
     // a few millimetres of ease on a short seam): only longer ones are checked.
     if (r.relative_difference > layout.seam_tolerance && std::abs(r.length_a - r.length_b) > h)
-      throw InputError(layout.source, "seam \"" + seam.name + "\" (" + std::to_string(r.length_3d) + " m on the body): its sides are " + std::to_string(r.length_a) +
-                                          " m and " + std::to_string(r.length_b) +
-                                          " m long after flattening, a difference of " + percent(r.relative_difference) +
-                                          " (seam_tolerance " + percent(layout.seam_tolerance) +
-                                          ", and more than the pattern edge length); the panels are too curved for "
-                                          "this seam: add dividers");
+      throw InputError(
+          layout.source,
+          "seam \"" + seam.name + "\" (" + std::to_string(r.length_3d) +
+              " m on the body): its sides are " + std::to_string(r.length_a) + " m and " +
+              std::to_string(r.length_b) + " m long after flattening, a difference of " +
+              percent(r.relative_difference) + " (seam_tolerance " +
+              percent(layout.seam_tolerance) +
+              ", and more than the pattern edge length); the panels are too curved for "
+              "this seam: add dividers");
     out.seams.push_back(r);
   }
 
@@ -290,7 +315,9 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
         runs[p].push_back(s);
         continue;
       }
-      auto sharp = [&](int i) { return turning_angle_deg(panel, out.maps[p].flat, i) > options.corner_angle_deg; };
+      auto sharp = [&](int i) {
+        return turning_angle_deg(panel, out.maps[p].flat, i) > options.corner_angle_deg;
+      };
       if (panel.segments.size() == 1)  // a whole open loop: start at a corner if it has one
         for (int i = 0; i < s.count; ++i)
           if (sharp(s.first + i)) {
@@ -324,11 +351,12 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     }
   for (size_t k = 0; k < layout.seams.size(); ++k) {
     const LayoutSeam& seam = layout.seams[k];
-    const int ra = first_run[seam.panel_a][seam.segment_a], rb = first_run[seam.panel_b][seam.segment_b];
-    const double la = flat_length(layout.panels[seam.panel_a], runs[seam.panel_a][ra], out.maps[seam.panel_a].flat,
-                                  out.maps[seam.panel_a].linear);
-    const double lb = flat_length(layout.panels[seam.panel_b], runs[seam.panel_b][rb], out.maps[seam.panel_b].flat,
-                                  out.maps[seam.panel_b].linear);
+    const int ra = first_run[seam.panel_a][seam.segment_a],
+              rb = first_run[seam.panel_b][seam.segment_b];
+    const double la = flat_length(layout.panels[seam.panel_a], runs[seam.panel_a][ra],
+                                  out.maps[seam.panel_a].flat, out.maps[seam.panel_a].linear);
+    const double lb = flat_length(layout.panels[seam.panel_b], runs[seam.panel_b][rb],
+                                  out.maps[seam.panel_b].flat, out.maps[seam.panel_b].linear);
     const int n = std::max({min_count(seam.panel_a), min_count(seam.panel_b),
                             static_cast<int>(std::lround(0.5 * (la + lb) / h))});
     count[seam.panel_a][ra] = count[seam.panel_b][rb] = n;
@@ -372,13 +400,15 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     std::vector<std::vector<int>> hole_vertices;
     for (const PanelHole& hole : panel.holes) {
       const size_t from = boundary_points.size();
-      const int n_hole = std::max(3, static_cast<int>(std::lround(flat_loop_length(hole.loop, map.flat, map.linear) / h)));
+      const int n_hole = std::max(
+          3, static_cast<int>(std::lround(flat_loop_length(hole.loop, map.flat, map.linear) / h)));
       const int m = static_cast<int>(hole.loop.size());
       for (const BoundarySample& b : sample_closed_loop(panel.mesh, hole.loop, n_hole))
         add_sample(hole.loop[b.edge], hole.loop[(b.edge + 1) % m], b.t);
       hole_polygons.push_back(polygon_of(from));
       std::vector<int> vertices(static_cast<size_t>(n_hole));
-      for (int k = 0; k < n_hole; ++k) vertices[static_cast<size_t>(k)] = static_cast<int>(from) + k;
+      for (int k = 0; k < n_hole; ++k)
+        vertices[static_cast<size_t>(k)] = static_cast<int>(from) + k;
       hole_vertices.push_back(std::move(vertices));
     }
     PieceMesh mesh;
@@ -401,7 +431,8 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     const FlatLocator locator(panel.mesh, map.flat);
     const Mat2 inverse = map.linear.inverse();
     for (Eigen::Index v = nb; v < piece.rest.rows(); ++v)
-      map.location.push_back(locator.locate(inverse * (piece.rest.row(v).transpose() - map.offset)));
+      map.location.push_back(
+          locator.locate(inverse * (piece.rest.row(v).transpose() - map.offset)));
     out.pattern.pieces.push_back(std::move(piece));
   }
 
@@ -416,7 +447,8 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     return v;
   };
   for (const LayoutSeam& seam : layout.seams) {
-    const int ra = first_run[seam.panel_a][seam.segment_a], rb = first_run[seam.panel_b][seam.segment_b];
+    const int ra = first_run[seam.panel_a][seam.segment_a],
+              rb = first_run[seam.panel_b][seam.segment_b];
     Seam s;
     s.name = seam.name;
     s.a = {seam.panel_a, run_vertices(seam.panel_a, ra, ra + 1)};
@@ -428,7 +460,8 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     for (size_t si = 0; si < layout.panels[p].segments.size(); ++si) {
       const BoundarySegment& s = layout.panels[p].segments[si];
       if (s.seam >= 0 || s.pin < 0) continue;
-      const int r1 = si + 1 < first_run[p].size() ? first_run[p][si + 1] : static_cast<int>(runs[p].size());
+      const int r1 =
+          si + 1 < first_run[p].size() ? first_run[p][si + 1] : static_cast<int>(runs[p].size());
       std::vector<int> v = run_vertices(p, first_run[p][si], r1);
       if (layout.panels[p].segments.size() == 1) v.pop_back();  // whole loop: no repeat
       out.pattern.pinned.push_back({layout.pin_names[s.pin], p, std::move(v)});
@@ -443,7 +476,8 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
 Vec3 panel_position(const Layout& layout, const PieceMap& map, const PanelPoint& point) {
   const TriMesh& m = layout.panels[map.panel].mesh;
   Vec3 x = Vec3::Zero();
-  for (int c = 0; c < 3; ++c) x += point.weights[c] * m.vertices.row(m.faces(point.face, c)).transpose();
+  for (int c = 0; c < 3; ++c)
+    x += point.weights[c] * m.vertices.row(m.faces(point.face, c)).transpose();
   return x;
 }
 
@@ -461,8 +495,9 @@ Vec2 panel_to_piece(const Layout& layout, const PieceMap& map, const Vec3& p) {
   double best = std::numeric_limits<double>::infinity();
   Vec2 result = Vec2::Zero();
   for (int f = 0; f < m.num_faces(); ++f) {
-    const Vec3 w = closest_point_weights(p, m.vertices.row(m.faces(f, 0)), m.vertices.row(m.faces(f, 1)),
-                                         m.vertices.row(m.faces(f, 2)));
+    const Vec3 w =
+        closest_point_weights(p, m.vertices.row(m.faces(f, 0)), m.vertices.row(m.faces(f, 1)),
+                              m.vertices.row(m.faces(f, 2)));
     Vec3 x = Vec3::Zero();
     Vec2 q = Vec2::Zero();
     for (int c = 0; c < 3; ++c) {

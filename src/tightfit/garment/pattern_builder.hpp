@@ -46,9 +46,9 @@ struct SeamReport {
 };
 
 struct PatternBuild {
-  Pattern pattern;                   ///< one piece per panel, in panel order
-  std::vector<PieceMap> maps;        ///< one per piece
-  std::vector<SeamReport> seams;     ///< one per seam of the pattern
+  Pattern pattern;                ///< one piece per panel, in panel order
+  std::vector<PieceMap> maps;     ///< one per piece
+  std::vector<SeamReport> seams;  ///< one per seam of the pattern
 };
 
 /// Builds the pattern. Throws InputError (source: layout.source) when a panel overlaps

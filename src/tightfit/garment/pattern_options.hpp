@@ -30,16 +30,16 @@ struct PieceScale {
 struct PatternOptions {
   /// Target edge length of the pattern meshes in the scaled pieces (m).
   double edge_length = 0.02;
-  PieceScale scale;                              ///< default for every piece
-  std::map<std::string, PieceScale> piece_scale; ///< per-piece overrides by panel name
+  PieceScale scale;                               ///< default for every piece
+  std::map<std::string, PieceScale> piece_scale;  ///< per-piece overrides by panel name
   /// Body-space direction that becomes each piece's grain (+y) axis, projected onto the
   /// panel. Without it the grain is the longest principal axis of the flattened piece.
   std::optional<Vec3> grain;
-  FlattenOptions flatten;                        ///< LSCM + ARAP settings
+  FlattenOptions flatten;  ///< LSCM + ARAP settings
   /// An open boundary turning by more than this angle (degrees) at a vertex of the
   /// flattened panel keeps that vertex as a piece corner (seam ends always are corners).
   double corner_angle_deg = 30.0;
-  int smoothing_iterations = 10;                 ///< smoothing steps of the 2D meshes (piece_mesher.hpp)
+  int smoothing_iterations = 10;  ///< smoothing steps of the 2D meshes (piece_mesher.hpp)
   /// Move the panel vertices onto the limit surface before flattening, so that the
   /// unscaled pieces fit the surface the garment is embedded in (which lies slightly
   /// inside the control mesh).

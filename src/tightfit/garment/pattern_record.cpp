@@ -90,7 +90,8 @@ PatternPiece read_piece(JsonFields& f) {
       for (size_t i = 0; i < holes[h].size(); ++i) {
         const json& v = holes[h][i];
         if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() >= n)
-          throw InputError(f.source(), at(path, i) + ": expected a vertex index in [0, " + std::to_string(n) + ")");
+          throw InputError(f.source(), at(path, i) + ": expected a vertex index in [0, " +
+                                           std::to_string(n) + ")");
         if (!used.insert(v.get<int>()).second)
           throw InputError(f.source(), at(path, i) + ": vertex " + std::to_string(v.get<int>()) +
                                            " is already on a boundary loop");
@@ -117,7 +118,9 @@ void read_side(JsonFields& f, const Pattern& pattern, int& piece, std::vector<in
                           static_cast<int>(pattern.pieces[static_cast<size_t>(piece)].rest.rows()));
 }
 
-json side_json(const SeamSide& side) { return {{"piece", side.piece}, {"vertices", side.vertices}}; }
+json side_json(const SeamSide& side) {
+  return {{"piece", side.piece}, {"vertices", side.vertices}};
+}
 
 }  // namespace
 

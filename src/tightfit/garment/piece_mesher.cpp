@@ -26,9 +26,12 @@ using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexInfo, K>;
 struct FaceInfo {
   int nesting = -1;  // number of constrained edges crossed from the infinite face
 };
-using Fb = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K, CGAL::Constrained_triangulation_face_base_2<K>>;
+using Fb =
+    CGAL::Triangulation_face_base_with_info_2<FaceInfo, K,
+                                              CGAL::Constrained_triangulation_face_base_2<K>>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
+using Cdt =
+    CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
 
 double polygon_area(const std::vector<Vec2>& p) {
   double a = 0.0;
@@ -37,7 +40,8 @@ double polygon_area(const std::vector<Vec2>& p) {
 }
 
 bool inside_loop(const std::vector<Vec2>& p, const Vec2& q) {
-  return inside_polygon(p.size(), [&p](size_t i) { return p[i]; }, q);
+  return inside_polygon(
+      p.size(), [&p](size_t i) { return p[i]; }, q);
 }
 
 double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
@@ -71,7 +75,8 @@ std::vector<std::array<int, 3>> triangulate(const Loops& loops, const std::vecto
   std::vector<Cdt::Vertex_handle> handles(nb);
   for (int i = 0; i < nb; ++i) {
     handles[i] = cdt.insert(K::Point_2(loops.points[i].x(), loops.points[i].y()));
-    if (handles[i]->info().id >= 0) throw std::invalid_argument("mesh_piece: two boundary vertices coincide");
+    if (handles[i]->info().id >= 0)
+      throw std::invalid_argument("mesh_piece: two boundary vertices coincide");
     handles[i]->info().id = i;
   }
   try {
@@ -130,8 +135,8 @@ PieceMesh mesh_piece(const Points2& boundary_points, double h, int smoothing_ite
   return mesh_piece(boundary_points, {}, h, smoothing_iterations);
 }
 
-PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>& hole_points, double h,
-                     int smoothing_iterations) {
+PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>& hole_points,
+                     double h, int smoothing_iterations) {
   const int n_outer = static_cast<int>(boundary_points.rows());
   if (n_outer < 3) throw std::invalid_argument("mesh_piece: a boundary needs at least 3 vertices");
   if (!(h > 0)) throw std::invalid_argument("mesh_piece: edge length must be positive");
@@ -141,17 +146,20 @@ PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>&
     return v;
   };
   const std::vector<Vec2> outer = to_vector(boundary_points);
-  if (polygon_area(outer) <= 0) throw std::invalid_argument("mesh_piece: the boundary is not counter-clockwise");
+  if (polygon_area(outer) <= 0)
+    throw std::invalid_argument("mesh_piece: the boundary is not counter-clockwise");
   Loops loops;
   loops.add(outer);
   std::vector<std::vector<Vec2>> holes;
   for (size_t k = 0; k < hole_points.size(); ++k) {
     const std::string which = "mesh_piece: hole " + std::to_string(k + 1);
-    if (hole_points[k].rows() < 3) throw std::invalid_argument(which + " needs at least 3 vertices");
+    if (hole_points[k].rows() < 3)
+      throw std::invalid_argument(which + " needs at least 3 vertices");
     holes.push_back(to_vector(hole_points[k]));
     if (polygon_area(holes.back()) >= 0) throw std::invalid_argument(which + " is not clockwise");
     for (const Vec2& q : holes.back())
-      if (!inside_loop(outer, q)) throw std::invalid_argument(which + " is not inside the outer boundary");
+      if (!inside_loop(outer, q))
+        throw std::invalid_argument(which + " is not inside the outer boundary");
     loops.add(holes.back());
   }
   const int nb = loops.size();
@@ -177,7 +185,8 @@ PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>&
       const Vec2 q(x, y);
       if (!in_piece(q)) continue;
       double d = std::numeric_limits<double>::infinity();
-      for (int i = 0; i < nb && d >= 0.5 * h; ++i) d = std::min(d, segment_distance(q, boundary[i], boundary[loops.next[i]]));
+      for (int i = 0; i < nb && d >= 0.5 * h; ++i)
+        d = std::min(d, segment_distance(q, boundary[i], boundary[loops.next[i]]));
       if (d >= 0.5 * h) interior.push_back(q);
     }
   }
@@ -194,7 +203,8 @@ PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>&
       const double area2 = cross2(b - a, c - a);
       if (area2 <= 0) continue;
       const Vec2 ab = b - a, ac = c - a;
-      const Vec2 cc = a + (ac.squaredNorm() * Vec2(ab.y(), -ab.x()) - ab.squaredNorm() * Vec2(ac.y(), -ac.x())) /
+      const Vec2 cc = a + (ac.squaredNorm() * Vec2(ab.y(), -ab.x()) -
+                           ab.squaredNorm() * Vec2(ac.y(), -ac.x())) /
                               (-2.0 * cross2(ab, ac));
       for (int k = 0; k < 3; ++k)
         if (tris[t][k] >= nb) {
@@ -234,7 +244,8 @@ PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>&
   PieceMesh out;
   out.vertices.resize(nb + static_cast<Eigen::Index>(interior.size()), 2);
   for (int i = 0; i < nb; ++i) out.vertices.row(i) = boundary[i].transpose();
-  for (size_t i = 0; i < interior.size(); ++i) out.vertices.row(nb + static_cast<Eigen::Index>(i)) = interior[i].transpose();
+  for (size_t i = 0; i < interior.size(); ++i)
+    out.vertices.row(nb + static_cast<Eigen::Index>(i)) = interior[i].transpose();
   out.triangles.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (size_t i = 0; i < tris.size(); ++i)
     for (int c = 0; c < 3; ++c) out.triangles(static_cast<Eigen::Index>(i), c) = tris[i][c];

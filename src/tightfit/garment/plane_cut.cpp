@@ -52,13 +52,14 @@ Points3 to_points(const std::vector<Vec3>& x) {
 struct Cutter {
   std::function<double(const Vec3&)> value;
   std::function<Vec3(const Vec3&)> gradient;
-  bool planar = false;      ///< value is exactly affine (a plane)
-  bool from_field = false;  ///< values from the field (bone regions, local planes), linear along every edge
+  bool planar = false;  ///< value is exactly affine (a plane)
+  bool from_field =
+      false;  ///< values from the field (bone regions, local planes), linear along every edge
 };
 
 Cutter plane_cutter(const LayoutPlane& plane) {
-  Cutter c{[plane](const Vec3& x) { return plane.distance(x); }, [plane](const Vec3&) { return plane.normal; },
-           true, plane.is_field()};
+  Cutter c{[plane](const Vec3& x) { return plane.distance(x); },
+           [plane](const Vec3&) { return plane.normal; }, true, plane.is_field()};
   return c;
 }
 
@@ -137,7 +138,8 @@ void cut_one(Work& w, const Cutter& cut, int k, double eps, double snap_fraction
         const Vec3 n = normals.row(v).transpose();
         const Vec3 g = cut.gradient(w.x[v]);
         const Vec3 dir = g - g.dot(n) * n;
-        if (!(g.dot(dir) >= 0.25 * g.squaredNorm())) continue;  // cut nearly tangent to the surface here
+        if (!(g.dot(dir) >= 0.25 * g.squaredNorm()))
+          continue;  // cut nearly tangent to the surface here
         // Along the tangent direction onto the cut (one step for a plane, Newton otherwise).
         Vec3 x = w.x[v];
         for (int it = 0; it < (cut.planar ? 1 : 10); ++it) {
@@ -157,9 +159,11 @@ void cut_one(Work& w, const Cutter& cut, int k, double eps, double snap_fraction
     const auto key = std::minmax(a, b);
     auto it = split.find(key);
     if (it != split.end()) return it->second;
-    const double t = is_field ? d[a] / (d[a] - d[b]) : edge_crossing(cut, w.x[a], w.x[b], d[a], d[b]);
+    const double t =
+        is_field ? d[a] / (d[a] - d[b]) : edge_crossing(cut, w.x[a], w.x[b], d[a], d[b]);
     Vec3 p = w.x[a] + t * (w.x[b] - w.x[a]);
-    if (!is_field && cut.planar) p -= cut.value(p) * cut.gradient(p);  // exactly on the plane up to rounding
+    if (!is_field && cut.planar)
+      p -= cut.value(p) * cut.gradient(p);  // exactly on the plane up to rounding
     const int id = static_cast<int>(w.x.size());
     w.x.push_back(p);
     for (size_t j = 0; j < w.on_plane.size(); ++j)
@@ -227,7 +231,8 @@ CutMesh cut_by_planes(const TriMesh& mesh, const std::vector<LayoutPlane>& plane
 }
 
 CutMesh cut_by_planes_and_openings(const TriMesh& mesh, const std::vector<LayoutPlane>& planes,
-                                   const std::vector<LayoutOpening>& openings, double snap_fraction) {
+                                   const std::vector<LayoutOpening>& openings,
+                                   double snap_fraction) {
   std::vector<Cutter> cutters;
   for (const auto& plane : planes) cutters.push_back(plane_cutter(plane));
   for (const auto& opening : openings) cutters.push_back(opening_cutter(opening));
@@ -246,8 +251,9 @@ CutMesh cut_by_planes_and_openings(const TriMesh& mesh, const std::vector<Layout
   for (size_t k = 0; k < planes.size(); ++k) {
     const LayoutPlane& plane = planes[k];
     if (plane.anchor || plane.along_bone)
-      throw std::invalid_argument("cut_by_planes: plane \"" + plane.name +
-                                  "\" is anchored on the skeleton and not resolved (layout_anchors.hpp)");
+      throw std::invalid_argument(
+          "cut_by_planes: plane \"" + plane.name +
+          "\" is anchored on the skeleton and not resolved (layout_anchors.hpp)");
     if (!plane.is_field()) continue;
     if (plane.field.size() != static_cast<size_t>(nv))
       throw std::invalid_argument("cut_by_planes: bone region or local plane \"" + plane.name +

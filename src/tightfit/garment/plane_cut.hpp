@@ -15,8 +15,8 @@ namespace tightfit {
 
 /// The cut surface and what each of its elements comes from.
 struct CutMesh {
-  TriMesh mesh;                    ///< the cut surface (m), same orientation as the input
-  std::vector<int> parent_face;    ///< per face: the input face it lies in
+  TriMesh mesh;                  ///< the cut surface (m), same orientation as the input
+  std::vector<int> parent_face;  ///< per face: the input face it lies in
   /// on_plane[k][v]: vertex v lies on plane k (inserted there, snapped there, or within
   /// a tiny distance of it). One vector per plane, `mesh.num_vertices()` entries each.
   std::vector<std::vector<char>> on_plane;
@@ -40,6 +40,7 @@ CutMesh cut_by_planes(const TriMesh& mesh, const std::vector<LayoutPlane>& plane
 /// entries first, then one per opening (side −1: inside the opening). New vertices of
 /// an opening lie on its ellipsoid to round-off (Newton along the crossed edge).
 CutMesh cut_by_planes_and_openings(const TriMesh& mesh, const std::vector<LayoutPlane>& planes,
-                                   const std::vector<LayoutOpening>& openings, double snap_fraction = 0.1);
+                                   const std::vector<LayoutOpening>& openings,
+                                   double snap_fraction = 0.1);
 
 }  // namespace tightfit

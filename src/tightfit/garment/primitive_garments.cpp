@@ -75,8 +75,8 @@ Garment make_sleeve(const SleeveParams& p, const LimitSurface& surface, const Po
   Pattern pattern;
   pattern.pieces.push_back(std::move(piece));
   pattern.seams.push_back(std::move(seam));
-  for (const auto& [pinned, row, name] :
-       {std::tuple{p.pin_first_ring, 0, "first ring"}, std::tuple{p.pin_last_ring, ny, "last ring"}}) {
+  for (const auto& [pinned, row, name] : {std::tuple{p.pin_first_ring, 0, "first ring"},
+                                          std::tuple{p.pin_last_ring, ny, "last ring"}}) {
     if (!pinned) continue;
     PinnedBoundary pin{name, 0, {}};
     for (int i = 0; i <= nx; ++i) pin.vertices.push_back(id(i, row));

@@ -77,7 +77,8 @@ struct PlyData {
   PlyAttributes attributes;
 };
 
-enum class PlyEncoding { ascii, binary_little_endian };
+/// The enumerators are PLY's own format keywords.
+enum class PlyEncoding { ascii, binary_little_endian };  // NOLINT(readability-identifier-naming)
 
 /// Reads ascii, binary_little_endian and binary_big_endian PLY with a "vertex"
 /// element (x, y, z of any numeric type) and a "face" element (list property

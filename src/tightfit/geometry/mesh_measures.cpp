@@ -160,12 +160,12 @@ std::array<double, 6> tet_dihedral_angles(const Vec3& a, const Vec3& b, const Ve
     n[k] = normal;
   }
   // Edge (i, j) is shared by the faces opposite the two other corners.
-  static constexpr int edges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   std::array<double, 6> angles{};
   for (int e = 0; e < 6; ++e) {
     int others[2], m = 0;
     for (int k = 0; k < 4; ++k)
-      if (k != edges[e][0] && k != edges[e][1]) others[m++] = k;
+      if (k != kEdges[e][0] && k != kEdges[e][1]) others[m++] = k;
     const double cosine = std::clamp(n[others[0]].dot(n[others[1]]), -1.0, 1.0);
     angles[e] = 180.0 - std::acos(cosine) * 180.0 / std::numbers::pi;
   }

@@ -4,8 +4,8 @@
 #include <unordered_map>
 
 #include "tightfit/common/atomic_file.hpp"
-#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/text_parsing.hpp"
 

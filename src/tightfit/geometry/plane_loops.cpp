@@ -22,7 +22,8 @@ struct Labels {
   std::vector<int> parent;
   int find(int i) {
     while (parent[static_cast<size_t>(i)] != i)
-      i = parent[static_cast<size_t>(i)] = parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
+      i = parent[static_cast<size_t>(i)] =
+          parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
     return i;
   }
 };
@@ -38,7 +39,8 @@ PlaneCut cut_by_plane(const TriMesh& mesh, const std::vector<double>& side) {
     if (added) {
       cut.edges.push_back(e);
       labels.parent.push_back(it->second);
-      const double da = side[static_cast<size_t>(e.first)], db = side[static_cast<size_t>(e.second)];
+      const double da = side[static_cast<size_t>(e.first)],
+                   db = side[static_cast<size_t>(e.second)];
       cut.t.push_back(da / (da - db));
     }
     return it->second;
@@ -49,7 +51,8 @@ PlaneCut cut_by_plane(const TriMesh& mesh, const std::vector<double>& side) {
     int count = 0;
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
-      if (negative(side, a) != negative(side, b)) crossing[static_cast<size_t>(count++)] = index_of(edge_key(a, b));
+      if (negative(side, a) != negative(side, b))
+        crossing[static_cast<size_t>(count++)] = index_of(edge_key(a, b));
     }
     if (count != 2) continue;
     cut.segments.push_back({f, crossing[0], crossing[1]});
@@ -59,7 +62,8 @@ PlaneCut cut_by_plane(const TriMesh& mesh, const std::vector<double>& side) {
   std::map<int, int> number;
   cut.loop.resize(cut.edges.size());
   for (size_t i = 0; i < cut.edges.size(); ++i) {
-    const auto [it, added] = number.emplace(labels.find(static_cast<int>(i)), static_cast<int>(number.size()));
+    const auto [it, added] =
+        number.emplace(labels.find(static_cast<int>(i)), static_cast<int>(number.size()));
     cut.loop[i] = it->second;
   }
   cut.num_loops = static_cast<int>(number.size());
@@ -96,8 +100,10 @@ NearestCutLoop nearest_cut_loop(const TriMesh& mesh, const PlaneCut& cut, const 
   // their segments.
   std::vector<int> ray_crossings(static_cast<size_t>(cut.num_loops), 0);
   for (const auto& s : cut.segments) {
-    const Eigen::Vector2d p = crossing[static_cast<size_t>(s.a)], q = crossing[static_cast<size_t>(s.b)];
-    if ((p.y() > 0.0) != (q.y() > 0.0) && p.x() + (q.x() - p.x()) * (0.0 - p.y()) / (q.y() - p.y()) > 0.0)
+    const Eigen::Vector2d p = crossing[static_cast<size_t>(s.a)],
+                          q = crossing[static_cast<size_t>(s.b)];
+    if ((p.y() > 0.0) != (q.y() > 0.0) &&
+        p.x() + (q.x() - p.x()) * (0.0 - p.y()) / (q.y() - p.y()) > 0.0)
       ++ray_crossings[static_cast<size_t>(cut.loop[static_cast<size_t>(s.a)])];
   }
   NearestCutLoop nearest;
@@ -105,7 +111,8 @@ NearestCutLoop nearest_cut_loop(const TriMesh& mesh, const PlaneCut& cut, const 
   for (size_t i = 0; i < ne; ++i) {
     const int loop = cut.loop[i];
     const bool encloses = ray_crossings[static_cast<size_t>(loop)] % 2 == 1;
-    if ((encloses && !nearest.encloses) || (encloses == nearest.encloses && distance[i] < nearest.distance))
+    if ((encloses && !nearest.encloses) ||
+        (encloses == nearest.encloses && distance[i] < nearest.distance))
       nearest = {loop, encloses, distance[i]};
   }
   if (nearest.loop < 0) nearest.distance = 0.0;
@@ -120,8 +127,8 @@ double cut_loop_length(const TriMesh& mesh, const PlaneCut& cut, int loop) {
   return length;
 }
 
-BeyondLoop beyond_nearest_loop(const TriMesh& mesh, const std::vector<double>& side, const Vec3& point,
-                               const Vec3& normal, const std::string& source) {
+BeyondLoop beyond_nearest_loop(const TriMesh& mesh, const std::vector<double>& side,
+                               const Vec3& point, const Vec3& normal, const std::string& source) {
   const int nv = mesh.num_vertices();
   const PlaneCut cut = cut_by_plane(mesh, side);
   if (cut.edges.empty()) throw InputError(source, "the plane misses the surface");
@@ -158,8 +165,9 @@ BeyondLoop beyond_nearest_loop(const TriMesh& mesh, const std::vector<double>& s
   }
   for (const auto& [a, b] : out.loop_edges)
     if (out.beyond[static_cast<size_t>(negative(side, a) ? b : a)])
-      throw InputError(source, "the cut loop nearest the point does not separate the surface "
-                               "(the surface has a handle through it)");
+      throw InputError(source,
+                       "the cut loop nearest the point does not separate the surface "
+                       "(the surface has a handle through it)");
   return out;
 }
 

@@ -72,7 +72,7 @@ struct BeyondLoop {
 /// the vertices beyond it. Throws InputError(source, …) when no edge is crossed (the
 /// plane misses the surface) or the loop does not separate the surface (a handle
 /// through it).
-BeyondLoop beyond_nearest_loop(const TriMesh& mesh, const std::vector<double>& side, const Vec3& point,
-                               const Vec3& normal, const std::string& source);
+BeyondLoop beyond_nearest_loop(const TriMesh& mesh, const std::vector<double>& side,
+                               const Vec3& point, const Vec3& normal, const std::string& source);
 
 }  // namespace tightfit

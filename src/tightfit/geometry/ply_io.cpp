@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "tightfit/common/atomic_file.hpp"
-#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/text_parsing.hpp"
 
@@ -17,8 +17,11 @@ namespace tightfit {
 
 namespace {
 
+// The enumerators are PLY's own keywords.
+// NOLINTBEGIN(readability-identifier-naming)
 enum class Format { ascii, binary_le, binary_be };
 enum class Type { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
+// NOLINTEND(readability-identifier-naming)
 
 std::optional<Type> parse_type(std::string_view name) {
   if (name == "char" || name == "int8") return Type::int8;

@@ -58,8 +58,8 @@ double edge_length(const TriMesh& mesh, int a, int b) {
 std::int64_t face_level(const TriMesh& mesh, int f, double spacing) {
   std::int64_t n = 1;
   for (int c = 0; c < 3; ++c)
-    n = std::max(n, edge_parts(edge_length(mesh, mesh.faces(f, c), mesh.faces(f, (c + 1) % 3)),
-                               spacing));
+    n = std::max(
+        n, edge_parts(edge_length(mesh, mesh.faces(f, c), mesh.faces(f, (c + 1) % 3)), spacing));
   return n;
 }
 
@@ -140,8 +140,8 @@ OrientedPoints sample_surface(const TriMesh& mesh, double spacing) {
       for (std::int64_t j = 1; i + j < n; ++j) {
         const double wa = static_cast<double>(i) * inv, wb = static_cast<double>(j) * inv;
         const double wc = 1.0 - wa - wb;
-        add(phong_point<3>({pa, pb, pc}, {na, nb, nc}, {wa, wb, wc}),
-            wa * na + wb * nb + wc * nc, fallback);
+        add(phong_point<3>({pa, pb, pc}, {na, nb, nc}, {wa, wb, wc}), wa * na + wb * nb + wc * nc,
+            fallback);
       }
   }
   return out;

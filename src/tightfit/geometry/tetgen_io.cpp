@@ -2,8 +2,8 @@
 #include <ostream>
 
 #include "tightfit/common/atomic_file.hpp"
-#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 #include "tightfit/geometry/text_parsing.hpp"
 

@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "tightfit/common/atomic_file.hpp"
-#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/xml_text.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 #include "tightfit/geometry/text_parsing.hpp"
@@ -193,8 +193,10 @@ void write_vtu(const std::filesystem::path& path, const TetMesh& mesh,
   check_fields(cell_fields, mesh.num_tets(), "cell");
   write_file_atomically(path, [&](std::ostream& out) {
     require_finite_matrix(mesh.vertices, "the point positions");
-    for (const auto& f : point_fields) require_finite_matrix(f.values, "the point field '" + f.name + "'");
-    for (const auto& f : cell_fields) require_finite_matrix(f.values, "the cell field '" + f.name + "'");
+    for (const auto& f : point_fields)
+      require_finite_matrix(f.values, "the point field '" + f.name + "'");
+    for (const auto& f : cell_fields)
+      require_finite_matrix(f.values, "the cell field '" + f.name + "'");
     out << "<?xml version=\"1.0\"?>\n"
         << "<!-- written by tightfit -->\n"
         << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "

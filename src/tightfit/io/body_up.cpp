@@ -5,7 +5,7 @@
 namespace tightfit {
 
 Vec3 body_up_direction(const BodySpec& spec) {
-  if (spec.source == BodySource::Cylinder) {
+  if (spec.source == BodySource::kCylinder) {
     const double length = spec.cylinder.axis.norm();
     if (length > 0.0 && std::isfinite(length)) return spec.cylinder.axis / length;
   }

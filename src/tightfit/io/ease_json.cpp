@@ -22,7 +22,8 @@ nlohmann::json ease_table_json(const EaseTable& table) {
       j["ease_percent"] = m.ease_percent();
       j["fitted_stretch"] = m.fitted_stretch();
       nlohmann::json pieces = nlohmann::json::array();
-      for (const PieceWidth& p : m.pieces) pieces.push_back({{"piece", p.piece}, {"pattern_width_m", p.width}});
+      for (const PieceWidth& p : m.pieces)
+        pieces.push_back({{"piece", p.piece}, {"pattern_width_m", p.width}});
       j["pieces"] = pieces;
     }
     levels.push_back(std::move(j));

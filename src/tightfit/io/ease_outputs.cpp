@@ -8,7 +8,8 @@ namespace tightfit {
 
 EaseTable fit_ease_table(const GarmentSimulation& sim, const SceneSpec& scene) {
   const Body& body = sim.body();
-  const TriMesh rest_body{body_limit_positions(body, sim.surface(), body.volume.vertices), body.surface.faces};
+  const TriMesh rest_body{body_limit_positions(body, sim.surface(), body.volume.vertices),
+                          body.surface.faces};
   const Garment& garment = sim.garment();
   const Points3& fitted = sim.garment_positions();
   EaseTable table;
@@ -16,7 +17,8 @@ EaseTable fit_ease_table(const GarmentSimulation& sim, const SceneSpec& scene) {
     table = measure_ease(scene.measurements, rest_body, garment, fitted);
   } else {
     if (scene.skeleton)
-      table = drop_uncovered(measure_ease(skeleton_levels(*scene.skeleton), rest_body, garment, fitted));
+      table = drop_uncovered(
+          measure_ease(skeleton_levels(*scene.skeleton), rest_body, garment, fitted));
     if (table.levels.empty()) {
       const auto levels = plane_levels(TriMesh{fitted, garment.garment_triangles},
                                        body_up_direction(scene.body), kMeasurementSpacing);

@@ -15,17 +15,18 @@ double clamp01(double t) { return std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 0
 /// Polynomial fit of matplotlib's viridis (degree 6, minimax; coefficients published
 /// by Matt Zucker under CC0, fitted to the BIDS colormap data, also CC0).
 Rgb viridis(double t) {
-  static constexpr double c[7][3] = {{0.2777273272234177, 0.005407344544966578, 0.3340998053353061},
-                                     {0.1050930431085774, 1.404613529898575, 1.384590162594685},
-                                     {-0.3308618287255563, 0.214847559468213, 0.09509516302823659},
-                                     {-4.634230498983486, -5.799100973351585, -19.33244095627987},
-                                     {6.228269936347081, 14.17993336680509, 56.69055260068105},
-                                     {4.776384997670288, -13.74514537774601, -65.35303263337234},
-                                     {-5.435455855934631, 4.645852612178535, 26.3124352495832}};
+  static constexpr double kCoefficients[7][3] = {
+      {0.2777273272234177, 0.005407344544966578, 0.3340998053353061},
+      {0.1050930431085774, 1.404613529898575, 1.384590162594685},
+      {-0.3308618287255563, 0.214847559468213, 0.09509516302823659},
+      {-4.634230498983486, -5.799100973351585, -19.33244095627987},
+      {6.228269936347081, 14.17993336680509, 56.69055260068105},
+      {4.776384997670288, -13.74514537774601, -65.35303263337234},
+      {-5.435455855934631, 4.645852612178535, 26.3124352495832}};
   Rgb rgb{};
   for (int k = 0; k < 3; ++k) {
-    double v = c[6][k];
-    for (int i = 5; i >= 0; --i) v = v * t + c[i][k];
+    double v = kCoefficients[6][k];
+    for (int i = 5; i >= 0; --i) v = v * t + kCoefficients[i][k];
     rgb[static_cast<std::size_t>(k)] = std::clamp(v, 0.0, 1.0);
   }
   return rgb;
@@ -34,14 +35,14 @@ Rgb viridis(double t) {
 /// Polynomial approximation of Google's Turbo (degree 5; Copyright 2019 Google LLC,
 /// Apache-2.0, by Anton Mikhailov and Ruofei Du).
 Rgb turbo(double t) {
-  static constexpr double c[6][3] = {
+  static constexpr double kCoefficients[6][3] = {
       {0.13572138, 0.09140261, 0.10667330},      {4.61539260, 2.19418839, 12.64194608},
       {-42.66032258, 4.84296658, -60.58204836},  {132.13108234, -14.18503333, 110.36276771},
       {-152.94239396, 4.27729857, -89.90310912}, {59.28637943, 2.82956604, 27.34824973}};
   Rgb rgb{};
   for (int k = 0; k < 3; ++k) {
-    double v = c[5][k];
-    for (int i = 4; i >= 0; --i) v = v * t + c[i][k];
+    double v = kCoefficients[5][k];
+    for (int i = 4; i >= 0; --i) v = v * t + kCoefficients[i][k];
     rgb[static_cast<std::size_t>(k)] = std::clamp(v, 0.0, 1.0);
   }
   return rgb;
@@ -101,9 +102,8 @@ std::vector<FieldColoring> standard_colorings() {
                   ColorMap::kViridis, std::nullopt, std::nullopt, false, std::nullopt});
   list.push_back({std::string(fit_fields::kPressurePa), "Pressure", "mmHg", 1.0 / kPascalPerMmHg,
                   ColorMap::kTurbo, std::nullopt, std::nullopt, true, kLiftOffColor});
-  list.push_back(
-      {std::string(fit_fields::kRegime), "Regime", "", 1.0, ColorMap::kRegime, 0.0, 2.0, false,
-       std::nullopt});
+  list.push_back({std::string(fit_fields::kRegime), "Regime", "", 1.0, ColorMap::kRegime, 0.0, 2.0,
+                  false, std::nullopt});
   return list;
 }
 

@@ -180,8 +180,7 @@ SplitGarment split_garment(const TriMesh& garment, const Points3& outward, const
 }
 
 /// COLOR_n accessor of one colouring: colormap(t) per face corner in linear light.
-int color_accessor(const SplitGarment& g, const ResolvedColoring& coloring,
-                   GltfBuffers& buffers) {
+int color_accessor(const SplitGarment& g, const ResolvedColoring& coloring, GltfBuffers& buffers) {
   std::vector<float> colors;
   colors.reserve(static_cast<std::size_t>(9 * g.faces));
   for (int f = 0; f < g.faces; ++f) {
@@ -281,9 +280,17 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
   if (!view.poses.empty()) {
     VecX worst = VecX::Zero(view.garment.num_faces());
     for (const FitPose& pose : view.poses) worst = worst.cwiseMax(pose.sliding_excess);
-    const FieldColoring sliding{std::string(fit_fields::kSlidingExcess), "Sliding", "N", 1.0,
-                                ColorMap::kViridis, 0.0, std::nullopt, true, std::nullopt};
-    const ResolvedColoring range = resolve_coloring(sliding, FaceField{sliding.field, "N", worst}, source);
+    const FieldColoring sliding{std::string(fit_fields::kSlidingExcess),
+                                "Sliding",
+                                "N",
+                                1.0,
+                                ColorMap::kViridis,
+                                0.0,
+                                std::nullopt,
+                                true,
+                                std::nullopt};
+    const ResolvedColoring range =
+        resolve_coloring(sliding, FaceField{sliding.field, "N", worst}, source);
     for (const FitPose& pose : view.poses) {
       nlohmann::json children = nlohmann::json::array();
       if (with_body) {
@@ -293,8 +300,8 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
       }
       ResolvedColoring posed = range;
       posed.values.assign(pose.sliding_excess.begin(), pose.sliding_excess.end());
-      const SplitGarment g =
-          split_garment(TriMesh{pose.garment, view.garment.faces}, pose.garment_normals, r, buffers);
+      const SplitGarment g = split_garment(TriMesh{pose.garment, view.garment.faces},
+                                           pose.garment_normals, r, buffers);
       meshes.push_back(garment_mesh("garment (" + pose.name + ")", g,
                                     {color_accessor(g, posed, buffers)}, {posed}));
       children.push_back(add_node("garment (" + pose.name + ")", meshes.size() - 1));
@@ -323,8 +330,8 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
     sets.push_back(set);
   }
   const double up_length = view.up.norm();
-  const Vec3 up = up_length > 0.0 && std::isfinite(up_length) ? Vec3(view.up / up_length)
-                                                               : Vec3::UnitY();
+  const Vec3 up =
+      up_length > 0.0 && std::isfinite(up_length) ? Vec3(view.up / up_length) : Vec3::UnitY();
   const auto& bin = buffers.bytes();
   nlohmann::json gltf = {
       {"asset",
@@ -333,8 +340,9 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
         {"extras",
          {{"units", "metres, y up"},
           {"scene_up", {up.x(), up.y(), up.z()}},
-          {"rotation", "every position and normal is the scene's turned by the rotation that "
-                       "takes scene_up (the body's up direction) onto +y"},
+          {"rotation",
+           "every position and normal is the scene's turned by the rotation that "
+           "takes scene_up (the body's up direction) onto +y"},
           {"coloring", coloring_json(colorings.front())},
           {"color_sets", sets}}}}},
       {"scene", 0},

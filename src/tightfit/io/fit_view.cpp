@@ -133,10 +133,12 @@ void validate_fit_view(const FitView& view, const std::string& source) {
   for (const FitPose& pose : view.poses)
     if (pose.garment.rows() != view.garment.vertices.rows() ||
         pose.garment_normals.rows() != view.garment.vertices.rows() ||
-        pose.body.rows() != view.body.vertices.rows() || pose.sliding_excess.size() != view.garment.num_faces() ||
-        !pose.garment.allFinite() || !pose.garment_normals.allFinite() || !pose.body.allFinite() ||
+        pose.body.rows() != view.body.vertices.rows() ||
+        pose.sliding_excess.size() != view.garment.num_faces() || !pose.garment.allFinite() ||
+        !pose.garment_normals.allFinite() || !pose.body.allFinite() ||
         !pose.sliding_excess.allFinite())
-      throw InputError(source, "pose \"" + pose.name + "\" does not match the garment and body, or is not finite");
+      throw InputError(source, "pose \"" + pose.name +
+                                   "\" does not match the garment and body, or is not finite");
   for (const FitRegion& region : view.pressure_regions) {
     if (!(region.min_pa <= region.max_pa))
       throw InputError(source, "pressure region \"" + region.name + "\" has min > max");

@@ -51,10 +51,10 @@ inline constexpr std::string_view kResidualForce = "residual_force_n";
 /// its neutral embedding, and the posed body, for the report's pose switch.
 struct FitPose {
   std::string name;
-  Points3 garment;          ///< garment vertices in the pose (n_g×3, m)
-  Points3 garment_normals;  ///< outward unit normals of the posed body there (n_g×3)
-  Points3 body;             ///< the body surface's vertices in the pose (FitView::body rows)
-  VecX sliding_excess;      ///< per garment face: mean tangential force above the limit (N)
+  Points3 garment;             ///< garment vertices in the pose (n_g×3, m)
+  Points3 garment_normals;     ///< outward unit normals of the posed body there (n_g×3)
+  Points3 body;                ///< the body surface's vertices in the pose (FitView::body rows)
+  VecX sliding_excess;         ///< per garment face: mean tangential force above the limit (N)
   double sliding_share = 0.0;  ///< share of the free garment vertices that would slide
 };
 
@@ -85,9 +85,9 @@ struct FitView {
   /// The body's up direction in the scene's frame (io/body_up.hpp); the glb turns it
   /// onto glTF's +y.
   Vec3 up = Vec3::UnitY();
-  TriMesh body;                           ///< deformed body surface (m)
-  std::vector<FaceField> body_fields;     ///< per body face; may be empty
-  TriMesh garment;                        ///< garment in 3D (m), welded across seams
+  TriMesh body;                        ///< deformed body surface (m)
+  std::vector<FaceField> body_fields;  ///< per body face; may be empty
+  TriMesh garment;                     ///< garment in 3D (m), welded across seams
   /// Outward unit normals of the body surface at the garment vertices (n_g×3), which
   /// the report lifts the garment along for display (may be empty).
   Points3 garment_normals;

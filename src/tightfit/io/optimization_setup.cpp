@@ -5,22 +5,22 @@
 #include <limits>
 #include <string>
 
+#include "tightfit/body/posed_body.hpp"
+#include "tightfit/body/skin_transfer.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/regularizer_compactness.hpp"
-#include "tightfit/design/regularizer_edge_lengths.hpp"
 #include "tightfit/design/regularizer_corner_angle.hpp"
+#include "tightfit/design/regularizer_edge_lengths.hpp"
 #include "tightfit/design/regularizer_smoothness.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/surface_sampling.hpp"
 #include "tightfit/objectives/all_poses_term.hpp"
-#include "tightfit/objectives/pinned_traction_regularizer.hpp"
 #include "tightfit/objectives/directional_stretch_objective.hpp"
+#include "tightfit/objectives/pinned_traction_regularizer.hpp"
 #include "tightfit/objectives/pressure_objective.hpp"
 #include "tightfit/objectives/seam_traction_objective.hpp"
 #include "tightfit/objectives/shape_objective.hpp"
 #include "tightfit/objectives/sliding_objective.hpp"
-#include "tightfit/body/posed_body.hpp"
-#include "tightfit/body/skin_transfer.hpp"
 #include "tightfit/objectives/stretch_objective.hpp"
 
 namespace tightfit {
@@ -69,11 +69,13 @@ OptimizationScene read_optimization_scene(const std::string& file) {
   s.optimization = parse_optimization_spec(s.scene.optimize, file, "/optimize", s.scene.base_dir);
   if (auto& pressure = s.optimization.pressure) {
     if (pressure->scene_regions && s.scene.pressure_regions.empty())
-      throw InputError(file, "/optimize/objectives/pressure: give a range (min_pa/max_pa or "
-                             "min_mmhg/max_mmhg) or the targets in /pressure/regions");
+      throw InputError(file,
+                       "/optimize/objectives/pressure: give a range (min_pa/max_pa or "
+                       "min_mmhg/max_mmhg) or the targets in /pressure/regions");
     if (!pressure->scene_regions && !s.scene.pressure_regions.empty())
-      throw InputError(file, "/optimize/objectives/pressure: the scene has /pressure/regions; "
-                             "give the targets there or here, not both");
+      throw InputError(file,
+                       "/optimize/objectives/pressure: the scene has /pressure/regions; "
+                       "give the targets there or here, not both");
     pressure->regions = s.scene.pressure_regions;
     pressure->regions_source = file;
     pressure->rig = s.scene.pressure_rig;
@@ -85,18 +87,23 @@ OptimizationScene read_optimization_scene(const std::string& file) {
                            (o.pressure && o.pressure->all_poses);
   if (posed_terms) {
     if (!s.scene.rig || s.scene.poses.empty())
-      throw InputError(file, "/optimize/objectives: a term asks for poses (sliding, or \"poses\": \"all\") "
-                             "but the scene has none (give \"rig\" and \"poses\")");
+      throw InputError(
+          file,
+          "/optimize/objectives: a term asks for poses (sliding, or \"poses\": \"all\") "
+          "but the scene has none (give \"rig\" and \"poses\")");
     o.poses.rig = std::shared_ptr<const SkinWeights>(s.scene.rig, &s.scene.rig->weights);
     o.poses.skinning = s.scene.rig->skinning;
     o.poses.source = file;
     for (const ScenePose& p : s.scene.poses)
-      o.poses.bone_motions.emplace_back(p.name, pose_skeleton(s.scene.rig->skeleton, p.rotations, p.origin));
+      o.poses.bone_motions.emplace_back(
+          p.name, pose_skeleton(s.scene.rig->skeleton, p.rotations, p.origin));
   }
   if (o.sliding)
     for (const std::string& name : o.sliding->poses)
-      if (std::none_of(s.scene.poses.begin(), s.scene.poses.end(), [&](const ScenePose& p) { return p.name == name; }))
-        throw InputError(file, "/optimize/objectives/sliding/poses: the scene has no pose \"" + name + "\"");
+      if (std::none_of(s.scene.poses.begin(), s.scene.poses.end(),
+                       [&](const ScenePose& p) { return p.name == name; }))
+        throw InputError(
+            file, "/optimize/objectives/sliding/poses: the scene has no pose \"" + name + "\"");
   return s;
 }
 
@@ -108,7 +115,8 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
     if (weight > 0.0) sum->add(make(), weight);
   };
   std::vector<PoseMotions> all_poses;  // computed once, when a term needs them
-  auto in_poses = [&](bool all, std::shared_ptr<const DesignTerm> term) -> std::shared_ptr<const DesignTerm> {
+  auto in_poses = [&](bool all,
+                      std::shared_ptr<const DesignTerm> term) -> std::shared_ptr<const DesignTerm> {
     if (!all) return term;
     if (all_poses.empty()) all_poses = pose_motions(spec.poses, sim.body());
     return std::make_shared<AllPosesTerm>(std::move(term), sim.surface(), all_poses);
@@ -128,8 +136,9 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
       b.max_stretch = s.max_stretch.value_or(std::numeric_limits<double>::infinity());
       return in_poses(s.all_poses,
                       std::make_shared<DirectionalStretchObjective>(
-                          g, spec.directional_stretch->across_grain ? FabricDirection::across_grain
-                                                                    : FabricDirection::along_grain,
+                          g,
+                          spec.directional_stretch->across_grain ? FabricDirection::kAcrossGrain
+                                                                 : FabricDirection::kAlongGrain,
                           b));
     });
   if (spec.shape)
@@ -141,31 +150,32 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
           throw InputError(spec.shape->target.string(),
                            "the shape objective has no unpinned garment vertex to act on");
       }
-      return std::make_shared<ShapeObjective>(read_shape_target(*spec.shape), g.num_garment_vertices,
-                                              vertices);
+      return std::make_shared<ShapeObjective>(read_shape_target(*spec.shape),
+                                              g.num_garment_vertices, vertices);
     });
   if (spec.pressure)
     add(spec.pressure->weight, [&]() -> std::shared_ptr<const DesignTerm> {
       if (!spec.pressure->scene_regions)
-        return in_poses(spec.pressure->all_poses,
-                        std::make_shared<PressureObjective>(g, sim.materials().fabric, spec.pressure->min_pa,
-                                                            spec.pressure->max_pa));
+        return in_poses(
+            spec.pressure->all_poses,
+            std::make_shared<PressureObjective>(g, sim.materials().fabric, spec.pressure->min_pa,
+                                                spec.pressure->max_pa));
       const std::string& source = spec.pressure->regions_source;
       PressureRegions regions(g, spec.pressure->regions, source, spec.pressure->rig.get(),
                               spec.pressure->rig_radius);
       const Points3& x = sim.garment_positions();
       regions.check_covered(Eigen::Map<const VecX>(x.data(), x.size()), source);
-      return in_poses(spec.pressure->all_poses,
-                      std::make_shared<PressureObjective>(g, sim.materials().fabric, std::move(regions)));
+      return in_poses(spec.pressure->all_poses, std::make_shared<PressureObjective>(
+                                                    g, sim.materials().fabric, std::move(regions)));
     });
   if (spec.seam_traction)
     add(spec.seam_traction->weight,
         [&] { return std::make_shared<SeamTractionObjective>(g, sim.materials().fabric); });
   if (spec.sliding)
     add(spec.sliding->weight, [&] {
-      return std::make_shared<SlidingObjective>(g, sim.materials(), sim.surface(), sim.body().num_vertices(),
-                                                pose_motions(spec.poses, sim.body(), spec.sliding->poses),
-                                                spec.sliding->friction);
+      return std::make_shared<SlidingObjective>(
+          g, sim.materials(), sim.surface(), sim.body().num_vertices(),
+          pose_motions(spec.poses, sim.body(), spec.sliding->poses), spec.sliding->friction);
     });
   const RegularizerWeights& w = spec.regularizers;
   add(w.seam_length,
@@ -176,8 +186,9 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
   add(w.corner_angle, [&] { return std::make_shared<CornerAngleRegularizer>(g); });
   add(w.compactness,
       [&] { return std::make_shared<CompactnessRegularizer>(g, w.compactness_options); });
-  add(w.pinned_traction,
-      [&] { return std::make_shared<PinnedTractionRegularizer>(g, sim.materials(), sim.surface()); });
+  add(w.pinned_traction, [&] {
+    return std::make_shared<PinnedTractionRegularizer>(g, sim.materials(), sim.surface());
+  });
   return sum;
 }
 

@@ -38,8 +38,8 @@ inline constexpr std::int64_t kMaxShapeTargetPoints = 4'000'000;
 
 /// The objective Σ w_j T_j of the spec for the simulation's garment: objectives first
 /// (stretch, shape, pressure, seam traction, sliding), then the regularizers (seam length,
-/// boundary spacing, boundary smoothness, compactness, pinned traction); terms of weight 0 are left out.
-/// The shape target is read here (InputError naming the file).
+/// boundary spacing, boundary smoothness, compactness, pinned traction); terms of weight 0 are left
+/// out. The shape target is read here (InputError naming the file).
 std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
                                                const GarmentSimulation& sim);
 

@@ -34,7 +34,8 @@ struct LoopEdge {
 
 class BoundaryIndex {
  public:
-  explicit BoundaryIndex(const PatternPiece& piece) : size_(static_cast<int>(piece.boundary.size())) {
+  explicit BoundaryIndex(const PatternPiece& piece)
+      : size_(static_cast<int>(piece.boundary.size())) {
     for (int k = 0; k < size_; ++k) position_[piece.boundary[static_cast<size_t>(k)]] = k;
   }
   LoopEdge edge(int u, int w) const {
@@ -57,13 +58,12 @@ void apply_allowance(std::vector<double>& allowance, const BoundaryIndex& index,
   }
 }
 
-
 /// A notch before truing: where it sits on the piece's boundary loop.
 struct PendingNotch {
   Notch notch;
-  int edge = 0;        ///< loop edge (loop point edge → edge+1)
-  double t = 0.0;      ///< parameter along the loop edge, 0 … 1
-  Vec2 direction;      ///< unit direction of the loop edge (counter-clockwise)
+  int edge = 0;    ///< loop edge (loop point edge → edge+1)
+  double t = 0.0;  ///< parameter along the loop edge, 0 … 1
+  Vec2 direction;  ///< unit direction of the loop edge (counter-clockwise)
   /// At the seam's ends: the unit direction along the edge into the seam (a double
   /// notch starts at the end and runs inward so that both ticks stay on the seam);
   /// zero elsewhere (the ticks are centred on the notch).
@@ -82,7 +82,8 @@ void add_notches(const Pattern& pattern, const Seam& seam, const PatternExportOp
   const SeamNotchParameters params =
       seam_notch_parameters(points[0], points[1], options.notch_spacing * kMmPerM);
   const auto style_it = options.seam_notch_styles.find(seam.name);
-  const NotchStyle style = style_it == options.seam_notch_styles.end() ? NotchStyle::Single : style_it->second;
+  const NotchStyle style =
+      style_it == options.seam_notch_styles.end() ? NotchStyle::kSingle : style_it->second;
   for (int s = 0; s < 2; ++s) {
     const int p = sides[s]->piece;
     const auto& vertices = sides[s]->vertices;
@@ -119,14 +120,15 @@ void cut_notch(PendingNotch& pending, double depth, const PatternExportOptions& 
   const Vec2 dir = pending.direction;
   const Vec2 outward(dir.y(), -dir.x());
   n.cut = n.sew + outward * depth;
-  if (n.style == NotchStyle::Single) {
+  if (n.style == NotchStyle::kSingle) {
     n.ticks.push_back({n.sew, n.cut});
     return;
   }
   const double gap = options.double_notch_gap * kMmPerM;
   const std::array<Vec2, 2> starts =
-      pending.into_seam.isZero() ? std::array<Vec2, 2>{n.sew - dir * (0.5 * gap), n.sew + dir * (0.5 * gap)}
-                                 : std::array<Vec2, 2>{n.sew, n.sew + pending.into_seam * gap};
+      pending.into_seam.isZero()
+          ? std::array<Vec2, 2>{n.sew - dir * (0.5 * gap), n.sew + dir * (0.5 * gap)}
+          : std::array<Vec2, 2>{n.sew, n.sew + pending.into_seam * gap};
   for (const Vec2& start : starts) n.ticks.push_back({start, start + outward * depth});
 }
 
@@ -196,10 +198,11 @@ void true_piece(const Pattern& pattern, size_t p, const PatternExportOptions& op
     const auto edge = static_cast<size_t>(outline_edge[static_cast<size_t>(trued.edge_source[k])]);
     allowance.push_back(d.allowance[edge]);
   }
-  d.cut_line = offset_polygon(d.trued_sew_line, allowance, options.corner_style, options.mitre_limit,
-                              kArcToleranceMm);
+  d.cut_line = offset_polygon(d.trued_sew_line, allowance, options.corner_style,
+                              options.mitre_limit, kArcToleranceMm);
   for (PendingNotch& pn : notches) {
-    const double depth = std::min(options.notch_depth * kMmPerM, d.allowance[static_cast<size_t>(pn.edge)]);
+    const double depth =
+        std::min(options.notch_depth * kMmPerM, d.allowance[static_cast<size_t>(pn.edge)]);
     cut_notch(pn, depth, options);
     d.notches.push_back(pn.notch);
   }

@@ -22,7 +22,7 @@ inline Vec2 rest_mm(const PatternPiece& piece, int v) {
   return piece.rest.row(v).transpose() * kMmPerM;
 }
 
-/// A notch: a short tick (or two, NotchStyle::Double) perpendicular to the sew line,
+/// A notch: a short tick (or two, NotchStyle::kDouble) perpendicular to the sew line,
 /// from the sew line outward, `depth` = min(notch depth, the edge's allowance) long.
 /// Notches with the same `seam` and `index` on the two sides of a seam are sewn
 /// together.
@@ -32,7 +32,7 @@ struct Notch {
   int index = 0;     ///< 0 at the first vertex of the seam sides, count−1 at the last
   Vec2 sew;          ///< mm, on the sew line (and exactly on the trued sew line)
   Vec2 cut;          ///< mm, outer end of the notch centre (sew + depth × outward normal)
-  NotchStyle style = NotchStyle::Single;
+  NotchStyle style = NotchStyle::kSingle;
   /// mm, the ticks to cut, each from the sew line outward: one through `sew` (Single)
   /// or two, ± double_notch_gap / 2 along the sew line (Double) — at the seam's first
   /// and last notch one at `sew` and one double_notch_gap further into the seam, so
@@ -73,7 +73,6 @@ struct PieceDrawing {
   /// "top" at the upper end of seam sides (options.seam_last_end_up), inside the piece.
   std::vector<PlacedText> seam_texts;
 };
-
 
 /// Arc-length positions of notches along one seam: for k = 0..m the notch k sits at
 /// segment `segment[k]` (between side vertices segment and segment+1) at local

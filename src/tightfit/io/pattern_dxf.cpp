@@ -44,7 +44,8 @@ class DxfWriter {
     pair(7, "STANDARD");
   }
   void text(const std::string& layer, const PlacedText& t) {
-    text(layer, t.at, t.height, t.text, std::atan2(t.direction.y(), t.direction.x()) * 180.0 / 3.141592653589793);
+    text(layer, t.at, t.height, t.text,
+         std::atan2(t.direction.y(), t.direction.x()) * 180.0 / 3.141592653589793);
   }
   void point_entity(const std::string& layer, const Vec2& q) {
     pair(0, "POINT");
@@ -126,9 +127,9 @@ void write_tables(DxfWriter& dxf) {
     int colour;
     const char* linetype;
   };
-  const Layer layers[] = {{"0", 7, "CONTINUOUS"},  {"1", 7, "CONTINUOUS"}, {"2", 2, "CONTINUOUS"},
-                          {"3", 4, "CONTINUOUS"},  {"4", 1, "CONTINUOUS"}, {"7", 3, "CONTINUOUS"},
-                          {"14", 5, "DASHED"},     {"15", 6, "CONTINUOUS"}};
+  const Layer layers[] = {{"0", 7, "CONTINUOUS"}, {"1", 7, "CONTINUOUS"}, {"2", 2, "CONTINUOUS"},
+                          {"3", 4, "CONTINUOUS"}, {"4", 1, "CONTINUOUS"}, {"7", 3, "CONTINUOUS"},
+                          {"14", 5, "DASHED"},    {"15", 6, "CONTINUOUS"}};
   dxf.pair(0, "TABLE");
   dxf.pair(2, "LAYER");
   dxf.pair(70, static_cast<int>(std::size(layers)));
@@ -160,7 +161,8 @@ void write_tables(DxfWriter& dxf) {
 /// The piece's text: AAMA system text on layer 1 ("Piece Name:", "Quantity:",
 /// "Annotation:", "Size:") and the other label lines on layer 15, as one block inside
 /// the sew line.
-void write_piece_text(DxfWriter& dxf, const PieceDrawing& piece, const PatternExportOptions& options) {
+void write_piece_text(DxfWriter& dxf, const PieceDrawing& piece,
+                      const PatternExportOptions& options) {
   std::vector<TextLine> lines = {{"Piece Name: " + piece.name, 5.0, false},
                                  {"Quantity: " + std::to_string(piece.quantity), 4.0, false},
                                  {"Annotation: " + piece.annotation, 3.0, false}};
@@ -169,11 +171,13 @@ void write_piece_text(DxfWriter& dxf, const PieceDrawing& piece, const PatternEx
   // The label's own lines except the name, quantity and annotation said above.
   for (const TextLine& line : piece.label_lines) {
     if (line.text == piece.name || line.text == piece.annotation ||
-        line.text == "cut " + std::to_string(piece.quantity) || line.text == "size " + options.label.size)
+        line.text == "cut " + std::to_string(piece.quantity) ||
+        line.text == "size " + options.label.size)
       continue;
     lines.push_back({line.text, 3.0, false});
   }
-  const std::vector<PlacedText> placed = place_text_block(piece.trued_sew_line, lines, piece.centroid, piece.holes);
+  const std::vector<PlacedText> placed =
+      place_text_block(piece.trued_sew_line, lines, piece.centroid, piece.holes);
   for (size_t k = 0; k < placed.size(); ++k) dxf.text(k < system ? "1" : "15", placed[k]);
 }
 
@@ -188,7 +192,8 @@ void write_block(DxfWriter& dxf, const PieceDrawing& piece, const std::string& n
   dxf.closed_polyline("1", piece.cut_line);
   for (const Polygon2& hole : piece.holes) dxf.closed_polyline("1", hole);
   for (size_t k = 0; k < piece.cut_line.size(); ++k) {
-    dxf.point_entity(turning_angle(piece.cut_line, k) > kTurnPointAngle ? "2" : "3", piece.cut_line[k]);
+    dxf.point_entity(turning_angle(piece.cut_line, k) > kTurnPointAngle ? "2" : "3",
+                     piece.cut_line[k]);
   }
   dxf.closed_polyline("14", piece.trued_sew_line);
   for (const Notch& n : piece.notches)
@@ -197,7 +202,8 @@ void write_block(DxfWriter& dxf, const PieceDrawing& piece, const std::string& n
   // Arrow heads at both ends (no nap), after the grain line itself.
   const Vec2 g = piece.grain_end - piece.grain_start;
   if (g.norm() > 0.0) {
-    for (const auto& [tip, from] : {std::pair{piece.grain_end, piece.grain_start}, std::pair{piece.grain_start, piece.grain_end}}) {
+    for (const auto& [tip, from] : {std::pair{piece.grain_end, piece.grain_start},
+                                    std::pair{piece.grain_start, piece.grain_end}}) {
       const Vec2 back = (from - tip).normalized() * 6.0;
       const Vec2 side(-back.y() * 0.4, back.x() * 0.4);
       dxf.line("7", tip, tip + back + side);
@@ -213,14 +219,16 @@ void write_block(DxfWriter& dxf, const PieceDrawing& piece, const std::string& n
 /// AAMA style system text, in ENTITIES below the layout.
 void write_style_text(DxfWriter& dxf, const PatternExportOptions& options) {
   const PatternLabelInfo& info = options.label;
-  std::vector<std::string> lines = {"Style Name: " + (info.style.empty() ? std::string("tightfit pattern") : info.style)};
+  std::vector<std::string> lines = {
+      "Style Name: " + (info.style.empty() ? std::string("tightfit pattern") : info.style)};
   if (!info.date.empty()) lines.push_back("Creation Date: " + info.date);
   lines.push_back("Author: tightfit");
   if (!info.size.empty()) lines.push_back("Sample Size: " + info.size);
   lines.push_back("Units: METRIC");
   for (size_t k = 0; k < lines.size(); ++k) {
-    dxf.text("1", Vec2(options.layout_gap * 1000.0, -kStyleTextPitchMm * static_cast<double>(k + 1)), kStyleTextMm,
-             lines[k]);
+    dxf.text("1",
+             Vec2(options.layout_gap * 1000.0, -kStyleTextPitchMm * static_cast<double>(k + 1)),
+             kStyleTextMm, lines[k]);
   }
 }
 

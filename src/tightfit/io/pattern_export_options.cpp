@@ -4,9 +4,9 @@ namespace tightfit {
 
 PaperSize paper_size(Paper paper) {
   switch (paper) {
-    case Paper::A4:
+    case Paper::kA4:
       return {210.0, 297.0};
-    case Paper::Letter:
+    case Paper::kLetter:
       return {215.9, 279.4};
   }
   return {210.0, 297.0};

@@ -9,7 +9,7 @@
 namespace tightfit {
 
 /// Paper for the tiled PDF, portrait.
-enum class Paper { A4, Letter };
+enum class Paper { kA4, kLetter };
 
 /// Paper size in mm (A4 210 × 297, Letter 215.9 × 279.4), portrait.
 struct PaperSize {
@@ -20,15 +20,15 @@ PaperSize paper_size(Paper paper);
 
 /// How the cut line turns around a convex corner of the sew line.
 enum class CornerStyle {
-  Mitre,  ///< sharp corner (lines of the two edges meet); rounded beyond `mitre_limit`
-  Round,  ///< circular arc of radius = allowance around every convex corner
+  kMitre,  ///< sharp corner (lines of the two edges meet); rounded beyond `mitre_limit`
+  kRound,  ///< circular arc of radius = allowance around every convex corner
 };
 
 /// How the notches of a seam are cut: the trade marks front seams with one tick and
 /// back seams with two, so that a front piece cannot be sewn to a back one.
 enum class NotchStyle {
-  Single,  ///< one tick
-  Double,  ///< two parallel ticks `double_notch_gap` apart, centred on the notch position
+  kSingle,  ///< one tick
+  kDouble,  ///< two parallel ticks `double_notch_gap` apart, centred on the notch position
 };
 
 /// What the piece and style labels say besides the piece's own name and quantity.
@@ -55,7 +55,7 @@ struct PatternExportOptions {
   /// applies to the boundary edges of that seam's (or boundary's) polylines. Unknown
   /// names are an InputError.
   std::map<std::string, double> seam_allowances;
-  CornerStyle corner_style = CornerStyle::Mitre;
+  CornerStyle corner_style = CornerStyle::kMitre;
   /// Mitre limit: largest distance of a mitred cut-line corner from its sew-line
   /// corner, in multiples of the allowance (≥ 1); sharper corners are rounded.
   double mitre_limit = 2.0;
@@ -96,7 +96,7 @@ struct PatternExportOptions {
   std::map<std::string, int> quantities;
 
   /// Paper of the tiled PDF.
-  Paper paper = Paper::A4;
+  Paper paper = Paper::kA4;
   /// Overlap (m) of neighbouring tiles: the same strip of the layout is on both pages.
   double tile_overlap = 0.010;
   /// Unprinted margin (m) on each side of a tiled page; grid labels are drawn in it.

@@ -22,14 +22,15 @@ PatternExportSpec parse_pattern_export_spec(JsonFields& f) {
   o.notch_spacing = f.positive("notch_spacing", o.notch_spacing, true);
   if (auto notches = f.object("notches")) {
     for (const auto& item : f.raw("notches").items()) {
-      o.seam_notch_styles[item.key()] = notches->choice(item.key(), {"single", "double"}) == "double"
-                                            ? NotchStyle::Double
-                                            : NotchStyle::Single;
+      o.seam_notch_styles[item.key()] =
+          notches->choice(item.key(), {"single", "double"}) == "double" ? NotchStyle::kDouble
+                                                                        : NotchStyle::kSingle;
     }
     notches->finish();
   }
-  o.corner_style = f.choice("corner_style", {"mitre", "round"}, "mitre") == "round" ? CornerStyle::Round
-                                                                                    : CornerStyle::Mitre;
+  o.corner_style = f.choice("corner_style", {"mitre", "round"}, "mitre") == "round"
+                       ? CornerStyle::kRound
+                       : CornerStyle::kMitre;
   o.true_tolerance = f.positive("true_tolerance", o.true_tolerance, true);
   spec.style = f.string("style", std::string());
   spec.size = f.string("size", std::string());
@@ -45,7 +46,8 @@ void check_pattern_export_spec(const PatternExportSpec& spec, const Pattern& pat
   for (const auto& entry : spec.options.seam_allowances) {
     if (!seams.count(entry.first) && !boundaries.count(entry.first)) {
       std::string where = spec.json_path + "/seam_allowances/" + entry.first;
-      throw InputError(spec.file, where + ": the garment has no seam or pinned boundary of that name");
+      throw InputError(spec.file,
+                       where + ": the garment has no seam or pinned boundary of that name");
     }
   }
   for (const auto& entry : spec.options.seam_notch_styles) {

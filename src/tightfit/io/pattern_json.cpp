@@ -53,7 +53,7 @@ json piece_json(const PatternPiece& piece, const PieceDrawing& drawing) {
                        {"index", n.index},
                        {"sew", point(n.sew)},
                        {"cut", point(n.cut)},
-                       {"style", n.style == NotchStyle::Double ? "double" : "single"}});
+                       {"style", n.style == NotchStyle::kDouble ? "double" : "single"}});
   }
   return {{"name", piece.name},
           {"quantity", drawing.quantity},
@@ -131,10 +131,12 @@ PatternPiece read_piece(JsonFields& f) {
   if (!holes.is_null()) {
     if (!holes.is_array()) f.fail("expected an array of vertex loops", "holes");
     for (const json& loop : holes) {
-      if (!loop.is_array()) f.fail("expected an array of vertex loops (arrays of integers)", "holes");
+      if (!loop.is_array())
+        f.fail("expected an array of vertex loops (arrays of integers)", "holes");
       std::vector<int> vertices;
       for (const json& v : loop) {
-        if (!v.is_number_integer()) f.fail("expected an array of vertex loops (arrays of integers)", "holes");
+        if (!v.is_number_integer())
+          f.fail("expected an array of vertex loops (arrays of integers)", "holes");
         vertices.push_back(v.get<int>());
       }
       piece.holes.push_back(std::move(vertices));
@@ -142,8 +144,8 @@ PatternPiece read_piece(JsonFields& f) {
   }
   piece.corners = read_indices(f, "corners");
   piece.grain = f.vec2("grain");
-  for (const char* derived :
-       {"sew_line_mm", "cut_line_mm", "openings_mm", "allowance_mm", "grain_line_mm", "notches_mm"}) {
+  for (const char* derived : {"sew_line_mm", "cut_line_mm", "openings_mm", "allowance_mm",
+                              "grain_line_mm", "notches_mm"}) {
     f.raw(derived);
   }
   f.finish();
@@ -186,7 +188,8 @@ void write_pieces_json(const Pattern& pattern, const PatternExportOptions& optio
                   {"mismatch_mm", 1000.0 * lengths[k].mismatch()}};
     if (fit_seams) {
       json fit = seam_statistics_json((*fit_seams)[k]);
-      for (const char* key : {"name", "piece_a", "piece_b", "length_a_mm", "length_b_mm", "mismatch_mm"})
+      for (const char* key :
+           {"name", "piece_a", "piece_b", "length_a_mm", "length_b_mm", "mismatch_mm"})
         fit.erase(key);
       entry["fit"] = fit;
     }

@@ -43,8 +43,8 @@ void write_pieces_json(const Pattern& pattern, const PatternExportOptions& optio
 
 /// Reads the pattern (pieces' name, rest, triangles, boundary, corners, grain; seams;
 /// pinned boundaries) back from pieces.json. The derived fields (outlines, notches,
-/// allowances, quantity, seam lengths and fit) are accepted and ignored. InputError naming the file and JSON
-/// path for a malformed file, and validate_pattern's errors for an invalid pattern.
+/// allowances, quantity, seam lengths and fit) are accepted and ignored. InputError naming the file
+/// and JSON path for a malformed file, and validate_pattern's errors for an invalid pattern.
 Pattern read_pieces_json(const std::filesystem::path& path);
 
 }  // namespace tightfit

@@ -15,7 +15,8 @@ constexpr double kLinePitch = 1.4;
 constexpr double kNearlyVertical = 0.98;
 
 bool inside(const Polygon2& polygon, const Vec2& q) {
-  return inside_polygon(polygon.size(), [&](size_t i) { return polygon[i]; }, q);
+  return inside_polygon(
+      polygon.size(), [&](size_t i) { return polygon[i]; }, q);
 }
 
 bool segments_cross(const Vec2& p, const Vec2& p2, const Vec2& q, const Vec2& q2) {
@@ -42,7 +43,8 @@ double outline_distance(const Polygon2& polygon, const Vec2& q) {
 }
 
 /// The block's lines at `scale` with the block's top-left corner at `corner`.
-std::vector<PlacedText> block_at(const std::vector<TextLine>& lines, double scale, const Vec2& corner) {
+std::vector<PlacedText> block_at(const std::vector<TextLine>& lines, double scale,
+                                 const Vec2& corner) {
   std::vector<PlacedText> out;
   double y = 0.0;
   for (const TextLine& line : lines) {
@@ -67,7 +69,8 @@ bool block_inside(const std::vector<PlacedText>& block, const Polygon2& polygon,
                   const std::vector<Polygon2>& holes) {
   return std::all_of(block.begin(), block.end(), [&](const PlacedText& t) {
     return text_inside(t, polygon) &&
-           std::all_of(holes.begin(), holes.end(), [&](const Polygon2& hole) { return text_clear_of(t, hole); });
+           std::all_of(holes.begin(), holes.end(),
+                       [&](const Polygon2& hole) { return text_clear_of(t, hole); });
   });
 }
 
@@ -110,12 +113,12 @@ bool text_clear_of(const PlacedText& text, const Polygon2& hole) {
       if (segments_cross(a, b, hole[i], hole[(i + 1) % hole.size()])) return false;
   }
   // A hole entirely inside the box.
-  return hole.empty() || !inside_polygon(4, [&](size_t i) { return box[i]; }, hole.front());
+  return hole.empty() || !inside_polygon(
+                             4, [&](size_t i) { return box[i]; }, hole.front());
 }
 
 std::vector<PlacedText> place_text_block(const Polygon2& polygon,
-                                         const std::vector<TextLine>& lines,
-                                         const Vec2& preferred,
+                                         const std::vector<TextLine>& lines, const Vec2& preferred,
                                          const std::vector<Polygon2>& holes) {
   if (lines.empty()) return {};
   double smallest = 1e300;
@@ -148,7 +151,8 @@ std::vector<PlacedText> place_text_block(const Polygon2& polygon,
       if (!in_hole) grid.emplace_back(clearance, q);
     }
   }
-  std::stable_sort(grid.begin(), grid.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::stable_sort(grid.begin(), grid.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
   for (double scale : scales) {
     const Vec2 size = block_size(lines, scale);
     std::vector<Vec2> corners = {preferred + Vec2(3.0, 0.5 * size.y()),

@@ -56,8 +56,7 @@ bool text_clear_of(const PlacedText& text, const Polygon2& hole);
 /// the smallest line kMinTextHeightMm high. The first spot and scale that fit win;
 /// when none fits, the smallest scale at the interior point farthest from the outline.
 std::vector<PlacedText> place_text_block(const Polygon2& polygon,
-                                         const std::vector<TextLine>& lines,
-                                         const Vec2& preferred,
+                                         const std::vector<TextLine>& lines, const Vec2& preferred,
                                          const std::vector<Polygon2>& holes = {});
 
 /// Places one line along the polyline `side` (a part of the polygon's outline, ≥ 2

@@ -22,7 +22,7 @@ struct Box2 {
 };
 
 struct PatternLayout {
-  double width_mm = 0.0;   ///< layout bounding box, including the gap around it
+  double width_mm = 0.0;  ///< layout bounding box, including the gap around it
   double height_mm = 0.0;
   /// Per piece: layout point = (x + offset.x, offset.y − y) for a piece point (x, y) in mm.
   std::vector<Vec2> offsets;

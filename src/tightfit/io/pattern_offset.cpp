@@ -61,7 +61,7 @@ std::vector<Vec2> raw_offset(const std::vector<Edge>& edges, CornerStyle style, 
       const double turn = angle > 0.0 ? angle : std::numbers::pi;
       const double amax = std::max(a0, a1);
       bool mitred = false;
-      if (style == CornerStyle::Mitre && std::abs(c) > 1e-12) {
+      if (style == CornerStyle::kMitre && std::abs(c) > 1e-12) {
         // p + n0 a0 + t d0 = p + n1 a1 + s d1  →  solve for t.
         const Vec2 rhs = n1 * a1 - n0 * a0;
         const double t = cross2(rhs, e1.dir) / c;

@@ -8,19 +8,18 @@
 namespace tightfit {
 
 std::vector<std::string> write_pattern_files(const std::filesystem::path& folder,
-                                             const Pattern& pattern,
-                                             PatternExportOptions options,
+                                             const Pattern& pattern, PatternExportOptions options,
                                              const std::vector<SeamStatistics>* fit_seams) {
   write_pattern_svg(pattern, options, folder / "pattern.svg");
-  options.paper = Paper::A4;
+  options.paper = Paper::kA4;
   write_pattern_pdf_tiled(pattern, options, folder / "pattern_a4.pdf");
-  options.paper = Paper::Letter;
+  options.paper = Paper::kLetter;
   write_pattern_pdf_tiled(pattern, options, folder / "pattern_letter.pdf");
   write_pattern_pdf_full_size(pattern, options, folder / "pattern_full.pdf");
   write_pattern_dxf(pattern, options, folder / "pattern.dxf");
   write_pieces_json(pattern, options, folder / "pieces.json", fit_seams);
-  return {"pattern.svg", "pattern_a4.pdf", "pattern_letter.pdf", "pattern_full.pdf",
-          "pattern.dxf", "pieces.json"};
+  return {"pattern.svg",      "pattern_a4.pdf", "pattern_letter.pdf",
+          "pattern_full.pdf", "pattern.dxf",    "pieces.json"};
 }
 
 nlohmann::json garment_build_report(const GarmentBuild& build) {

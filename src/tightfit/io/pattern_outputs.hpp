@@ -13,10 +13,9 @@ namespace tightfit {
 
 /// Writes the six pattern files into `folder` (each atomically). `fit_seams` (one per
 /// seam) adds the seams' state on the fit to pieces.json. Returns their names.
-std::vector<std::string> write_pattern_files(const std::filesystem::path& folder,
-                                             const Pattern& pattern,
-                                             PatternExportOptions options = {},
-                                             const std::vector<SeamStatistics>* fit_seams = nullptr);
+std::vector<std::string> write_pattern_files(
+    const std::filesystem::path& folder, const Pattern& pattern, PatternExportOptions options = {},
+    const std::vector<SeamStatistics>* fit_seams = nullptr);
 
 /// Flattening and seam reports of a built garment as JSON: per piece area and angle
 /// distortion, scale-down, mesh size and smallest angle; per seam the 3D and 2D side

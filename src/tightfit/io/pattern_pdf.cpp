@@ -98,7 +98,8 @@ void draw_layout(cairo_t* cr, const std::vector<PieceDrawing>& pieces, const Pat
     cairo_set_source_rgb(cr, 0.75, 0, 0);
     cairo_set_line_width(cr, 0.4);
     for (const Notch& n : piece.notches) {
-      for (const auto& tick : n.ticks) segment(cr, layout.to_layout(p, tick[0]), layout.to_layout(p, tick[1]));
+      for (const auto& tick : n.ticks)
+        segment(cr, layout.to_layout(p, tick[0]), layout.to_layout(p, tick[1]));
     }
     cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0, 0.48, 0.18);
@@ -201,9 +202,9 @@ void write_pdf(const std::filesystem::path& path, double width_mm, double height
   const auto tmp = temporary_path_for(path);
   try {
     {
-      Surface surface(cairo_pdf_surface_create(tmp.c_str(), width_mm * kPointsPerMm,
-                                               height_mm * kPointsPerMm),
-                      cairo_surface_destroy);
+      Surface surface(
+          cairo_pdf_surface_create(tmp.c_str(), width_mm * kPointsPerMm, height_mm * kPointsPerMm),
+          cairo_surface_destroy);
       Cairo cr(cairo_create(surface.get()), cairo_destroy);
       cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, "tightfit pattern");
       cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "tightfit");
@@ -211,11 +212,13 @@ void write_pdf(const std::filesystem::path& path, double width_mm, double height
       const cairo_status_t status = cairo_status(cr.get());
       cr.reset();
       cairo_surface_finish(surface.get());
-      if (status != CAIRO_STATUS_SUCCESS || cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
-        throw InputError(path.string(), std::string("cannot write PDF: ") +
-                                            cairo_status_to_string(status != CAIRO_STATUS_SUCCESS
-                                                                       ? status
-                                                                       : cairo_surface_status(surface.get())));
+      if (status != CAIRO_STATUS_SUCCESS ||
+          cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
+        throw InputError(path.string(),
+                         std::string("cannot write PDF: ") +
+                             cairo_status_to_string(status != CAIRO_STATUS_SUCCESS
+                                                        ? status
+                                                        : cairo_surface_status(surface.get())));
       }
     }
     commit_temporary(tmp, path);

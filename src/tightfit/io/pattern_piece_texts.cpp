@@ -22,8 +22,8 @@ std::vector<Vec2> polyline_mm(const PatternPiece& piece, const std::vector<int>&
 
 /// Whether the polyline runs along the piece's outer boundary (not an opening's rim).
 bool on_outer_boundary(const PatternPiece& piece, const std::vector<int>& vertices) {
-  return !vertices.empty() &&
-         std::find(piece.boundary.begin(), piece.boundary.end(), vertices.front()) != piece.boundary.end();
+  return !vertices.empty() && std::find(piece.boundary.begin(), piece.boundary.end(),
+                                        vertices.front()) != piece.boundary.end();
 }
 
 }  // namespace
@@ -33,26 +33,30 @@ void add_seam_texts(const Pattern& pattern, const PatternExportOptions& options,
   for (const Seam& seam : pattern.seams) {
     const auto up = options.seam_last_end_up.find(seam.name);
     for (const SeamSide* side : {&seam.a, &seam.b}) {
-      if (!on_outer_boundary(pattern.pieces[static_cast<size_t>(side->piece)], side->vertices)) continue;
+      if (!on_outer_boundary(pattern.pieces[static_cast<size_t>(side->piece)], side->vertices))
+        continue;
       PieceDrawing& d = drawings[static_cast<size_t>(side->piece)];
-      std::vector<Vec2> points = polyline_mm(pattern.pieces[static_cast<size_t>(side->piece)], side->vertices);
-      d.seam_texts.push_back(place_along_side(d.trued_sew_line, points, seam.name, kSeamTextMm, kSeamTextGapMm));
+      std::vector<Vec2> points =
+          polyline_mm(pattern.pieces[static_cast<size_t>(side->piece)], side->vertices);
+      d.seam_texts.push_back(
+          place_along_side(d.trued_sew_line, points, seam.name, kSeamTextMm, kSeamTextGapMm));
       if (up == options.seam_last_end_up.end()) continue;
       if (!up->second) std::reverse(points.begin(), points.end());
-      d.seam_texts.push_back(
-          place_along_side(d.trued_sew_line, points, "top", kSeamTextMm, kSeamTextGapMm, kTopMarkFromEndMm));
+      d.seam_texts.push_back(place_along_side(d.trued_sew_line, points, "top", kSeamTextMm,
+                                              kSeamTextGapMm, kTopMarkFromEndMm));
     }
   }
   for (const PinnedBoundary& pin : pattern.pinned) {
     if (!on_outer_boundary(pattern.pieces[static_cast<size_t>(pin.piece)], pin.vertices)) continue;
     PieceDrawing& d = drawings[static_cast<size_t>(pin.piece)];
-    d.seam_texts.push_back(place_along_side(d.trued_sew_line,
-                                            polyline_mm(pattern.pieces[static_cast<size_t>(pin.piece)], pin.vertices),
-                                            pin.name, kSeamTextMm, kSeamTextGapMm));
+    d.seam_texts.push_back(place_along_side(
+        d.trued_sew_line, polyline_mm(pattern.pieces[static_cast<size_t>(pin.piece)], pin.vertices),
+        pin.name, kSeamTextMm, kSeamTextGapMm));
   }
 }
 
-std::vector<TextLine> piece_label_lines(const PieceDrawing& d, const PatternExportOptions& options) {
+std::vector<TextLine> piece_label_lines(const PieceDrawing& d,
+                                        const PatternExportOptions& options) {
   const PatternLabelInfo& info = options.label;
   std::vector<TextLine> lines;
   if (!info.style.empty()) lines.push_back({info.style, 3.5, false});

@@ -18,7 +18,9 @@ Vec3 position_of(const Garment& garment, const Points3& positions, int piece, in
 void read_stretch(const nlohmann::json& objective, PatternLabelInfo& label) {
   if (!objective.is_object()) return;
   label.stretch_min = objective.value("min", 1.0);
-  label.stretch_max = objective.contains("max") && objective["max"].is_number() ? objective["max"].get<double>() : 0.0;
+  label.stretch_max = objective.contains("max") && objective["max"].is_number()
+                          ? objective["max"].get<double>()
+                          : 0.0;
 }
 
 /// A seam is on the back when the garment there faces more than 60° away from the front
@@ -28,13 +30,15 @@ constexpr double kBackFacing = 0.5;
 }  // namespace
 
 Vec3 body_front_direction(const BodySpec& spec) {
-  return spec.source == BodySource::Mesh ? Vec3(Vec3::UnitZ()) : Vec3(Vec3::Zero());
+  return spec.source == BodySource::kMesh ? Vec3(Vec3::UnitZ()) : Vec3(Vec3::Zero());
 }
 
-std::map<std::string, NotchStyle> classify_seam_notches(const Garment& garment, const Points3& positions,
+std::map<std::string, NotchStyle> classify_seam_notches(const Garment& garment,
+                                                        const Points3& positions,
                                                         const Vec3& front) {
   std::map<std::string, NotchStyle> out;
-  const Vec3 centroid = positions.rows() > 0 ? Vec3(positions.colwise().mean().transpose()) : Vec3(Vec3::Zero());
+  const Vec3 centroid =
+      positions.rows() > 0 ? Vec3(positions.colwise().mean().transpose()) : Vec3(Vec3::Zero());
   // Area-weighted normals of the garment surface at its vertices, turned outward: the
   // orientation whose triangles face away from the centroid on the whole (positive
   // signed volume, as the body's surface is oriented).
@@ -42,7 +46,8 @@ std::map<std::string, NotchStyle> classify_seam_notches(const Garment& garment, 
   const Triangles& faces = garment.garment_triangles;
   double volume = 0.0;
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    const Vec3 a = positions.row(faces(f, 0)).transpose(), b = positions.row(faces(f, 1)).transpose(),
+    const Vec3 a = positions.row(faces(f, 0)).transpose(),
+               b = positions.row(faces(f, 1)).transpose(),
                c = positions.row(faces(f, 2)).transpose();
     const Vec3 n = (b - a).cross(c - a);
     volume += n.dot((a + b + c) / 3.0 - centroid);
@@ -57,13 +62,13 @@ std::map<std::string, NotchStyle> classify_seam_notches(const Garment& garment, 
     }
     const double facing = normal.norm() > 0.0 ? normal.normalized().dot(front) : 0.0;
     const bool back = front.norm() > 0.0 && facing < -kBackFacing;
-    out[seam.name] = back ? NotchStyle::Double : NotchStyle::Single;
+    out[seam.name] = back ? NotchStyle::kDouble : NotchStyle::kSingle;
   }
   return out;
 }
 
-std::map<std::string, bool> seam_upper_ends(const Garment& garment, const Points3& positions, const Vec3& up,
-                                            double min_rise) {
+std::map<std::string, bool> seam_upper_ends(const Garment& garment, const Points3& positions,
+                                            const Vec3& up, double min_rise) {
   std::map<std::string, bool> out;
   for (const Seam& seam : garment.pattern.seams) {
     if (seam.a.vertices.empty()) continue;
@@ -76,40 +81,46 @@ std::map<std::string, bool> seam_upper_ends(const Garment& garment, const Points
 }
 
 PatternExportOptions scene_pattern_export_options(const SceneSpec& scene, const Garment& garment,
-                                                  const Points3& positions, const std::string& date) {
+                                                  const Points3& positions,
+                                                  const std::string& date) {
   check_pattern_export_spec(scene.patterns, garment.pattern);
   PatternExportOptions options = scene.patterns.options;
   const std::map<std::string, NotchStyle> explicit_styles = options.seam_notch_styles;
-  options.seam_notch_styles = classify_seam_notches(garment, positions, body_front_direction(scene.body));
+  options.seam_notch_styles =
+      classify_seam_notches(garment, positions, body_front_direction(scene.body));
   for (const auto& [name, style] : explicit_styles) options.seam_notch_styles[name] = style;
-  if (scene.body.source != BodySource::Sphere)
+  if (scene.body.source != BodySource::kSphere)
     options.seam_last_end_up = seam_upper_ends(garment, positions, body_up_direction(scene.body));
 
   PatternLabelInfo& label = options.label;
-  label.style = scene.patterns.style.empty() ? std::filesystem::path(scene.file).stem().string() : scene.patterns.style;
+  label.style = scene.patterns.style.empty() ? std::filesystem::path(scene.file).stem().string()
+                                             : scene.patterns.style;
   label.size = scene.patterns.size;
   if (label.size.empty()) {
     switch (scene.body.source) {
-      case BodySource::Mesh:
+      case BodySource::kMesh:
         label.size = scene.body.mesh.path.stem().string();
         break;
-      case BodySource::Cylinder:
+      case BodySource::kCylinder:
         label.size = "cylinder";
         break;
-      case BodySource::Sphere:
+      case BodySource::kSphere:
         label.size = "sphere";
         break;
     }
   }
   label.date = date;
   double relaxation = 0.0;
-  if (const auto fabric = scene.document.find("fabric"); fabric != scene.document.end() && fabric->is_object())
+  if (const auto fabric = scene.document.find("fabric");
+      fabric != scene.document.end() && fabric->is_object())
     relaxation = fabric->value("relaxation", 0.0);
   label.youngs_modulus = scene.materials.fabric.youngs_modulus / (1.0 - relaxation);
   label.thickness = scene.materials.fabric.thickness;
   if (scene.optimize.is_object()) {
-    if (const auto objectives = scene.optimize.find("objectives"); objectives != scene.optimize.end() && objectives->is_object()) {
-      if (objectives->contains("directional_stretch")) read_stretch((*objectives)["directional_stretch"], label);
+    if (const auto objectives = scene.optimize.find("objectives");
+        objectives != scene.optimize.end() && objectives->is_object()) {
+      if (objectives->contains("directional_stretch"))
+        read_stretch((*objectives)["directional_stretch"], label);
       if (objectives->contains("stretch")) read_stretch((*objectives)["stretch"], label);
     }
   }

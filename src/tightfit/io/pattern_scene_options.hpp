@@ -23,14 +23,15 @@ Vec3 body_front_direction(const BodySpec& spec);
 /// than 60° away from `front` —, Single
 /// otherwise (front seams, and side seams and inseams, which face sideways); all Single
 /// when `front` is zero.
-std::map<std::string, NotchStyle> classify_seam_notches(const Garment& garment, const Points3& positions,
+std::map<std::string, NotchStyle> classify_seam_notches(const Garment& garment,
+                                                        const Points3& positions,
                                                         const Vec3& front);
 
 /// Per seam: true when its sides' last vertices are higher along `up` than their first
 /// ones, false when lower. Seams whose ends differ in height by less than `min_rise` (m)
 /// are left out (no "top" mark on a horizontal seam).
-std::map<std::string, bool> seam_upper_ends(const Garment& garment, const Points3& positions, const Vec3& up,
-                                            double min_rise = 0.01);
+std::map<std::string, bool> seam_upper_ends(const Garment& garment, const Points3& positions,
+                                            const Vec3& up, double min_rise = 0.01);
 
 /// The export options of a run of `scene` whose garment is at `positions`: the scene's
 /// "patterns" section (seam names checked against the garment: InputError naming the
@@ -42,6 +43,7 @@ std::map<std::string, bool> seam_upper_ends(const Garment& garment, const Points
 /// objectives "stretch" or "directional_stretch" (min default 1, max when given), and
 /// `date` ("YYYY-MM-DD").
 PatternExportOptions scene_pattern_export_options(const SceneSpec& scene, const Garment& garment,
-                                                  const Points3& positions, const std::string& date);
+                                                  const Points3& positions,
+                                                  const std::string& date);
 
 }  // namespace tightfit

@@ -43,7 +43,8 @@ std::string placed_text(const PatternLayout& layout, size_t piece, const PlacedT
   // Layout y points down: the piece direction (x, y) is (x, −y) there.
   const double angle = std::atan2(-t.direction.y(), t.direction.x()) * 180.0 / 3.141592653589793;
   if (std::abs(angle) > 1e-9) {
-    out += " transform=\"rotate(" + fixed(angle, 3) + " " + fixed(at.x(), 3) + " " + fixed(at.y(), 3) + ")\"";
+    out += " transform=\"rotate(" + fixed(angle, 3) + " " + fixed(at.x(), 3) + " " +
+           fixed(at.y(), 3) + ")\"";
   }
   return out + ">" + xml_escape(t.text) + "</text>";
 }
@@ -52,8 +53,8 @@ std::string placed_text(const PatternLayout& layout, size_t piece, const PlacedT
 std::string arrow_head(const Vec2& tip, const Vec2& from) {
   const Vec2 back = (from - tip).normalized() * 6.0;
   const Vec2 side(-back.y() * 0.4, back.x() * 0.4);
-  return "<path d=\"M" + point(tip + back + side) + " L" + point(tip) + " L" + point(tip + back - side) +
-         "\"/>";
+  return "<path d=\"M" + point(tip + back + side) + " L" + point(tip) + " L" +
+         point(tip + back - side) + "\"/>";
 }
 
 void write_piece(std::ostream& out, const PieceDrawing& piece, const PatternLayout& layout,
@@ -65,7 +66,8 @@ void write_piece(std::ostream& out, const PieceDrawing& piece, const PatternLayo
   out << "<path class=\"sew\" d=\"" << path_data(layout, p, piece.trued_sew_line) << "\"/>\n";
   out << "<g class=\"notches\">\n";
   for (const Notch& n : piece.notches) {
-    for (const auto& tick : n.ticks) out << line(layout.to_layout(p, tick[0]), layout.to_layout(p, tick[1])) << "\n";
+    for (const auto& tick : n.ticks)
+      out << line(layout.to_layout(p, tick[0]), layout.to_layout(p, tick[1])) << "\n";
   }
   out << "</g>\n<g class=\"grain\">\n";
   const Vec2 a = layout.to_layout(p, piece.grain_start);
@@ -80,7 +82,8 @@ void write_piece(std::ostream& out, const PieceDrawing& piece, const PatternLayo
   }
   if (options.piece_labels) {
     out << "<g class=\"piece-label\">\n";
-    for (const PlacedText& t : piece.label) out << placed_text(layout, p, t, t.bold ? "label" : "note") << "\n";
+    for (const PlacedText& t : piece.label)
+      out << placed_text(layout, p, t, t.bold ? "label" : "note") << "\n";
     out << "</g>\n";
   }
   out << "</g>\n";

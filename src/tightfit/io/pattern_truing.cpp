@@ -21,14 +21,17 @@ double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
 double polyline_distance(const Vec2& q, const std::vector<Vec2>& line) {
   if (line.size() == 1) return (q - line[0]).norm();
   double best = 1e300;
-  for (size_t i = 0; i + 1 < line.size(); ++i) best = std::min(best, segment_distance(q, line[i], line[i + 1]));
+  for (size_t i = 0; i + 1 < line.size(); ++i)
+    best = std::min(best, segment_distance(q, line[i], line[i + 1]));
   return best;
 }
 
 /// Point at parameter u ∈ [0, 1] of the centripetal Catmull-Rom segment p1 → p2
 /// (Barry–Goldman pyramid, knots spaced by the square root of the chord lengths).
 Vec2 catmull_rom(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, double u) {
-  auto knot = [](const Vec2& a, const Vec2& b) { return std::max(std::sqrt((b - a).norm()), 1e-12); };
+  auto knot = [](const Vec2& a, const Vec2& b) {
+    return std::max(std::sqrt((b - a).norm()), 1e-12);
+  };
   const double t0 = 0.0;
   const double t1 = t0 + knot(p0, p1);
   const double t2 = t1 + knot(p1, p2);
@@ -49,8 +52,12 @@ class Stretch {
   /// or zero at a corner (the curve starts towards its next point there).
   Stretch(const Polygon2& polygon, std::vector<int> idx, const Vec2& start_tangent,
           const Vec2& end_tangent, double tolerance, double spacing)
-      : polygon_(polygon), idx_(std::move(idx)), start_tangent_(start_tangent),
-        end_tangent_(end_tangent), tolerance_(tolerance), spacing_(spacing) {}
+      : polygon_(polygon),
+        idx_(std::move(idx)),
+        start_tangent_(start_tangent),
+        end_tangent_(end_tangent),
+        tolerance_(tolerance),
+        spacing_(spacing) {}
 
   /// Reduces and refines; appends the stretch's points without its last one.
   void emit(TruedOutline& out) {
@@ -144,7 +151,8 @@ class Stretch {
     std::vector<Vec2> out = {p1};
     if (bend > 1e-9 * std::max(1.0, chord)) {
       const int count = std::clamp(static_cast<int>(std::ceil(chord / spacing_)), 2, 1000);
-      for (int k = 1; k < count; ++k) out.push_back(catmull_rom(p0, p1, p2, p3, static_cast<double>(k) / count));
+      for (int k = 1; k < count; ++k)
+        out.push_back(catmull_rom(p0, p1, p2, p3, static_cast<double>(k) / count));
     }
     out.push_back(p2);
     return out;

@@ -39,8 +39,7 @@ struct TruedOutline {
 /// that polyline edge is kept straight. `tolerance` ≤ 0 returns the input unchanged.
 /// With no kept point at all, point 0 is kept. `keep` and `corner` have n entries.
 TruedOutline true_outline(const Polygon2& polygon, const std::vector<bool>& keep,
-                          const std::vector<bool>& corner, double tolerance,
-                          double sample_spacing);
+                          const std::vector<bool>& corner, double tolerance, double sample_spacing);
 
 /// Turning angle (radians, ≥ 0) of the closed polygon at point i: the angle between the
 /// incoming and the outgoing edge direction (0 on a straight run).

@@ -37,8 +37,8 @@ void validate_piece(const Pattern& pattern, int p, const std::string& source,
   std::set<int> on_boundary;
   for (int v : piece.boundary) {
     if (v < 0 || v >= n) {
-      fail("boundary vertex index " + std::to_string(v) + " out of range [0, " +
-           std::to_string(n) + ")");
+      fail("boundary vertex index " + std::to_string(v) + " out of range [0, " + std::to_string(n) +
+           ")");
     }
     if (!on_boundary.insert(v).second) fail("boundary loop repeats vertex " + std::to_string(v));
   }
@@ -57,8 +57,10 @@ void validate_piece(const Pattern& pattern, int p, const std::string& source,
     for (size_t i = 0; i < hole.size(); ++i) {
       const int v = hole[i];
       if (v < 0 || v >= n)
-        fail(which + "vertex index " + std::to_string(v) + " out of range [0, " + std::to_string(n) + ")");
-      if (!on_boundary.insert(v).second) fail(which + "repeats vertex " + std::to_string(v) + " of a boundary loop");
+        fail(which + "vertex index " + std::to_string(v) + " out of range [0, " +
+             std::to_string(n) + ")");
+      if (!on_boundary.insert(v).second)
+        fail(which + "repeats vertex " + std::to_string(v) + " of a boundary loop");
       const Vec2 a = piece.rest.row(v).transpose();
       const Vec2 b = piece.rest.row(hole[(i + 1) % hole.size()]).transpose();
       hole_area2 += a.x() * b.y() - a.y() * b.x();
@@ -92,14 +94,15 @@ void validate_polyline(const Pattern& pattern, int p, const std::vector<int>& ve
   const int loop = first == loop_position.end() ? 0 : first->second.first;
   const auto m = static_cast<int>(loops[static_cast<size_t>(loop)].size());
   std::unordered_map<int, int> position;
-  for (int i = 0; i < m; ++i) position[loops[static_cast<size_t>(loop)][static_cast<size_t>(i)]] = i;
+  for (int i = 0; i < m; ++i)
+    position[loops[static_cast<size_t>(loop)][static_cast<size_t>(i)]] = i;
   if (static_cast<int>(vertices.size()) > m + 1) fail("longer than the boundary loop");
   int direction = 0;
   for (size_t i = 0; i < vertices.size(); ++i) {
     const int v = vertices[i];
     if (v < 0 || v >= n) {
-      fail("vertex index " + std::to_string(v) + " out of range [0, " + std::to_string(n) + ") of " +
-           piece_tag(pattern, p));
+      fail("vertex index " + std::to_string(v) + " out of range [0, " + std::to_string(n) +
+           ") of " + piece_tag(pattern, p));
     }
     if (!position.count(v)) {
       fail("vertex " + std::to_string(v) + " is not on the boundary of " + piece_tag(pattern, p));
@@ -149,7 +152,8 @@ void validate_export_options(const Pattern& pattern, const PatternExportOptions&
   }
   if (!(options.mitre_limit >= 1.0)) fail("mitre limit must be >= 1");
   if (!(options.notch_spacing >= 0.0)) fail("notch spacing must be >= 0");
-  if (!(options.notch_depth >= 0.0) || !std::isfinite(options.notch_depth)) fail("notch depth must be >= 0");
+  if (!(options.notch_depth >= 0.0) || !std::isfinite(options.notch_depth))
+    fail("notch depth must be >= 0");
   if (!(options.double_notch_gap >= 0.0) || !std::isfinite(options.double_notch_gap))
     fail("double notch gap must be >= 0");
   if (!(options.true_tolerance >= 0.0) || !std::isfinite(options.true_tolerance))

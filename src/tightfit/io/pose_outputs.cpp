@@ -25,7 +25,8 @@ double scene_friction(const SceneSpec& scene) {
   const nlohmann::json& o = scene.optimize;
   if (o.is_object() && o.contains("objectives") && o["objectives"].is_object() &&
       o["objectives"].contains("sliding") && o["objectives"]["sliding"].is_object() &&
-      o["objectives"]["sliding"].contains("friction") && o["objectives"]["sliding"]["friction"].is_number())
+      o["objectives"]["sliding"].contains("friction") &&
+      o["objectives"]["sliding"]["friction"].is_number())
     return o["objectives"]["sliding"]["friction"].get<double>();
   return 0.3;
 }
@@ -44,8 +45,8 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
     motions.push_back({pose.name, posed.back().motions});
   }
   const double friction = scene_friction(scene);
-  const SlidingObjective sliding(sim.garment(), sim.materials(), sim.surface(), body.num_vertices(), motions,
-                                 friction);
+  const SlidingObjective sliding(sim.garment(), sim.materials(), sim.surface(), body.num_vertices(),
+                                 motions, friction);
   const SimulationDesignState ds(sim);
   const Triangles& faces = sim.garment().garment_triangles;
   out.worst_excess = VecX::Zero(faces.rows());
@@ -56,10 +57,11 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
     const SlidingObjective::PoseView pv = sliding.pose_view(ds.view(), pose);
     const SlidingForces& f = pv.forces;
     const PosedGarment& pg = pv.garment;
-    const TriMesh mesh{Eigen::Map<const Points3>(pg.x.data(), pg.x.size() / 3, 3), sim.garment().garment_triangles};
+    const TriMesh mesh{Eigen::Map<const Points3>(pg.x.data(), pg.x.size() / 3, 3),
+                       sim.garment().garment_triangles};
     PlyAttributes attributes;
-    attributes.vertex_fields = {{"sliding_excess_n", f.excess}, {"tangential_n", f.tangential},
-                                {"pressing_n", f.normal}};
+    attributes.vertex_fields = {
+        {"sliding_excess_n", f.excess}, {"tangential_n", f.tangential}, {"pressing_n", f.normal}};
     const std::string file = "garment_pose_" + scene.poses[i].name + ".ply";
     write_ply(folder / file, mesh, attributes);
     out.files.push_back(file);
@@ -78,14 +80,17 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
     view.garment = mesh.vertices;
     view.garment_normals.resize(mesh.vertices.rows(), 3);
     for (Eigen::Index j = 0; j < mesh.vertices.rows(); ++j)
-      view.garment_normals.row(j) = Vec3(pg.xu.row(j)).cross(Vec3(pg.xv.row(j))).normalized().transpose();
+      view.garment_normals.row(j) =
+          Vec3(pg.xu.row(j)).cross(Vec3(pg.xv.row(j))).normalized().transpose();
     view.body = body_limit_positions(body, sim.surface(), posed[i].positions);
     view.sliding_excess = VecX::Zero(faces.rows());
     for (Eigen::Index t = 0; t < faces.rows(); ++t)
-      view.sliding_excess[t] = (f.excess[faces(t, 0)] + f.excess[faces(t, 1)] + f.excess[faces(t, 2)]) / 3.0;
+      view.sliding_excess[t] =
+          (f.excess[faces(t, 0)] + f.excess[faces(t, 1)] + f.excess[faces(t, 2)]) / 3.0;
     out.worst_excess = out.worst_excess.cwiseMax(view.sliding_excess);
     view.sliding_share =
-        excess.empty() ? 0.0 : static_cast<double>(sliding_vertices) / static_cast<double>(excess.size());
+        excess.empty() ? 0.0
+                       : static_cast<double>(sliding_vertices) / static_cast<double>(excess.size());
     out.views.push_back(std::move(view));
     out.statistics.push_back(
         {{"name", scene.poses[i].name},
@@ -93,13 +98,18 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
          {"friction", friction},
          {"sliding_objective_n2", value},
          {"free_vertices", excess.size()},
-         {"sliding_share", excess.empty() ? 0.0 : static_cast<double>(sliding_vertices) / static_cast<double>(excess.size())},
-         {"excess_n", {{"max", excess.empty() ? 0.0 : *std::max_element(excess.begin(), excess.end())},
-                       {"median", median(excess)}}},
+         {"sliding_share", excess.empty() ? 0.0
+                                          : static_cast<double>(sliding_vertices) /
+                                                static_cast<double>(excess.size())},
+         {"excess_n",
+          {{"max", excess.empty() ? 0.0 : *std::max_element(excess.begin(), excess.end())},
+           {"median", median(excess)}}},
          {"pressing_n_median", median(pressing)},
-         {"body", {{"volume_ratio", posed[i].volume_ratio},
-                   {"tet_volume_ratio", {{"min", posed[i].min_volume_ratio}, {"max", posed[i].max_volume_ratio}}},
-                   {"inverted_tets", posed[i].inverted_tets}}},
+         {"body",
+          {{"volume_ratio", posed[i].volume_ratio},
+           {"tet_volume_ratio",
+            {{"min", posed[i].min_volume_ratio}, {"max", posed[i].max_volume_ratio}}},
+           {"inverted_tets", posed[i].inverted_tets}}},
          {"file", file}});
   }
   return out;

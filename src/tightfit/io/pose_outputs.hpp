@@ -24,8 +24,8 @@ namespace tightfit {
 
 struct PoseOutputs {
   nlohmann::json statistics = nlohmann::json::array();  ///< result.json's "poses"
-  std::vector<std::string> files;                        ///< file names written
-  std::vector<FitPose> views;                            ///< for the report's pose switch
+  std::vector<std::string> files;                       ///< file names written
+  std::vector<FitPose> views;                           ///< for the report's pose switch
   /// Per garment face, the largest sliding excess over the poses (N): the report's
   /// fit_fields::kSlidingExcess.
   VecX worst_excess;

@@ -42,8 +42,11 @@ namespace {
 
 nlohmann::json pressure_summary(double lo, double median, const PressureMoments& m, double hi,
                                 double scale) {
-  return {{"min", lo / scale}, {"median", median / scale}, {"mean", m.mean / scale},
-          {"std", m.std / scale}, {"max", hi / scale}};
+  return {{"min", lo / scale},
+          {"median", median / scale},
+          {"mean", m.mean / scale},
+          {"std", m.std / scale},
+          {"max", hi / scale}};
 }
 
 /// 1, 2 or 5 × 10^k, the smallest such width >= `width`.
@@ -84,8 +87,8 @@ PressureHistogram pressure_histogram(const VecX& p, const std::vector<double>& a
   for (int k = 0; k <= bins; ++k) h.edges_mmhg.push_back((first + k) * width);
   h.area_m2.assign(bins, 0.0);
   for (int f : faces) {
-    const int k = std::clamp(static_cast<int>(std::floor(p[f] / kPascalPerMmHg / width - first)),
-                             0, bins - 1);
+    const int k = std::clamp(static_cast<int>(std::floor(p[f] / kPascalPerMmHg / width - first)), 0,
+                             bins - 1);
     h.area_m2[k] += areas[f];
   }
   return h;
@@ -112,18 +115,18 @@ std::vector<FitRegion> resolve_fit_regions(const GarmentSimulation& sim,
 nlohmann::json region_statistics_json(const FitRegion& region, const VecX& p,
                                       const std::vector<double>& areas) {
   const std::vector<int>& faces = region.faces;
-  nlohmann::json j = {{"name", region.name},
-                      {"faces", faces.size()},
-                      {"target_pa", {{"min", region.min_pa}, {"max", region.max_pa}}},
-                      {"target_mmhg",
-                       {{"min", region.min_pa / kPascalPerMmHg},
-                        {"max", region.max_pa / kPascalPerMmHg}}}};
+  nlohmann::json j = {
+      {"name", region.name},
+      {"faces", faces.size()},
+      {"target_pa", {{"min", region.min_pa}, {"max", region.max_pa}}},
+      {"target_mmhg",
+       {{"min", region.min_pa / kPascalPerMmHg}, {"max", region.max_pa / kPascalPerMmHg}}}};
   const PressureMoments m = pressure_moments(p, areas, faces);
   j["area_m2"] = m.area;
   if (faces.empty()) {
-    for (const char* key : {"pressure_pa", "pressure_mmhg", "spread", "share_in_target",
-                            "lift_off_share", "ral_gz_387_class", "burn_scar_range",
-                            "face_mask_range", "histogram"})
+    for (const char* key :
+         {"pressure_pa", "pressure_mmhg", "spread", "share_in_target", "lift_off_share",
+          "ral_gz_387_class", "burn_scar_range", "face_mask_range", "histogram"})
       j[key] = nullptr;
     return j;
   }

@@ -144,14 +144,16 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
   }
 
   nlohmann::json garment_json = mesh_json(view.garment);
-  if (view.garment_normals.rows() > 0) garment_json["normals"] = f32(flat_doubles(view.garment_normals));
+  if (view.garment_normals.rows() > 0)
+    garment_json["normals"] = f32(flat_doubles(view.garment_normals));
   nlohmann::json poses = nlohmann::json::array();
   for (const FitPose& pose : view.poses)
     poses.push_back({{"name", pose.name},
                      {"garment", f32(flat_doubles(pose.garment))},
                      {"normals", f32(flat_doubles(pose.garment_normals))},
                      {"body", f32(flat_doubles(pose.body))},
-                     {"sliding_excess", f32(std::vector<double>(pose.sliding_excess.begin(), pose.sliding_excess.end()))},
+                     {"sliding_excess", f32(std::vector<double>(pose.sliding_excess.begin(),
+                                                                pose.sliding_excess.end()))},
                      {"sliding_share", pose.sliding_share}});
   return {{"title", title},
           {"body", view.body.num_faces() > 0 ? mesh_json(view.body) : nlohmann::json()},
@@ -168,13 +170,12 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
           {"pressure_histogram", histogram},
           {"seams", seam_statistics_json(view.seams)},
           {"measurements", ease_table_json(view.measurements)},
-          {"silhouettes",
-           view.shape_target.num_faces() == 0
-               ? nlohmann::json()
-               : nlohmann::json{{"target", mesh_json(view.shape_target)},
-                                {"initial", view.initial_garment.num_faces() > 0
-                                                ? mesh_json(view.initial_garment)
-                                                : nlohmann::json()}}},
+          {"silhouettes", view.shape_target.num_faces() == 0
+                              ? nlohmann::json()
+                              : nlohmann::json{{"target", mesh_json(view.shape_target)},
+                                               {"initial", view.initial_garment.num_faces() > 0
+                                                               ? mesh_json(view.initial_garment)
+                                                               : nlohmann::json()}}},
           {"poses", poses}};
 }
 

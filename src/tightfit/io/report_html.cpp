@@ -106,9 +106,8 @@ std::string render_report_html(const FitView& view, const ReportOptions& options
 void write_report_html(const std::filesystem::path& path, const FitView& view,
                        const ReportOptions& options) {
   // Rendered inside the write so that a NaN in the data names the file (finite_output.hpp).
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << render_report_html(view, options, path.string());
-  });
+  write_file_atomically(
+      path, [&](std::ostream& out) { out << render_report_html(view, options, path.string()); });
 }
 
 }  // namespace tightfit

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "tightfit/common/atomic_file.hpp"
-#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/json_fields.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/garment/pattern_record.hpp"
@@ -66,16 +66,16 @@ nlohmann::json rows_json(const auto& m) {
 
 }  // namespace
 
-RunState make_run_state(const std::string& command, const SceneSpec& spec,
-                        const Garment& garment, const EmbeddedState& state,
-                        const Pattern* scene_pattern) {
+RunState make_run_state(const std::string& command, const SceneSpec& spec, const Garment& garment,
+                        const EmbeddedState& state, const Pattern* scene_pattern) {
   RunState s;
   s.command = command;
   s.scene_file = spec.file;
   s.scene_base_dir = std::filesystem::absolute(spec.base_dir).lexically_normal();
   if (!s.scene_base_dir.has_filename()) s.scene_base_dir = s.scene_base_dir.parent_path();
   s.scene = spec.document;
-  for (const PatternPiece& p : garment.pattern.pieces) s.pieces.push_back({p.name, p.rest, p.triangles});
+  for (const PatternPiece& p : garment.pattern.pieces)
+    s.pieces.push_back({p.name, p.rest, p.triangles});
   if (scene_pattern && !same_pattern_meshes(garment.pattern, *scene_pattern))
     s.pattern = garment.pattern;
   s.state = state;
@@ -144,7 +144,8 @@ RunState run_state_from_json(const nlohmann::json& j, const std::string& source)
     nlohmann::json record = pattern_json;
     record.erase("remeshed");
     s.pattern = pattern_record_from_json(record, source, "/pattern");
-    for (const PatternPiece& p : s.pattern->pieces) s.pieces.push_back({p.name, p.rest, p.triangles});
+    for (const PatternPiece& p : s.pattern->pieces)
+      s.pieces.push_back({p.name, p.rest, p.triangles});
   } else {
     JsonFields pattern(pattern_json, source, "/pattern");
     for (JsonFields& p : pattern.objects("pieces", true)) {
@@ -175,7 +176,8 @@ RunState run_state_from_json(const nlohmann::json& j, const std::string& source)
     const nlohmann::json& names = history->raw("terms");
     if (!names.is_array()) history->fail("expected an array of term names", "terms");
     for (size_t k = 0; k < names.size(); ++k) {
-      if (!names[k].is_string()) throw InputError(source, at("/history/terms", k) + ": expected a string");
+      if (!names[k].is_string())
+        throw InputError(source, at("/history/terms", k) + ": expected a string");
       s.term_names.push_back(names[k].get<std::string>());
     }
     const nlohmann::json& its = history->raw("iterations");
@@ -192,7 +194,8 @@ RunState run_state_from_json(const nlohmann::json& j, const std::string& source)
     TriMesh mesh;
     mesh.vertices = read_rows(initial->raw("vertices"), 3, source, "/initial_garment/vertices");
     mesh.faces = read_triangles(initial->raw("triangles"), source, "/initial_garment/triangles");
-    if (mesh.faces.size() > 0 && (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.vertices.rows()))
+    if (mesh.faces.size() > 0 &&
+        (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.vertices.rows()))
       initial->fail("a triangle names a vertex that does not exist", "triangles");
     initial->finish();
     s.initial_garment = std::move(mesh);
@@ -207,8 +210,9 @@ void write_run_state(const std::filesystem::path& file, const RunState& state) {
 
 RunState read_run_state(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file))
-    throw InputError(file.string(), "no saved run state (expected the state.json that "
-                                    "`tightfit simulate`, `layout` or `optimize` write)");
+    throw InputError(file.string(),
+                     "no saved run state (expected the state.json that "
+                     "`tightfit simulate`, `layout` or `optimize` write)");
   return run_state_from_json(read_json_file(file.string()), file.string());
 }
 
@@ -248,8 +252,7 @@ void check_scene_pieces(const RunState& s, const Garment& garment, const std::st
 
 /// A remeshed pattern against the scene's: remeshing keeps the pieces, seams and pinned
 /// boundaries (their names and the pieces they join), only the meshes change.
-void check_remeshed_pattern(const Pattern& saved, const Pattern& scene,
-                            const std::string& source) {
+void check_remeshed_pattern(const Pattern& saved, const Pattern& scene, const std::string& source) {
   auto count = [&](const std::string& what, size_t n, size_t m) {
     if (n != m)
       throw InputError(source, "/pattern/" + what + ": " + std::to_string(n) + " " + what +
@@ -300,11 +303,10 @@ Garment run_state_garment(const RunState& s, const Garment& scene_garment, const
     garment.set_rest_positions(stacked_rest_positions(s));
   }
   if (static_cast<int>(s.state.garment.size()) != garment.num_garment_vertices)
-    throw InputError(source, "/garment: " + std::to_string(s.state.garment.size()) +
-                                 " surface points, the " +
-                                 (s.pattern ? "saved pattern's" : "scene's") + " garment has " +
-                                 std::to_string(garment.num_garment_vertices) + " vertices" +
-                                 kChanged);
+    throw InputError(
+        source, "/garment: " + std::to_string(s.state.garment.size()) + " surface points, the " +
+                    (s.pattern ? "saved pattern's" : "scene's") + " garment has " +
+                    std::to_string(garment.num_garment_vertices) + " vertices" + kChanged);
   check_surface_points(s.state.garment, num_surface_faces, source, "/garment");
   if (s.state.body.rows() != body.num_vertices())
     throw InputError(source, "/body: " + std::to_string(s.state.body.rows()) +

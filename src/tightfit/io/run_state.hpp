@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
+#include <optional>
 #include "tightfit/body/body.hpp"
 #include "tightfit/design/optimization_state.hpp"
-#include <optional>
 
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/geometry/mesh.hpp"
@@ -44,18 +44,18 @@ struct RunStatePiece {
 };
 
 struct RunState {
-  std::string command;                  ///< "simulate", "layout" or "optimize"
-  std::string scene_file;               ///< the scene file the run read (for reports)
-  std::filesystem::path scene_base_dir; ///< absolute; relative scene paths resolve here
-  nlohmann::json scene;                 ///< the scene document
-  std::vector<RunStatePiece> pieces;    ///< the pattern, piece by piece
+  std::string command;                   ///< "simulate", "layout" or "optimize"
+  std::string scene_file;                ///< the scene file the run read (for reports)
+  std::filesystem::path scene_base_dir;  ///< absolute; relative scene paths resolve here
+  nlohmann::json scene;                  ///< the scene document
+  std::vector<RunStatePiece> pieces;     ///< the pattern, piece by piece
   /// The complete pattern (rest positions as in `pieces`) when it differs from the
   /// scene's (pieces remeshed during optimization): export welds the garment from it.
   std::optional<Pattern> pattern;
   EmbeddedState state;                  ///< garment embedding (n_g) and body positions (n_b×3, m)
   std::vector<std::string> term_names;  ///< optimize: names of the objective terms
   std::vector<OptimizationIteration> history;  ///< optimize: accepted iterations; else empty
-  nlohmann::json result;                ///< the command's summary (an object)
+  nlohmann::json result;                       ///< the command's summary (an object)
   /// optimize: the garment at the initial equilibrium (m), for the report's shape
   /// silhouettes; absent when unknown (a resumed run).
   std::optional<TriMesh> initial_garment;
@@ -66,9 +66,8 @@ struct RunState {
 /// `scene_pattern` (the pattern the scene builds) is given and its meshes differ from
 /// the garment's (same_pattern_meshes), the complete pattern is saved too. History and
 /// result are left empty for the caller.
-RunState make_run_state(const std::string& command, const SceneSpec& spec,
-                        const Garment& garment, const EmbeddedState& state,
-                        const Pattern* scene_pattern = nullptr);
+RunState make_run_state(const std::string& command, const SceneSpec& spec, const Garment& garment,
+                        const EmbeddedState& state, const Pattern* scene_pattern = nullptr);
 
 /// The history.json document: {"terms": names, "iterations": [iteration records]}.
 nlohmann::json history_json(const std::vector<OptimizationIteration>& history,

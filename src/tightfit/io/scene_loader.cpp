@@ -18,7 +18,8 @@ std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
   scene->spec = std::move(spec);
   auto t0 = Clock::now();
   scene->body = build_body(scene->spec.body, &scene->body_report);
-  for (const std::string& w : scene->body_report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  for (const std::string& w : scene->body_report.warnings)
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
   scene->stage_seconds.emplace_back("body", seconds_since(t0));
 
   t0 = Clock::now();
@@ -43,7 +44,8 @@ std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
         rig.source = scene_rig->source;
       }
       scene->build = build_garment(scene->body.surface, *scene->surface, g.layout, g.pattern, rig);
-      for (const std::string& w : scene->build->layout.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+      for (const std::string& w : scene->build->layout.warnings)
+        std::fprintf(stderr, "warning: %s\n", w.c_str());
       scene->garment = scene->build->garment;
       break;
     }

@@ -15,7 +15,7 @@ struct LoadedScene {
   Body body;
   BuildReport body_report;
   std::unique_ptr<LimitSurface> surface;
-  Garment garment;                       ///< the initial garment (embedded)
+  Garment garment;  ///< the initial garment (embedded)
   /// For layouts: the panels, piece maps and flattening reports the garment came from.
   std::optional<GarmentBuild> build;
   std::vector<std::pair<std::string, double>> stage_seconds;  ///< load stages (s)

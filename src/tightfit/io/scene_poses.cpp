@@ -19,7 +19,8 @@ std::filesystem::path resolve(const std::filesystem::path& base_dir, const std::
 bool valid_pose_name(const std::string& name) {
   if (name.empty() || name.size() > 64) return false;
   for (char c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
+      return false;
   return name != "." && name != "..";
 }
 
@@ -34,7 +35,8 @@ BoneRotations parse_rotations(JsonFields& pose, const SceneRig& rig) {
     if (!rig.skeleton.contains(it.key()))
       pose.fail("the rig's skeleton has no bone \"" + it.key() + "\"", key);
     const nlohmann::json& a = it.value();
-    if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() || !a[2].is_number())
+    if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() ||
+        !a[2].is_number())
       pose.fail("expected [a, b, c] in degrees", key);
     const Vec3 degrees(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
     if (!degrees.allFinite() || degrees.cwiseAbs().maxCoeff() > 360.0)
@@ -46,7 +48,8 @@ BoneRotations parse_rotations(JsonFields& pose, const SceneRig& rig) {
 
 }  // namespace
 
-std::shared_ptr<const SceneRig> parse_scene_rig(JsonFields& f, const std::filesystem::path& base_dir) {
+std::shared_ptr<const SceneRig> parse_scene_rig(JsonFields& f,
+                                                const std::filesystem::path& base_dir) {
   auto file = [&](const std::string& key) {
     const std::string name = f.string(key);
     if (name.empty()) f.fail("must name a file", key);
@@ -54,9 +57,10 @@ std::shared_ptr<const SceneRig> parse_scene_rig(JsonFields& f, const std::filesy
   };
   const auto mesh = file("mesh"), weights = file("weights"), joints = file("joints");
   auto rig = std::make_shared<SceneRig>();
-  rig->skinning = f.choice("skinning", {"dual_quaternion", "linear_blend"}, "dual_quaternion") == "linear_blend"
-                      ? SkinningMethod::kLinearBlend
-                      : SkinningMethod::kDualQuaternion;
+  rig->skinning =
+      f.choice("skinning", {"dual_quaternion", "linear_blend"}, "dual_quaternion") == "linear_blend"
+          ? SkinningMethod::kLinearBlend
+          : SkinningMethod::kDualQuaternion;
   rig->source = f.source() + ": " + f.path();
   f.finish();
   rig->weights = read_skin_weights(mesh, weights);
@@ -74,7 +78,8 @@ std::vector<ScenePose> parse_scene_poses(const nlohmann::json& poses, const std:
                                          const std::filesystem::path& base_dir) {
   if (!poses.is_array()) throw InputError(file, path + ": expected an array of poses");
   if (!poses.empty() && rig == nullptr)
-    throw InputError(file, path + ": poses need a rig (\"rig\": {\"mesh\", \"weights\", \"joints\"})");
+    throw InputError(file,
+                     path + ": poses need a rig (\"rig\": {\"mesh\", \"weights\", \"joints\"})");
   std::vector<ScenePose> out;
   std::set<std::string> names;
   for (std::size_t k = 0; k < poses.size(); ++k) {
@@ -85,13 +90,15 @@ std::vector<ScenePose> parse_scene_poses(const nlohmann::json& poses, const std:
       pose.fail("must be 1-64 letters, digits, '_', '-' or '.' (it names output files)", "name");
     if (!names.insert(p.name).second) pose.fail("another pose has this name", "name");
     const bool has_bvh = pose.has("bvh"), has_rotations = pose.has("rotations");
-    if (has_bvh == has_rotations) pose.fail("give either \"bvh\" (with \"frame\") or \"rotations\"");
+    if (has_bvh == has_rotations)
+      pose.fail("give either \"bvh\" (with \"frame\") or \"rotations\"");
     if (has_bvh) {
       const std::filesystem::path bvh_file = resolve(base_dir, pose.string("bvh"));
       const int frame = pose.integer("frame", 0);
       if (frame < 0) pose.fail("must be >= 0", "frame");
       const BvhMotion motion = read_bvh(bvh_file);
-      p.rotations = bvh_pose(motion, frame, fit_bvh_frame(motion, rig->skeleton), &p.ignored_joints);
+      p.rotations =
+          bvh_pose(motion, frame, fit_bvh_frame(motion, rig->skeleton), &p.ignored_joints);
       p.origin = bvh_file.string() + " frame " + std::to_string(frame);
     } else {
       p.rotations = parse_rotations(pose, *rig);

@@ -51,7 +51,8 @@ struct ScenePose {
 };
 
 /// Parses "rig" (files read and checked). `base_dir` resolves relative paths.
-std::shared_ptr<const SceneRig> parse_scene_rig(JsonFields& rig, const std::filesystem::path& base_dir);
+std::shared_ptr<const SceneRig> parse_scene_rig(JsonFields& rig,
+                                                const std::filesystem::path& base_dir);
 
 /// Parses the "poses" array `poses` (JSON pointer `path` in `file`) against `rig` (may be
 /// null only for an empty array).

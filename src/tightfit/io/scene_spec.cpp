@@ -28,8 +28,10 @@ SleeveParams parse_sleeve(JsonFields& f) {
   p.twist = f.number("twist", p.twist);
   p.pin_first_ring = f.boolean("pin_first_ring", p.pin_first_ring);
   p.pin_last_ring = f.boolean("pin_last_ring", p.pin_last_ring);
-  const double rest_area = 2.0 * std::numbers::pi * p.radius * p.hoop_scale * (p.axial_end - p.axial_begin) * p.axial_scale;
-  if (const std::string problem = mesh_budget_problem(rest_area, p.edge_length, "sleeve"); !problem.empty())
+  const double rest_area = 2.0 * std::numbers::pi * p.radius * p.hoop_scale *
+                           (p.axial_end - p.axial_begin) * p.axial_scale;
+  if (const std::string problem = mesh_budget_problem(rest_area, p.edge_length, "sleeve");
+      !problem.empty())
     f.fail(problem, "edge_length");
   f.finish();
   return p;
@@ -66,7 +68,8 @@ GarmentSpec parse_garment(JsonFields& f, const std::filesystem::path& base_dir) 
     ++kinds;
   }
   if (auto p = f.object("pattern")) {
-    if (g.kind != GarmentKind::kLayout || kinds == 0) f.fail("only goes with a \"layout\"", "pattern");
+    if (g.kind != GarmentKind::kLayout || kinds == 0)
+      f.fail("only goes with a \"layout\"", "pattern");
     g.pattern = parse_pattern_options(*p);
   }
   if (kinds != 1) f.fail("needs exactly one of \"sleeve\", \"cover\" or \"layout\"");
@@ -109,7 +112,8 @@ void parse_solver(JsonFields& f, NewtonOptions& n, LimitSurfaceOptions& l) {
   n.max_iterations = f.integer("max_iterations", n.max_iterations);
   if (n.max_iterations < 1) f.fail("must be at least 1", "max_iterations");
   l.approx_level_smooth = f.integer("limit_level", l.approx_level_smooth);
-  if (l.approx_level_smooth < 1 || l.approx_level_smooth > 10) f.fail("must be in 1..10", "limit_level");
+  if (l.approx_level_smooth < 1 || l.approx_level_smooth > 10)
+    f.fail("must be in 1..10", "limit_level");
   l.approx_level_sharp = std::max(l.approx_level_sharp, l.approx_level_smooth);
   f.finish();
 }
@@ -129,7 +133,8 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   auto body = root.object("body", true);
   s.body = parse_body_spec(*body, base_dir,
                            s.rig ? SkeletonRef{&s.rig->skeleton, s.rig->source} : SkeletonRef{});
-  if (const nlohmann::json& b = document.at("body"); b.contains("skeleton") && b["skeleton"].is_string()) {
+  if (const nlohmann::json& b = document.at("body");
+      b.contains("skeleton") && b["skeleton"].is_string()) {
     const std::filesystem::path joints = base_dir / b["skeleton"].get<std::string>();
     s.skeleton = std::make_shared<const std::map<std::string, BoneSegment>>(read_skeleton(joints));
     s.skeleton_source = joints.string();
@@ -144,20 +149,22 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   if (auto f = root.object("body_material"))
     parse_body_material(*f, s.materials.body, s.materials.rigid_body);
   if (auto f = root.object("solver")) parse_solver(*f, s.newton, s.limit);
-  if (root.has("poses")) s.poses = parse_scene_poses(root.raw("poses"), file, "/poses", s.rig.get(), base_dir);
+  if (root.has("poses"))
+    s.poses = parse_scene_poses(root.raw("poses"), file, "/poses", s.rig.get(), base_dir);
   if (s.rig) s.pressure_rig = std::shared_ptr<const SkinWeights>(s.rig, &s.rig->weights);
   if (s.garment.kind == GarmentKind::kLayout && !s.rig) {
     const std::string use = s.garment.layout.first_rig_use();
     if (!use.empty())
       throw InputError(s.garment.layout.source,
-                       use + ": anchored on the skeleton or its skin weights, but the scene has no "
-                             "\"rig\" (\"rig\": {\"mesh\", \"weights\", \"joints\"})");
+                       use +
+                           ": anchored on the skeleton or its skin weights, but the scene has no "
+                           "\"rig\" (\"rig\": {\"mesh\", \"weights\", \"joints\"})");
   }
   if (auto f = root.object("pressure")) {
-    s.pressure_operator = f->choice("shape_operator", {"mid_edge", "limit_surface"}, "mid_edge") ==
-                                  "mid_edge"
-                              ? ShapeOperatorKind::kMidEdge
-                              : ShapeOperatorKind::kLimitSurface;
+    s.pressure_operator =
+        f->choice("shape_operator", {"mid_edge", "limit_surface"}, "mid_edge") == "mid_edge"
+            ? ShapeOperatorKind::kMidEdge
+            : ShapeOperatorKind::kLimitSurface;
     for (JsonFields& region : f->objects("regions"))
       s.pressure_regions.push_back(parse_pressure_region(region));
     if (auto rig = f->object("rig")) {
@@ -181,7 +188,8 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   if (root.has("measurements")) {
     s.measurements_given = true;
     s.measurements = parse_measurement_levels(
-        root, "measurements", s.skeleton ? SkeletonRef{s.skeleton.get(), s.skeleton_source} : SkeletonRef{});
+        root, "measurements",
+        s.skeleton ? SkeletonRef{s.skeleton.get(), s.skeleton_source} : SkeletonRef{});
   }
   s.patterns.file = file;
   s.patterns.json_path = "/patterns";

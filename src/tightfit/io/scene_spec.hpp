@@ -54,17 +54,17 @@ enum class GarmentKind { kSleeve, kCover, kLayout };
 
 struct GarmentSpec {
   GarmentKind kind = GarmentKind::kSleeve;
-  SleeveParams sleeve;          ///< kind == kSleeve
-  double cover_scale = 0.9;     ///< kind == kCover: rest size / body size
-  LayoutSpec layout;            ///< kind == kLayout: panels, seams, pinned boundaries
-  PatternOptions pattern;       ///< kind == kLayout: flattening, scale-down, meshing
-  std::string json_path;        ///< JSON pointer of the garment section
+  SleeveParams sleeve;       ///< kind == kSleeve
+  double cover_scale = 0.9;  ///< kind == kCover: rest size / body size
+  LayoutSpec layout;         ///< kind == kLayout: panels, seams, pinned boundaries
+  PatternOptions pattern;    ///< kind == kLayout: flattening, scale-down, meshing
+  std::string json_path;     ///< JSON pointer of the garment section
 };
 
 struct SceneSpec {
-  std::string file;                 ///< the scene file (for messages)
-  std::filesystem::path base_dir;   ///< relative paths resolve against this folder
-  nlohmann::json document;          ///< the whole scene, for reports
+  std::string file;                ///< the scene file (for messages)
+  std::filesystem::path base_dir;  ///< relative paths resolve against this folder
+  nlohmann::json document;         ///< the whole scene, for reports
   BodySpec body;
   GarmentSpec garment;
   SimulationMaterials materials;

@@ -59,7 +59,8 @@ std::vector<SeamStatistics> fit_seam_statistics(const Garment& garment, const Po
     const int offset = garment.piece_offset[static_cast<size_t>(seam.a.piece)];
     double sewn = 0.0, weighted_angle = 0.0;
     for (size_t i = 1; i < seam.a.vertices.size(); ++i) {
-      const int p = garment.pattern_to_garment[static_cast<size_t>(offset + seam.a.vertices[i - 1])];
+      const int p =
+          garment.pattern_to_garment[static_cast<size_t>(offset + seam.a.vertices[i - 1])];
       const int q = garment.pattern_to_garment[static_cast<size_t>(offset + seam.a.vertices[i])];
       const Vec3 d = (x.row(q) - x.row(p)).transpose();
       const double l = d.norm();

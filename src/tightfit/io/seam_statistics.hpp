@@ -20,15 +20,15 @@ namespace tightfit {
 /// One seam's lengths and, on a fit, its sewn length and traction.
 struct SeamStatistics {
   std::string name;
-  std::string piece_a;           ///< name of the piece of side a
-  std::string piece_b;           ///< name of the piece of side b
-  double length_a = 0.0;         ///< rest (pattern) length of side a (m)
-  double length_b = 0.0;         ///< rest (pattern) length of side b (m)
-  bool has_fit = false;          ///< the fit members below are set
-  double sewn_length = 0.0;      ///< 3D length of the sewn seam on the fit (m)
-  double traction_mean = 0.0;    ///< length-weighted mean normal traction, both sides (N/m)
-  double traction_max = 0.0;     ///< largest normal traction of a seam element (N/m)
-  double traction_total = 0.0;   ///< Σ l0 · traction over both sides (N): its share of T_seam
+  std::string piece_a;          ///< name of the piece of side a
+  std::string piece_b;          ///< name of the piece of side b
+  double length_a = 0.0;        ///< rest (pattern) length of side a (m)
+  double length_b = 0.0;        ///< rest (pattern) length of side b (m)
+  bool has_fit = false;         ///< the fit members below are set
+  double sewn_length = 0.0;     ///< 3D length of the sewn seam on the fit (m)
+  double traction_mean = 0.0;   ///< length-weighted mean normal traction, both sides (N/m)
+  double traction_max = 0.0;    ///< largest normal traction of a seam element (N/m)
+  double traction_total = 0.0;  ///< Σ l0 · traction over both sides (N): its share of T_seam
   /// Length-weighted mean angle of the sewn seam's edges to the y axis (the body's up
   /// axis in MakeHuman and glTF), degrees: 0 for a seam running up the body, 90 for one
   /// around it; a seam turning helical around a leg lies in between.

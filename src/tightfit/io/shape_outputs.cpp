@@ -27,8 +27,7 @@ nlohmann::json distance_statistics(const VecX& d) {
 }  // namespace
 
 std::optional<ShapeComparison> compare_to_shape_target(const SceneSpec& scene,
-                                                       const std::string& source,
-                                                       const Points3& x,
+                                                       const std::string& source, const Points3& x,
                                                        const TriMesh* initial_garment) {
   if (scene.optimize.is_null()) return std::nullopt;
   const OptimizationSpec spec =
@@ -46,7 +45,8 @@ std::optional<ShapeComparison> compare_to_shape_target(const SceneSpec& scene,
 nlohmann::json shape_statistics_json(const ShapeComparison& c) {
   nlohmann::json j = distance_statistics(c.distance);
   j["target"] = c.target_file.string();
-  j["distance"] = "signed IMLS distance of every garment vertex to the target (the shape objective's)";
+  j["distance"] =
+      "signed IMLS distance of every garment vertex to the target (the shape objective's)";
   if (c.initial_distance) j["initial"] = distance_statistics(*c.initial_distance);
   return j;
 }

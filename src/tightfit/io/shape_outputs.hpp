@@ -28,8 +28,7 @@ struct ShapeComparison {
 /// otherwise. `x`: garment vertices (n×3, m); `initial_garment` (optional): the garment
 /// at the optimization's initial equilibrium. `source` names the scene in errors.
 std::optional<ShapeComparison> compare_to_shape_target(const SceneSpec& scene,
-                                                       const std::string& source,
-                                                       const Points3& x,
+                                                       const std::string& source, const Points3& x,
                                                        const TriMesh* initial_garment = nullptr);
 
 /// {"target", "vertices", "rms_mm", "max_mm" (largest |distance|), "mean_signed_mm"

@@ -210,7 +210,8 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, Shap
                          {std::string(fit_fields::kNormalForce), "N", force}};
   view.pattern = sim.garment().pattern;
   if (view.pattern.pieces.size() <= kMaxReportedPieces)
-    view.seams = fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
+    view.seams =
+        fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
   view.parameters = parameters;
   view.history = history;
   return view;

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/fit_view.hpp"
+#include "tightfit/io/pressure_statistics.hpp"
 #include "tightfit/io/report_html.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 

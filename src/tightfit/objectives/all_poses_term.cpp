@@ -10,7 +10,8 @@ AllPosesTerm::AllPosesTerm(std::shared_ptr<const DesignTerm> inner, const LimitS
                            std::vector<PoseMotions> poses)
     : inner_(std::move(inner)), surface_(surface), poses_(std::move(poses)) {
   if (!inner_) throw std::invalid_argument("AllPosesTerm: null term");
-  if (poses_.empty()) throw InputError("poses", inner_->name() + " in every pose: the scene has no poses");
+  if (poses_.empty())
+    throw InputError("poses", inner_->name() + " in every pose: the scene has no poses");
   if (inner_->depends_on_embedding())
     throw InputError("poses", inner_->name() + " cannot be evaluated in every pose");
 }

@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-
 #include "tightfit/common/error.hpp"
 #include "tightfit/objectives/element_kinematics.hpp"
 
@@ -40,7 +39,7 @@ DirectionalStretchObjective::DirectionalStretchObjective(const Garment& garment,
     if (!(len > 0.0) || !std::isfinite(len))
       throw InputError(kSource, "piece '" + piece.name + "' has no valid grain direction");
     const Vec2 g = piece.grain / len;
-    piece_direction.push_back(direction == FabricDirection::along_grain ? g : Vec2(g.y(), -g.x()));
+    piece_direction.push_back(direction == FabricDirection::kAlongGrain ? g : Vec2(g.y(), -g.x()));
   }
   directions_.reserve(static_cast<size_t>(triangles_.rows()));
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e)

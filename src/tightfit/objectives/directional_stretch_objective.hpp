@@ -23,8 +23,8 @@ namespace tightfit {
 
 /// Which fabric direction of each piece the objective measures.
 enum class FabricDirection {
-  along_grain,   ///< PatternPiece::grain
-  across_grain,  ///< the grain turned by −90° in the piece plane (the weft)
+  kAlongGrain,   ///< PatternPiece::grain
+  kAcrossGrain,  ///< the grain turned by −90° in the piece plane (the weft)
 };
 
 class DirectionalStretchObjective : public DesignTerm {

@@ -9,9 +9,9 @@ namespace tightfit {
 /// At one state: per pinned vertex its normal frame, a = ∂T/∂g and ∂T/∂n.
 struct PinnedTractionRegularizer::Evaluation {
   double value = 0.0;
-  VecX a;                            // 3·n_g, nonzero at pinned vertices
+  VecX a;                              // 3·n_g, nonzero at pinned vertices
   std::vector<LimitWeights> stencils;  // per pinned vertex
-  std::vector<Vec3> xu, xv, gn;      // per pinned vertex
+  std::vector<Vec3> xu, xv, gn;        // per pinned vertex
 };
 
 PinnedTractionRegularizer::PinnedTractionRegularizer(const Garment& garment,
@@ -25,7 +25,8 @@ PinnedTractionRegularizer::PinnedTractionRegularizer(const Garment& garment,
 
 PinnedTractionRegularizer::~PinnedTractionRegularizer() = default;
 
-PinnedTractionRegularizer::Evaluation PinnedTractionRegularizer::evaluate(const DesignState& state) const {
+PinnedTractionRegularizer::Evaluation PinnedTractionRegularizer::evaluate(
+    const DesignState& state) const {
   if (state.embedding == nullptr)
     throw std::logic_error("PinnedTractionRegularizer: the design state carries no embedding");
   for (const auto& e : energies_)
@@ -61,9 +62,12 @@ PinnedTractionRegularizer::Evaluation PinnedTractionRegularizer::evaluate(const 
   return ev;
 }
 
-double PinnedTractionRegularizer::value(const DesignState& state) const { return evaluate(state).value; }
+double PinnedTractionRegularizer::value(const DesignState& state) const {
+  return evaluate(state).value;
+}
 
-void PinnedTractionRegularizer::add_gradient(const DesignState& state, VecX& d_x, VecX& d_rest) const {
+void PinnedTractionRegularizer::add_gradient(const DesignState& state, VecX& d_x,
+                                             VecX& d_rest) const {
   const Evaluation ev = evaluate(state);
   std::vector<Triplet> t;
   for (const auto& e : energies_) e->add_hessian(state.x, t, false);
@@ -84,7 +88,8 @@ void PinnedTractionRegularizer::add_embedding_gradient(const DesignState& state,
     const Vec3 w = (ev.gn[k] - normal * normal.dot(ev.gn[k])) / len;  // ∂T/∂c
     const Vec3 t_u = ev.xv[k].cross(w), t_v = w.cross(ev.xu[k]);      // ∂T/∂x_u, ∂T/∂x_v
     const LimitWeights& st = ev.stencils[k];
-    for (int j = 0; j < st.size(); ++j) d_y.segment<3>(3 * st.index[j]) += st.du[j] * t_u + st.dv[j] * t_v;
+    for (int j = 0; j < st.size(); ++j)
+      d_y.segment<3>(3 * st.index[j]) += st.du[j] * t_u + st.dv[j] * t_v;
   }
 }
 

@@ -40,7 +40,8 @@ struct PointCloudIndex::Tree {
 PointCloudIndex::PointCloudIndex(const Points3& points) : tree_(std::make_unique<Tree>(points)) {}
 PointCloudIndex::~PointCloudIndex() = default;
 
-std::vector<PointCloudIndex::Neighbour> PointCloudIndex::within(const Vec3& x, double radius) const {
+std::vector<PointCloudIndex::Neighbour> PointCloudIndex::within(const Vec3& x,
+                                                                double radius) const {
   const double h2 = radius * radius;
   std::vector<std::pair<std::size_t, double>> found;
   tree_->tree->radiusSearch(x.data(), h2, found, nanoflann::SearchParams(32, 0.0f, false));

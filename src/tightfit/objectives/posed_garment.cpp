@@ -11,7 +11,8 @@ PosedGarment pose_garment(const LimitSurface& surface, const DesignEmbedding& em
     throw std::invalid_argument("pose_garment: one motion per body vertex expected");
   Points3 control(nc, 3);
   for (int k = 0; k < nc; ++k)
-    control.row(k) = motions[static_cast<std::size_t>(k)].apply(embedding.body.row(k).transpose()).transpose();
+    control.row(k) =
+        motions[static_cast<std::size_t>(k)].apply(embedding.body.row(k).transpose()).transpose();
   PosedGarment out;
   const int n = static_cast<int>(embedding.garment.size());
   out.x = VecX::Zero(3 * n);
@@ -43,7 +44,8 @@ void add_posed_position_gradient(const PosedGarment& posed, const std::vector<Po
     d_s[2 * j + 1] += g.dot(posed.xv.row(j));
     const LimitWeights& st = posed.stencils[static_cast<std::size_t>(j)];
     for (int k = 0; k < st.size(); ++k)
-      d_y.segment<3>(3 * st.index[k]) += motions[static_cast<std::size_t>(st.index[k])].linear.transpose() * (st.p[k] * g);
+      d_y.segment<3>(3 * st.index[k]) +=
+          motions[static_cast<std::size_t>(st.index[k])].linear.transpose() * (st.p[k] * g);
   }
 }
 

@@ -21,9 +21,9 @@ struct PoseMotions {
 
 /// Posed positions and limit-surface derivatives of every garment vertex.
 struct PosedGarment {
-  VecX x;                            ///< 3·n_g (m)
+  VecX x;                              ///< 3·n_g (m)
   std::vector<LimitWeights> stencils;  ///< per garment vertex
-  Points3 xu, xv, xuu, xuv, xvv;     ///< n_g×3 parametric derivatives on the posed surface
+  Points3 xu, xv, xuu, xuv, xvv;       ///< n_g×3 parametric derivatives on the posed surface
 };
 
 /// Evaluates the garment of `embedding` on `surface` with the control points moved by

@@ -114,13 +114,14 @@ S penalty(const S& p, double lo, double hi) {
 
 /// A_e Σ pen of one element: its own range plus every candidate region's weighted range.
 template <typename S>
-S element_penalty(const S& pressure, double lo, double hi, const PressureRegions& regions,
-                  int e, const std::array<Vec3T<S>, 3>& corners) {
+S element_penalty(const S& pressure, double lo, double hi, const PressureRegions& regions, int e,
+                  const std::array<Vec3T<S>, 3>& corners) {
   S total = penalty<S>(pressure, lo, hi);
   for (int r : regions.candidates(e)) {
     const PressureRegion& region = regions[r];
     if (value_of(pressure) >= region.min_pa && value_of(pressure) <= region.max_pa) continue;
-    total += regions.band_weight<S>(r, corners) * penalty<S>(pressure, region.min_pa, region.max_pa);
+    total +=
+        regions.band_weight<S>(r, corners) * penalty<S>(pressure, region.min_pa, region.max_pa);
   }
   return total;
 }
@@ -137,10 +138,11 @@ bool inside_all(double pressure, double lo, double hi, const PressureRegions& re
 
 PressureObjective::PressureObjective(const Garment& garment, const ClothMaterial& material,
                                      PressureRegions regions)
-    : PressureObjective(
-          garment, material,
-          VecX::Constant(garment.garment_triangles.rows(), -std::numeric_limits<double>::infinity()),
-          VecX::Constant(garment.garment_triangles.rows(), std::numeric_limits<double>::infinity())) {
+    : PressureObjective(garment, material,
+                        VecX::Constant(garment.garment_triangles.rows(),
+                                       -std::numeric_limits<double>::infinity()),
+                        VecX::Constant(garment.garment_triangles.rows(),
+                                       std::numeric_limits<double>::infinity())) {
   regions_ = std::move(regions);
 }
 

@@ -47,8 +47,7 @@ class PressureObjective : public DesignTerm {
   PressureObjective(const Garment& garment, const ClothMaterial& material, double min_pressure,
                     double max_pressure);
   /// The ranges of `regions` (resolved on this garment), summed where they overlap.
-  PressureObjective(const Garment& garment, const ClothMaterial& material,
-                    PressureRegions regions);
+  PressureObjective(const Garment& garment, const ClothMaterial& material, PressureRegions regions);
 
   std::string name() const override { return "pressure"; }
   double value(const DesignState& state) const override;

@@ -10,8 +10,7 @@
 namespace tightfit {
 
 PressureRegions::PressureRegions(const Garment& garment, std::vector<PressureRegion> regions,
-                                 const std::string& source, const SkinWeights* rig,
-                                 double radius)
+                                 const std::string& source, const SkinWeights* rig, double radius)
     : regions_(std::move(regions)), triangles_(garment.garment_triangles) {
   bone_fields_.resize(regions_.size());
   const std::vector<PatternPiece>& pieces = garment.pattern.pieces;
@@ -32,13 +31,15 @@ PressureRegions::PressureRegions(const Garment& garment, std::vector<PressureReg
       if (!*plane) continue;
       const double length = (*plane)->normal.norm();
       if (!(length > 0.0) || !(*plane)->point.allFinite())
-        throw InputError(source, what + ": a band plane needs a finite point and a non-zero normal");
+        throw InputError(source,
+                         what + ": a band plane needs a finite point and a non-zero normal");
       (*plane)->normal /= length;
     }
     if (!region.bones.empty()) {
       if (rig == nullptr)
-        throw InputError(source, what + " names bones but the scene has no rig "
-                                        "(\"pressure\": {\"rig\": {\"mesh\", \"weights\"}})");
+        throw InputError(source, what +
+                                     " names bones but the scene has no rig "
+                                     "(\"pressure\": {\"rig\": {\"mesh\", \"weights\"}})");
       if (!(radius > 0.0)) throw InputError(source, "the rig's interpolation radius must be > 0");
       bone_fields_[r] = std::make_shared<const PointField>(rig->vertices,
                                                            rig->summed(region.bones, what), radius);

@@ -18,14 +18,14 @@
 #include <array>
 #include <memory>
 #include <optional>
-#include <type_traits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "tightfit/body/skin_weights.hpp"
 #include "tightfit/common/types.hpp"
 #include "tightfit/design/pressure_region.hpp"
 #include "tightfit/garment/garment.hpp"
-#include "tightfit/body/skin_weights.hpp"
 #include "tightfit/objectives/autodiff.hpp"
 #include "tightfit/objectives/point_field.hpp"
 
@@ -65,9 +65,9 @@ class PressureRegions {
 
  private:
   std::vector<PressureRegion> regions_;
-  std::vector<std::vector<int>> candidates_;  ///< per garment triangle
+  std::vector<std::vector<int>> candidates_;                    ///< per garment triangle
   std::vector<std::shared_ptr<const PointField>> bone_fields_;  ///< per region, null: no bones
-  Triangles triangles_;                       ///< garment triangles
+  Triangles triangles_;                                         ///< garment triangles
 };
 
 namespace pressure_region_detail {
@@ -92,8 +92,8 @@ S chain(double v, const Vec3& g, const Vec3T<S>& c) {
     return v;
   } else {
     S out(v);
-    out.derivatives() = g.x() * c.x().derivatives() + g.y() * c.y().derivatives() +
-                        g.z() * c.z().derivatives();
+    out.derivatives() =
+        g.x() * c.x().derivatives() + g.y() * c.y().derivatives() + g.z() * c.z().derivatives();
     return out;
   }
 }

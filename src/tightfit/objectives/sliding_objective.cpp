@@ -32,8 +32,9 @@ SlidingObjective::SlidingObjective(const Garment& garment, const SimulationMater
   if (poses_.empty()) throw InputError(source, "no poses to evaluate");
   for (const PoseMotions& p : poses_)
     if (static_cast<int>(p.motions.size()) != num_body_vertices)
-      throw InputError(source, "pose \"" + p.name + "\" has motions for " + std::to_string(p.motions.size()) +
-                                   " body vertices, the body has " + std::to_string(num_body_vertices));
+      throw InputError(
+          source, "pose \"" + p.name + "\" has motions for " + std::to_string(p.motions.size()) +
+                      " body vertices, the body has " + std::to_string(num_body_vertices));
   if (num_body_vertices < surface.num_control_vertices())
     throw InputError(source, "the body has fewer vertices than its surface");
   for (int v : garment.pinned) pinned_[static_cast<std::size_t>(v)] = 1;
@@ -54,7 +55,8 @@ SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& s
     throw std::logic_error("SlidingObjective: the design state carries no embedding");
   const DesignEmbedding& emb = *state.embedding;
   if (static_cast<int>(emb.garment.size()) != num_garment_ || emb.body.rows() != num_body_)
-    throw std::invalid_argument("SlidingObjective: the embedding does not match the garment and body");
+    throw std::invalid_argument(
+        "SlidingObjective: the embedding does not match the garment and body");
   sync_rest(state.rest);
   PoseEvaluation ev;
   ev.posed = pose_garment(surface_, emb, poses_[static_cast<std::size_t>(pose)].motions);
@@ -95,7 +97,8 @@ SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& s
 
 double SlidingObjective::value(const DesignState& state) const {
   double total = 0.0;
-  for (int i = 0; i < static_cast<int>(poses_.size()); ++i) total += evaluate(state, i, false).value;
+  for (int i = 0; i < static_cast<int>(poses_.size()); ++i)
+    total += evaluate(state, i, false).value;
   return total;
 }
 
@@ -111,7 +114,8 @@ void SlidingObjective::add_gradient(const DesignState& state, VecX& /*d_x*/, Vec
   }
 }
 
-void SlidingObjective::add_embedding_gradient(const DesignState& state, VecX& d_s, VecX& d_y) const {
+void SlidingObjective::add_embedding_gradient(const DesignState& state, VecX& d_s,
+                                              VecX& d_y) const {
   std::vector<Triplet> hessian;
   for (int i = 0; i < static_cast<int>(poses_.size()); ++i) {
     const PoseEvaluation ev = evaluate(state, i, true);

@@ -52,8 +52,8 @@ class SlidingObjective : public DesignTerm {
   /// Throws InputError (source "sliding objective") for a negative or non-finite μ, no
   /// poses, or motions of the wrong count.
   SlidingObjective(const Garment& garment, const SimulationMaterials& materials,
-                   const LimitSurface& surface, int num_body_vertices, std::vector<PoseMotions> poses,
-                   double friction);
+                   const LimitSurface& surface, int num_body_vertices,
+                   std::vector<PoseMotions> poses, double friction);
   ~SlidingObjective() override;
 
   std::string name() const override { return "sliding"; }

@@ -6,7 +6,6 @@
 #include <stdexcept>
 #include <string>
 
-
 #include "tightfit/common/error.hpp"
 #include "tightfit/objectives/element_kinematics.hpp"
 

@@ -42,9 +42,9 @@ void scatter_block(const std::array<int, NR>& rows, const std::array<int, NC>& c
     for (int i = 0; i < RowDim; ++i)
       for (std::size_t b = 0; b < NC; ++b)
         for (int j = 0; j < ColDim; ++j)
-          *out++ = Triplet(
-              RowDim * rows[a] + i, ColDim * cols[b] + j,
-              local(RowDim * static_cast<int>(a) + i, ColDim * static_cast<int>(b) + j));
+          *out++ =
+              Triplet(RowDim * rows[a] + i, ColDim * cols[b] + j,
+                      local(RowDim * static_cast<int>(a) + i, ColDim * static_cast<int>(b) + j));
 }
 
 /// Appends the local block as triplets (same order as the pointer version).

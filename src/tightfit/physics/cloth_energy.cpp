@@ -227,9 +227,8 @@ ClothElement gather_element(const Triangles& triangles, const Points2& rest,
 template <typename Fn>
 void for_each_element(const Triangles& triangles, const Points2& rest,
                       const std::vector<int>& to_garment, const VecX& x, Fn&& fn) {
-  parallel_for(triangles.rows(), [&](std::int64_t e) {
-    fn(e, gather_element(triangles, rest, to_garment, x, e));
-  });
+  parallel_for(triangles.rows(),
+               [&](std::int64_t e) { fn(e, gather_element(triangles, rest, to_garment, x, e)); });
 }
 
 /// g += Σ_e local_e scattered over each element's vertex ids (Dim DOFs per vertex):
@@ -308,15 +307,15 @@ void ClothEnergy::add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const {
   const size_t first = H.size();
   H.resize(first + kPerElement * static_cast<size_t>(triangles_.rows()));
   const double t = material().thickness;
-  for_each_element(triangles_, rest_, pattern_to_garment_, x,
-                   [&](std::int64_t e, const ClothElement& el) {
-                     const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
-                     const Eigen::Matrix<double, 9, 6> local =
-                         t * el.deformed.jacobian.transpose() *
-                         phi.hessian.topRightCorner<3, 3>() * el.rest.jacobian;
-                     scatter_block<3, 3, 2, 3>(el.garment, el.pattern, local,
-                                               H.data() + first + kPerElement * static_cast<size_t>(e));
-                   });
+  for_each_element(
+      triangles_, rest_, pattern_to_garment_, x, [&](std::int64_t e, const ClothElement& el) {
+        const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
+        const Eigen::Matrix<double, 9, 6> local = t * el.deformed.jacobian.transpose() *
+                                                  phi.hessian.topRightCorner<3, 3>() *
+                                                  el.rest.jacobian;
+        scatter_block<3, 3, 2, 3>(el.garment, el.pattern, local,
+                                  H.data() + first + kPerElement * static_cast<size_t>(e));
+      });
 }
 
 }  // namespace tightfit

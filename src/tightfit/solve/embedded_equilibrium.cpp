@@ -25,7 +25,8 @@ EmbeddedEquilibrium::EmbeddedEquilibrium(EmbeddedSystemSetup setup, EmbeddedStat
   const int nb = static_cast<int>(state_.body.rows());
   std::vector<char> garment_pinned(ng, 0), body_pinned(nb, 0);
   for (int i : setup_.pinned_garment) {
-    if (i < 0 || i >= ng) throw SolverError("EmbeddedEquilibrium: pinned garment index out of range");
+    if (i < 0 || i >= ng)
+      throw SolverError("EmbeddedEquilibrium: pinned garment index out of range");
     garment_pinned[i] = 1;
   }
   for (int k : setup_.pinned_body) {

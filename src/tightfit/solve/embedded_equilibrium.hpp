@@ -96,9 +96,9 @@ class EmbeddedEquilibrium : public NewtonProblem {
     SparseMatrix J, Hxx, extra;
   };
   HessianParts hessian_parts(HessianKind kind) const;
-  void evaluate_garment();  // stencils, x, derivatives at the current state
+  void evaluate_garment();      // stencils, x, derivatives at the current state
   VecX total_gradient() const;  // gradient() (the interface's is not const)
-  Eigen::Matrix<double, 3, 2> tangent_basis(int garment_vertex) const;  // [x_u x_v]
+  Eigen::Matrix<double, 3, 2> tangent_basis(int garment_vertex) const;              // [x_u x_v]
   double tangential_force_squared(int garment_vertex, const VecX& gradient) const;  // N²
   double garment_energy(const VecX& x) const;
 

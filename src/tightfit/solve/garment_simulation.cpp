@@ -21,9 +21,8 @@ double mean_rest_edge_length(const Triangles& triangles, const Points2& rest) {
 
 }  // namespace
 
-GarmentSimulation::GarmentSimulation(const Body& body, const LimitSurface& surface,
-                                     Garment garment, SimulationMaterials materials,
-                                     NewtonOptions newton)
+GarmentSimulation::GarmentSimulation(const Body& body, const LimitSurface& surface, Garment garment,
+                                     SimulationMaterials materials, NewtonOptions newton)
     : body_(body),
       surface_(surface),
       garment_(std::move(garment)),
@@ -34,8 +33,8 @@ GarmentSimulation::GarmentSimulation(const Body& body, const LimitSurface& surfa
   if (surface_.num_control_vertices() != body_.num_surface_vertices())
     throw InputError("body", "the limit surface does not belong to the body surface");
   build_garment_energies();
-  body_energy_ = std::make_unique<NeoHookeanEnergy>(body_.volume.vertices, body_.volume.tets,
-                                                    materials_.body);
+  body_energy_ =
+      std::make_unique<NeoHookeanEnergy>(body_.volume.vertices, body_.volume.tets, materials_.body);
   EmbeddedState state;
   state.garment = garment_.embedding;
   state.body = body_.volume.vertices;
@@ -44,15 +43,19 @@ GarmentSimulation::GarmentSimulation(const Body& body, const LimitSurface& surfa
 
 GarmentSimulation::~GarmentSimulation() = default;
 
-std::unique_ptr<ClothEnergy> make_cloth_energy(const Garment& garment, const ClothMaterial& fabric) {
+std::unique_ptr<ClothEnergy> make_cloth_energy(const Garment& garment,
+                                               const ClothMaterial& fabric) {
   return std::make_unique<ClothEnergy>(garment.pattern_triangles, garment.rest_positions(),
-                                       garment.pattern_to_garment, garment.num_garment_vertices, fabric);
+                                       garment.pattern_to_garment, garment.num_garment_vertices,
+                                       fabric);
 }
 
-std::unique_ptr<SeamSpringEnergy> make_seam_energy(const Garment& garment, const SeamMaterial& seam) {
+std::unique_ptr<SeamSpringEnergy> make_seam_energy(const Garment& garment,
+                                                   const SeamMaterial& seam) {
   const auto seam_edges = garment.seam_edges();
   if (!(seam.youngs_modulus > 0.0) || seam_edges.empty()) return nullptr;
-  return std::make_unique<SeamSpringEnergy>(seam_edges, garment.rest_positions(), garment.pattern_to_garment,
+  return std::make_unique<SeamSpringEnergy>(seam_edges, garment.rest_positions(),
+                                            garment.pattern_to_garment,
                                             garment.num_garment_vertices, seam);
 }
 
@@ -84,8 +87,9 @@ std::string GarmentSimulation::garment_vertex_piece(int vertex) const {
   std::vector<std::string> names;
   for (int p = 0; p < garment_.num_pattern_vertices(); ++p) {
     if (garment_.pattern_to_garment[static_cast<size_t>(p)] != vertex) continue;
-    const auto piece = std::upper_bound(garment_.piece_offset.begin(), garment_.piece_offset.end(), p) -
-                       garment_.piece_offset.begin() - 1;
+    const auto piece =
+        std::upper_bound(garment_.piece_offset.begin(), garment_.piece_offset.end(), p) -
+        garment_.piece_offset.begin() - 1;
     const std::string& name = garment_.pattern.pieces[static_cast<size_t>(piece)].name;
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   }
@@ -98,7 +102,8 @@ std::string GarmentSimulation::garment_vertex_piece(int vertex) const {
 void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
   EmbeddedSystemSetup setup;
   setup.surface = &surface_;
-  for (const RestDependentEnergy* e : rest_dependent_energies()) setup.garment_energies.push_back(e);
+  for (const RestDependentEnergy* e : rest_dependent_energies())
+    setup.garment_energies.push_back(e);
   setup.body_energies.push_back(body_energy_.get());
   if (materials_.rigid_body) {
     setup.pinned_body.resize(body_.num_vertices());

@@ -32,12 +32,12 @@ enum class ShapeOperatorKind { kMidEdge, kLimitSurface };
 /// The fit at an equilibrium. Per-element arrays follow the garment triangles.
 struct FitAnalysis {
   std::vector<ClothElementFit> elements;
-  VecX pressure_mid_edge;   ///< Pa per element, Λ from mid-edge normals (Eq. 32-33)
-  VecX pressure_limit;      ///< Pa per element, Λ from the limit surface's exact curvature
-  VecX vertex_pressure;     ///< Pa per garment vertex: normal force / mixed Voronoi area
-  Points3 vertex_force;     ///< N per garment vertex: force the cloth exerts on the body
-  VecX vertex_normal_force; ///< N per garment vertex: its component along the outward normal
-  Points3 vertex_normal;    ///< unit outward limit-surface normal per garment vertex
+  VecX pressure_mid_edge;    ///< Pa per element, Λ from mid-edge normals (Eq. 32-33)
+  VecX pressure_limit;       ///< Pa per element, Λ from the limit surface's exact curvature
+  VecX vertex_pressure;      ///< Pa per garment vertex: normal force / mixed Voronoi area
+  Points3 vertex_force;      ///< N per garment vertex: force the cloth exerts on the body
+  VecX vertex_normal_force;  ///< N per garment vertex: its component along the outward normal
+  Points3 vertex_normal;     ///< unit outward limit-surface normal per garment vertex
 };
 
 /// The garment's cloth energy over its pattern triangles at the pattern's rest positions,
@@ -45,7 +45,8 @@ struct FitAnalysis {
 /// theirs with it too).
 std::unique_ptr<ClothEnergy> make_cloth_energy(const Garment& garment, const ClothMaterial& fabric);
 /// The garment's seam springs; null when it has no seams or the seam modulus is 0.
-std::unique_ptr<SeamSpringEnergy> make_seam_energy(const Garment& garment, const SeamMaterial& seam);
+std::unique_ptr<SeamSpringEnergy> make_seam_energy(const Garment& garment,
+                                                   const SeamMaterial& seam);
 
 class GarmentSimulation {
  public:

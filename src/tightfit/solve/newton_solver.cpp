@@ -93,8 +93,8 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
       record.seconds_assembly = seconds_since(t0);
       report.hessian_nonzeros = H.nonZeros();
       t0 = Clock::now();
-      record.regularization = factorize_regularized(
-          H, report.factorizations, held ? &held->ordering() : nullptr);
+      record.regularization =
+          factorize_regularized(H, report.factorizations, held ? &held->ordering() : nullptr);
       record.seconds_factorization = seconds_since(t0);
       report.factor_nonzeros = cholesky_.factor_nonzeros();
       factor = &cholesky_;

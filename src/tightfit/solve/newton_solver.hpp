@@ -17,16 +17,16 @@ struct NewtonIteration;
 /// Tolerances in SI units. Converged when force_norm(g) ≤ max(absolute_force_tolerance,
 /// relative_force_tolerance · force_scale()).
 struct NewtonOptions {
-  double relative_force_tolerance = 1e-9;  ///< relative to the problem's force scale
-  double absolute_force_tolerance = 1e-12; ///< N
-  int max_iterations = 100;                ///< iterations that factorize a Hessian
-                                           ///< (chord steps are not counted)
+  double relative_force_tolerance = 1e-9;   ///< relative to the problem's force scale
+  double absolute_force_tolerance = 1e-12;  ///< N
+  int max_iterations = 100;                 ///< iterations that factorize a Hessian
+                                            ///< (chord steps are not counted)
   int max_line_search_halvings = 40;
-  double armijo = 1e-4;                    ///< sufficient-decrease constant
-  double initial_regularization = 1e-8;    ///< first diagonal shift, relative to mean |diag(H)|
-  double regularization_growth = 10.0;     ///< factor between regularization attempts
+  double armijo = 1e-4;                  ///< sufficient-decrease constant
+  double initial_regularization = 1e-8;  ///< first diagonal shift, relative to mean |diag(H)|
+  double regularization_growth = 10.0;   ///< factor between regularization attempts
   int max_regularizations = 30;
-  bool throw_on_failure = true;            ///< throw SolverError if not converged
+  bool throw_on_failure = true;  ///< throw SolverError if not converged
   /// Chord steps (solve()'s ChordSteps): steps with a factorization that is already
   /// there instead of a new one. At most this many in a
   /// row, and only while each reduces the force norm to at most `chord_contraction`
@@ -69,18 +69,18 @@ struct NewtonIteration {
 
 struct NewtonReport {
   bool converged = false;
-  int iterations = 0;             ///< steps taken (chord steps included)
-  int chord_steps = 0;            ///< of them: with the held factorization
-  int factorizations = 0;         ///< Hessians factorized (shifted retries included)
-  int krylov_iterations = 0;      ///< conjugate-gradient products of the chord steps
+  int iterations = 0;         ///< steps taken (chord steps included)
+  int chord_steps = 0;        ///< of them: with the held factorization
+  int factorizations = 0;     ///< Hessians factorized (shifted retries included)
+  int krylov_iterations = 0;  ///< conjugate-gradient products of the chord steps
   double final_energy = 0.0;
-  double final_force_norm = 0.0;   ///< N
-  double tolerance = 0.0;          ///< N, the force tolerance that was applied
+  double final_force_norm = 0.0;  ///< N
+  double tolerance = 0.0;         ///< N, the force tolerance that was applied
   std::vector<NewtonIteration> history;
   std::int64_t hessian_nonzeros = 0;
   std::int64_t factor_nonzeros = 0;
   double seconds_total = 0.0;
-  std::string message;             ///< why it stopped
+  std::string message;  ///< why it stopped
 };
 
 /// Factorizations a solve may use for chord steps dq = −F⁻¹ g instead of factorizing new

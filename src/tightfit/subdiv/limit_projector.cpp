@@ -25,8 +25,9 @@ struct SampleCloud {
   }
 };
 
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, SampleCloud>,
-                                                   SampleCloud, 3, std::uint32_t>;
+using KdTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, SampleCloud>,
+                                        SampleCloud, 3, std::uint32_t>;
 
 }  // namespace
 
@@ -36,8 +37,8 @@ struct LimitProjector::Index {
   std::unique_ptr<KdTree> tree;
 };
 
-SurfacePoint refine_closest_point(const LimitSurface& surface, const Points3& control, const Vec3& p,
-                                  SurfacePoint start) {
+SurfacePoint refine_closest_point(const LimitSurface& surface, const Points3& control,
+                                  const Vec3& p, SurfacePoint start) {
   const int max_iterations = 100;
   const int max_halvings = 40;
   const double max_step = 0.5;  // in (u,v): half a face
@@ -94,20 +95,24 @@ SurfacePoint refine_closest_point(const LimitSurface& surface, const Points3& co
   return s;
 }
 
-LimitProjector::LimitProjector(const LimitSurface& surface, const Points3& control, int samples_per_edge)
+LimitProjector::LimitProjector(const LimitSurface& surface, const Points3& control,
+                               int samples_per_edge)
     : surface_(surface), control_(control), index_(std::make_unique<Index>()) {
   if (control.rows() != surface.num_control_vertices()) {
     throw std::invalid_argument("LimitProjector: control has " + std::to_string(control.rows()) +
-                                " rows, expected " + std::to_string(surface.num_control_vertices()));
+                                " rows, expected " +
+                                std::to_string(surface.num_control_vertices()));
   }
-  if (samples_per_edge < 1) throw std::invalid_argument("LimitProjector: samples_per_edge must be ≥ 1");
+  if (samples_per_edge < 1)
+    throw std::invalid_argument("LimitProjector: samples_per_edge must be ≥ 1");
   const int n = samples_per_edge;
   const double inv = 1.0 / n;
   for (int f = 0; f < surface.num_faces(); ++f) {
     for (int i = 0; i < n; ++i) {
       for (int j = 0; i + j < n; ++j) {
         index_->samples.push_back({f, (i + 1.0 / 3.0) * inv, (j + 1.0 / 3.0) * inv});
-        if (i + j + 1 < n) index_->samples.push_back({f, (i + 2.0 / 3.0) * inv, (j + 2.0 / 3.0) * inv});
+        if (i + j + 1 < n)
+          index_->samples.push_back({f, (i + 2.0 / 3.0) * inv, (j + 2.0 / 3.0) * inv});
       }
     }
   }
@@ -116,7 +121,8 @@ LimitProjector::LimitProjector(const LimitSurface& surface, const Points3& contr
     index_->cloud.points.row(static_cast<Eigen::Index>(k)) =
         surface.position(index_->samples[k], control_).transpose();
   }
-  index_->tree = std::make_unique<KdTree>(3, index_->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  index_->tree =
+      std::make_unique<KdTree>(3, index_->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
 }
 
 LimitProjector::~LimitProjector() = default;

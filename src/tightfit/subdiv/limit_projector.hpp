@@ -19,8 +19,8 @@ namespace tightfit {
 
 /// Newton refinement of the closest point to `p` (m) starting at `start`.
 /// `control`: num_control_vertices × 3 positions (m).
-SurfacePoint refine_closest_point(const LimitSurface& surface, const Points3& control, const Vec3& p,
-                                  SurfacePoint start);
+SurfacePoint refine_closest_point(const LimitSurface& surface, const Points3& control,
+                                  const Vec3& p, SurfacePoint start);
 
 /// Closest-point queries for one set of control positions. Keeps a reference to the
 /// surface (which must outlive it) and a copy of the positions.

@@ -1,11 +1,11 @@
 #include "tightfit/subdiv/limit_surface.hpp"
 
-#include <Eigen/Geometry>
-#include <Eigen/LU>
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -28,7 +28,8 @@ namespace Sdc = OpenSubdiv::Sdc;
 struct LimitSurface::Impl {
   Triangles faces;
   std::vector<Bfr::Surface<double>> surfaces;
-  // Control points of face f (base-vertex indices, may repeat): cp_index[cp_offset[f] .. cp_offset[f+1]).
+  // Control points of face f (base-vertex indices, may repeat): cp_index[cp_offset[f] ..
+  // cp_offset[f+1]).
   std::vector<int> cp_offset;
   std::vector<int> cp_index;
   // Slot of each control point in the face's list of unique indices. Slots are
@@ -51,7 +52,6 @@ struct LimitSurface::Impl {
 };
 
 namespace {
-
 
 /// Per-thread scratch for raw stencils: 6 arrays of `n` doubles.
 double* scratch(int n) {
@@ -143,7 +143,8 @@ LimitSurface::LimitSurface(const TriMesh& control, LimitSurfaceOptions options)
   const Sdc::Options sdc_options;
   std::unique_ptr<Far::TopologyRefiner> refiner(
       RefinerFactory::Create(desc, RefinerFactory::Options(Sdc::SCHEME_LOOP, sdc_options)));
-  if (!refiner) throw SolverError("OpenSubdiv could not build the Loop topology of the control mesh");
+  if (!refiner)
+    throw SolverError("OpenSubdiv could not build the Loop topology of the control mesh");
 
   Bfr::SurfaceFactory::Options factory_options;
   factory_options.SetApproxLevelSmooth(options_.approx_level_smooth);
@@ -166,7 +167,8 @@ LimitSurface::LimitSurface(const TriMesh& control, LimitSurfaceOptions options)
   for (int f = 0; f < nf; ++f) {
     Bfr::Surface<double>& surface = m.surfaces[static_cast<std::size_t>(f)];
     if (!factory.InitVertexSurface(f, &surface) || !surface.IsValid()) {
-      throw SolverError("OpenSubdiv could not build the limit surface of face " + std::to_string(f));
+      throw SolverError("OpenSubdiv could not build the limit surface of face " +
+                        std::to_string(f));
     }
     const int n = surface.GetNumControlPoints();
     m.max_control_points = std::max(m.max_control_points, n);
@@ -200,14 +202,16 @@ LimitSurface::LimitSurface(const TriMesh& control, LimitSurfaceOptions options)
 
     std::uint8_t ev = 0;
     for (int k = 0; k < 3; ++k) {
-      if (topology_->vertex_faces(m.faces(f, k)).size() != 6) ev |= static_cast<std::uint8_t>(1u << k);
+      if (topology_->vertex_faces(m.faces(f, k)).size() != 6)
+        ev |= static_cast<std::uint8_t>(1u << k);
     }
     m.ev_corners[static_cast<std::size_t>(f)] = ev;
     m.irregular[static_cast<std::size_t>(f)] = !surface.IsRegular();
     if ((ev != 0) != !surface.IsRegular()) {
       throw SolverError("OpenSubdiv classifies face " + std::to_string(f) +
-                        (surface.IsRegular() ? " as regular although it has a corner of valence ≠ 6"
-                                             : " as irregular although all its corners have valence 6"));
+                        (surface.IsRegular()
+                             ? " as regular although it has a corner of valence ≠ 6"
+                             : " as irregular although all its corners have valence 6"));
     }
   }
 
@@ -263,12 +267,13 @@ namespace {
 /// Checks that s lies in its face (is_surface_point) and returns clamped (u,v).
 Vec2 checked_uv(SurfacePoint s, int num_faces) {
   if (s.face < 0 || s.face >= num_faces) {
-    throw std::invalid_argument("SurfacePoint: face " + std::to_string(s.face) + " out of range [0, " +
-                                std::to_string(num_faces) + ")");
+    throw std::invalid_argument("SurfacePoint: face " + std::to_string(s.face) +
+                                " out of range [0, " + std::to_string(num_faces) + ")");
   }
   if (!is_surface_point(s, num_faces)) {
     throw std::invalid_argument("SurfacePoint: (u, v) = (" + std::to_string(s.u) + ", " +
-                                std::to_string(s.v) + ") is outside face " + std::to_string(s.face));
+                                std::to_string(s.v) + ") is outside face " +
+                                std::to_string(s.face));
   }
   double u = std::max(s.u, 0.0);
   double v = std::max(s.v, 0.0);
@@ -361,7 +366,8 @@ LimitCurvature LimitSurface::curvature(SurfacePoint s, const Points3& control) c
   c.normal = fr.xu.cross(fr.xv).normalized();
   c.e1 = fr.xu.normalized();
   c.e2 = c.normal.cross(c.e1);
-  c.first_fundamental_form << fr.xu.dot(fr.xu), fr.xu.dot(fr.xv), fr.xv.dot(fr.xu), fr.xv.dot(fr.xv);
+  c.first_fundamental_form << fr.xu.dot(fr.xu), fr.xu.dot(fr.xv), fr.xv.dot(fr.xu),
+      fr.xv.dot(fr.xv);
   const double b_uv = c.normal.dot(fr.xuv);
   c.second_fundamental_form << c.normal.dot(fr.xuu), b_uv, b_uv, c.normal.dot(fr.xvv);
   // Tangent basis T = [xu xv] = E A with E = [e1 e2], A = Eᵀ T; II_E = A⁻ᵀ II A⁻¹.
@@ -448,8 +454,9 @@ LimitSurface::Walk LimitSurface::walk(SurfacePoint start, const Vec2& delta_uv) 
 SurfacePoint LimitSurface::project(const Vec3& p, const Points3& control,
                                    std::optional<SurfacePoint> hint) const {
   if (control.rows() != num_control_vertices_) {
-    throw std::invalid_argument("LimitSurface::project: control has " + std::to_string(control.rows()) +
-                                " rows, expected " + std::to_string(num_control_vertices_));
+    throw std::invalid_argument("LimitSurface::project: control has " +
+                                std::to_string(control.rows()) + " rows, expected " +
+                                std::to_string(num_control_vertices_));
   }
   if (hint) return refine_closest_point(*this, control, p, *hint);
   std::shared_ptr<const LimitProjector> projector;
@@ -482,8 +489,8 @@ void LimitSurface::run_self_test() {
   int buggy = 0;
   int correct = 0;
   const int n_max = m.max_control_points;
-  std::vector<double> c(6 * static_cast<std::size_t>(n_max)), a(6 * static_cast<std::size_t>(n_max)),
-      z(6 * static_cast<std::size_t>(n_max));
+  std::vector<double> c(6 * static_cast<std::size_t>(n_max)),
+      a(6 * static_cast<std::size_t>(n_max)), z(6 * static_cast<std::size_t>(n_max));
   // Relative errors of (duu, duv, dvv) and of their negatives against central differences.
   auto errors = [&](int f, double u, double v, double& plain, double& flipped) {
     const Bfr::Surface<double>& s = m.surfaces[static_cast<std::size_t>(f)];
@@ -499,10 +506,13 @@ void LimitSurface::run_self_test() {
     eval(u + h, v, a);
     eval(u - h, v, z);
     for (int k = 0; k < n; ++k) {
-      const double fd_uu = (a[static_cast<std::size_t>(n + k)] - z[static_cast<std::size_t>(n + k)]) / (2 * h);
+      const double fd_uu =
+          (a[static_cast<std::size_t>(n + k)] - z[static_cast<std::size_t>(n + k)]) / (2 * h);
       const double fd_uv =
-          (a[static_cast<std::size_t>(2 * n + k)] - z[static_cast<std::size_t>(2 * n + k)]) / (2 * h);
-      const double uu = c[static_cast<std::size_t>(3 * n + k)], uvw = c[static_cast<std::size_t>(4 * n + k)];
+          (a[static_cast<std::size_t>(2 * n + k)] - z[static_cast<std::size_t>(2 * n + k)]) /
+          (2 * h);
+      const double uu = c[static_cast<std::size_t>(3 * n + k)],
+                   uvw = c[static_cast<std::size_t>(4 * n + k)];
       e_plain += (uu - fd_uu) * (uu - fd_uu) + (uvw - fd_uv) * (uvw - fd_uv);
       e_flip += (uu + fd_uu) * (uu + fd_uu) + (uvw + fd_uv) * (uvw + fd_uv);
       norm += fd_uu * fd_uu + fd_uv * fd_uv;
@@ -511,7 +521,8 @@ void LimitSurface::run_self_test() {
     eval(u, v - h, z);
     for (int k = 0; k < n; ++k) {
       const double fd_vv =
-          (a[static_cast<std::size_t>(2 * n + k)] - z[static_cast<std::size_t>(2 * n + k)]) / (2 * h);
+          (a[static_cast<std::size_t>(2 * n + k)] - z[static_cast<std::size_t>(2 * n + k)]) /
+          (2 * h);
       const double vv = c[static_cast<std::size_t>(5 * n + k)];
       e_plain += (vv - fd_vv) * (vv - fd_vv);
       e_flip += (vv + fd_vv) * (vv + fd_vv);
@@ -521,8 +532,8 @@ void LimitSurface::run_self_test() {
     flipped = std::sqrt(e_flip / norm);
   };
   auto fail = [](int f, double u, double v, double plain, double flipped) {
-    throw SolverError("LimitSurface self-test: OpenSubdiv second derivatives on face " + std::to_string(f) +
-                      " at (" + std::to_string(u) + ", " + std::to_string(v) +
+    throw SolverError("LimitSurface self-test: OpenSubdiv second derivatives on face " +
+                      std::to_string(f) + " at (" + std::to_string(u) + ", " + std::to_string(v) +
                       ") match neither finite differences nor their negatives (relative errors " +
                       std::to_string(plain) + ", " + std::to_string(flipped) + ")");
   };
@@ -548,9 +559,10 @@ void LimitSurface::run_self_test() {
     }
   }
   if (buggy > 0 && correct > 0) {
-    throw SolverError("LimitSurface self-test: OpenSubdiv second derivatives have the wrong sign on " +
-                      std::to_string(buggy) + " of " + std::to_string(buggy + correct) +
-                      " rotated sub-triangles; expected all or none");
+    throw SolverError(
+        "LimitSurface self-test: OpenSubdiv second derivatives have the wrong sign on " +
+        std::to_string(buggy) + " of " + std::to_string(buggy + correct) +
+        " rotated sub-triangles; expected all or none");
   }
   fix_second_derivatives_ = buggy > 0;
 }

@@ -164,8 +164,8 @@ class LimitSurface {
 
  private:
   struct Impl;
-  void raw_stencil(int face, double u, double v, double* p, double* du, double* dv,
-                   double* duu, double* duv, double* dvv) const;
+  void raw_stencil(int face, double u, double v, double* p, double* du, double* dv, double* duu,
+                   double* duv, double* dvv) const;
   void run_self_test();
 
   LimitSurfaceOptions options_;

@@ -12,7 +12,8 @@ namespace tightfit::test {
 
 /// Appends `segments` points from `a` (included) towards `b` (excluded).
 inline void add_straight(std::vector<Vec2>& points, const Vec2& a, const Vec2& b, int segments) {
-  for (int k = 0; k < segments; ++k) points.push_back(a + (b - a) * (static_cast<double>(k) / segments));
+  for (int k = 0; k < segments; ++k)
+    points.push_back(a + (b - a) * (static_cast<double>(k) / segments));
 }
 
 /// A piece whose boundary loop is `boundary` (m, counter-clockwise, star-shaped about
@@ -83,7 +84,8 @@ inline Pattern test_pattern() {
   const std::vector<int> left_up = {0, 27, 26, 25, 24, 23, 22, 21, 20};
   pattern.seams.push_back({"side_right", {0, right_up}, {1, left_up}});
   pattern.seams.push_back({"side_left", {1, right_up}, {0, left_up}});
-  pattern.seams.push_back({"sleeve_hem", {2, {0, 1, 2, 3, 4, 5, 6}}, {1, {20, 19, 18, 17, 16, 15, 14}}});
+  pattern.seams.push_back(
+      {"sleeve_hem", {2, {0, 1, 2, 3, 4, 5, 6}}, {1, {20, 19, 18, 17, 16, 15, 14}}});
   pattern.pinned.push_back({"waist", 0, {0, 1, 2, 3, 4, 5, 6}});
   return pattern;
 }

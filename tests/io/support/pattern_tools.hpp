@@ -51,7 +51,6 @@ inline void require_program(const std::string& program) {
       << program << " is not installed (run scripts/install-deps.sh)";
 }
 
-
 /// A grey image, 0 = black … 255 = white, row-major.
 struct GrayImage {
   int width = 0;
@@ -88,7 +87,8 @@ inline GrayImage read_png(const std::filesystem::path& path) {
       const double r = ((v >> 16) & 0xffu) + 255.0 - a;
       const double g = ((v >> 8) & 0xffu) + 255.0 - a;
       const double b = (v & 0xffu) + 255.0 - a;
-      image.pixels[static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x)] =
+      image.pixels[static_cast<size_t>(y) * static_cast<size_t>(image.width) +
+                   static_cast<size_t>(x)] =
           static_cast<unsigned char>(std::lround(0.299 * r + 0.587 * g + 0.114 * b));
     }
   }
@@ -109,7 +109,8 @@ inline GrayImage read_pgm(const std::filesystem::path& path) {
     return {};
   }
   image.pixels.resize(static_cast<size_t>(image.width) * static_cast<size_t>(image.height));
-  in.read(reinterpret_cast<char*>(image.pixels.data()), static_cast<std::streamsize>(image.pixels.size()));
+  in.read(reinterpret_cast<char*>(image.pixels.data()),
+          static_cast<std::streamsize>(image.pixels.size()));
   if (!in) ADD_FAILURE() << "short PGM " << path;
   return image;
 }
@@ -157,7 +158,8 @@ inline double polygon_distance(const Vec2& q, const std::vector<Vec2>& polygon) 
 
 /// Whether `q` lies inside the closed polygon (crossing number).
 inline bool inside_polygon(const Vec2& q, const std::vector<Vec2>& polygon) {
-  return tightfit::inside_polygon(polygon.size(), [&](size_t i) { return polygon[i]; }, q);
+  return tightfit::inside_polygon(
+      polygon.size(), [&](size_t i) { return polygon[i]; }, q);
 }
 
 /// Whether two non-adjacent edges of the closed polygon cross or touch.
