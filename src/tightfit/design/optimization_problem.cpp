@@ -318,6 +318,7 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
       accepted_generation_ == adjoint_.generation() ? adjoint_.held_factorization() : nullptr;
   try {
     sim_.set_state(accepted_state_);
+    const Points3 accepted_positions = sim_.problem().garment_positions();
     sim_.set_rest_positions(rest);
     const NewtonReport report = sim_.solve({held, options_.reuse_factorizations});
     ev.newton_iterations = report.iterations;
@@ -336,6 +337,7 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
       ev.failure = "forward solve: the equilibrium is not finite at " + place;
       return ev;
     }
+    record_equilibrium_move(accepted_positions, ev);
   } catch (const InputError& e) {
     ev.failure = std::string("pattern rejected: ") + e.what();
     return ev;
@@ -364,6 +366,17 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
   last_ok_ = true;
   if (with_gradient) add_gradient(ev);
   return ev;
+}
+
+void DesignProblem::record_equilibrium_move(const Points3& accepted_positions,
+                                            DesignEvaluation& ev) const {
+  const Points3& x = sim_.problem().garment_positions();
+  if (x.rows() != accepted_positions.rows() || x.rows() == 0) return;
+  Eigen::Index vertex = 0;
+  ev.equilibrium_move = (x - accepted_positions).rowwise().norm().maxCoeff(&vertex);
+  ev.moved_vertex = static_cast<int>(vertex);
+  ev.moved_vertex_position = accepted_positions.row(vertex).transpose();
+  ev.moved_vertex_label = sim_.problem().garment_vertex_label(ev.moved_vertex);
 }
 
 bool DesignProblem::add_gradient(DesignEvaluation& ev) {
