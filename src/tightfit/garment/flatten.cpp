@@ -121,7 +121,7 @@ DistortionReport measure_distortion(const TriMesh& mesh, const Points2& uv) {
     Mat2 U, X;
     U << u1 - u0, u2 - u0;
     X << t.x[1] - t.x[0], t.x[2] - t.x[0];
-    const double a2 = 0.5 * U.determinant();
+    const double a2 = signed_area(u0, u1, u2);
     r.area_3d += t.area;
     r.area_2d += a2;
     if (a2 <= 0.0) ++r.flipped;
