@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "garment/garment_test_meshes.hpp"
 #include "tightfit/body/skeleton.hpp"
@@ -20,7 +21,7 @@ TriMesh torus(double R, double r, int n, int m) {
   t.vertices.resize(n * m, 3);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < m; ++j) {
-      const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
+      const double u = 2 * std::numbers::pi * i / n, v = 2 * std::numbers::pi * j / m;
       t.vertices.row(i * m + j) << (R + r * std::cos(v)) * std::cos(u), r * std::sin(v),
           (R + r * std::cos(v)) * std::sin(u);
     }
@@ -103,7 +104,7 @@ TEST(LocalCrop, TheLoopAroundThePointIsCutEvenWhenAnotherLoopComesNearer) {
   // thin octagonal one (radius 0.004): a limb and, beside it, a chin. The point lies
   // inside the hexagon, 8 mm in from that side: the thin prism's cut points are nearer
   // to it than any of the hexagon's, but the loop around the point is the hexagon's.
-  const double side = 30.0 * M_PI / 180.0;
+  const double side = 30.0 * std::numbers::pi / 180.0;
   const Vec3 out_dir(std::cos(side), 0.0, -std::sin(side));  // the side's middle (test mesh frame)
   const TriMesh limb = test::closed_cylinder(0.05, 0.4, 6, 5);
   TriMesh chin = test::closed_cylinder(0.004, 0.4, 8, 5);

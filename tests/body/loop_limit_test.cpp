@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "tightfit/body/generators.hpp"
 
@@ -21,7 +22,8 @@ TriMesh octahedron(double r) {
 TEST(LoopLimit, ChiMatchesLoopsMasks) {
   EXPECT_NEAR(loop_limit_chi(6), 1.0 / 12.0, 1e-15);  // regular: 1/2 v + 1/12 Σ w
   EXPECT_NEAR(loop_limit_chi(3), 0.2, 1e-15);         // β3 = 3/16
-  const double beta4 = (5.0 / 8.0 - std::pow(3.0 / 8.0 + 0.25 * std::cos(M_PI / 2), 2)) / 4.0;
+  const double beta4 =
+      (5.0 / 8.0 - std::pow(3.0 / 8.0 + 0.25 * std::cos(std::numbers::pi / 2), 2)) / 4.0;
   EXPECT_NEAR(loop_limit_chi(4), 1.0 / (4.0 + 3.0 / (8.0 * beta4)), 1e-15);
   EXPECT_THROW(loop_limit_chi(2), std::invalid_argument);
 }

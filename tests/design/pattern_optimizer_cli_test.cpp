@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -571,7 +572,7 @@ TEST_F(OptimizeCli, ShapeAndSeamOutputsOfARun) {
   const int around = 48, along = 13;
   for (int j = 0; j < along; ++j)
     for (int i = 0; i < around; ++i) {
-      const double a = 2.0 * M_PI * i / around;
+      const double a = 2.0 * std::numbers::pi * i / around;
       obj << "v " << 0.045 * std::cos(a) << " " << 0.045 * std::sin(a) << " " << -0.06 + 0.01 * j
           << "\n";
     }

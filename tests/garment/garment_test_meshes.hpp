@@ -1,12 +1,13 @@
 #pragma once
 /// Small surfaces built in code for the garment tests.
 #include <cmath>
+#include <numbers>
 
 #include "tightfit/geometry/mesh.hpp"
 
 namespace tightfit::test {
 
-inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kPi = std::numbers::pi;
 
 /// Open cylinder around the y axis: `rings` rings of `segments` vertices from y = 0 to
 /// y = length, each quad split into two triangles, normals outward. Every quad is a

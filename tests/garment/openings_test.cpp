@@ -48,12 +48,8 @@ std::string input_error_of(const std::function<void()>& f) {
 }
 
 double signed_area(const Points2& x, const std::vector<int>& loop) {
-  double a = 0.0;
-  for (size_t i = 0; i < loop.size(); ++i) {
-    const Vec2 p = x.row(loop[i]), q = x.row(loop[(i + 1) % loop.size()]);
-    a += 0.5 * (p.x() * q.y() - p.y() * q.x());
-  }
-  return a;
+  return polygon_signed_area(loop.size(),
+                             [&](size_t i) -> Vec2 { return x.row(loop[i]).transpose(); });
 }
 
 bool inside(const Points2& x, const std::vector<int>& loop, const Vec2& q) {

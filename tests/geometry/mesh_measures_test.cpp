@@ -11,6 +11,15 @@
 namespace tightfit {
 namespace {
 
+TEST(MeshMeasures, TriangleAndFaceAreas) {
+  EXPECT_DOUBLE_EQ(triangle_area(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 3, 0)), 3.0);
+  EXPECT_DOUBLE_EQ(triangle_area(Vec3(0, 0, 0), Vec3(0, 3, 0), Vec3(2, 0, 0)), 3.0);
+  EXPECT_DOUBLE_EQ(triangle_area(Vec3(1, 1, 1), Vec3(2, 2, 2), Vec3(3, 3, 3)), 0.0);
+  const TriMesh m = test::cube();
+  const VecX areas = face_areas(m);
+  for (int f = 0; f < m.num_faces(); ++f) EXPECT_EQ(face_area(m, f), areas[f]);
+}
+
 TEST(MeshMeasures, CubeVolumeAreaNormalsBox) {
   TriMesh m = test::cube();
   m.vertices *= 2.0;

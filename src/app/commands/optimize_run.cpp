@@ -1,6 +1,5 @@
 #include "optimize_run.hpp"
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -25,7 +24,6 @@ namespace tightfit::app {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = SteadyClock;
 
 /// The stage of a run before its first iteration is reported (the initial equilibrium).
 constexpr const char* kStartOfRun = "the start of the run";
@@ -60,7 +58,7 @@ void run_optimize(const OptimizeRequest& request) {
   const int max_iterations = request.max_iterations;
   const bool force = request.force;
   const std::string& keep_failed = request.keep_failed;
-  const auto t_start = Clock::now();
+  const auto t_start = SteadyClock::now();
   OptimizationScene input = read_optimization_scene(scene_file);
   check_keep_failed_folder(keep_failed, out_dir);
   if (max_iterations >= 0) input.optimization.optimizer.max_iterations = max_iterations;
@@ -141,7 +139,7 @@ void run_optimize(const OptimizeRequest& request) {
 
     // The simulation holds the accepted pattern and its equilibrium. The report comes
     // last: it needs the viewer's npm packages, and its failure must not cost the rest.
-    const auto t0 = Clock::now();
+    const auto t0 = SteadyClock::now();
     const FitAnalysis fit = sim->analyze();
     const auto op = input.scene.pressure_operator;
     const std::vector<OptimizationIteration>& history = optimizer.history();

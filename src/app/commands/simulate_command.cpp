@@ -2,7 +2,6 @@
 /// garment on a body. With --keep-failed, a solve that does not converge leaves its last
 /// state in DIR2 (the fit outputs plus per-vertex maps of the unbalanced force), so that
 /// the user can see which part of the layout is at fault; DIR stays untouched.
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
@@ -19,13 +18,11 @@
 namespace tightfit::app {
 namespace {
 
-using Clock = SteadyClock;
-
 double energy_of(const Energy* e, const VecX& x) { return e ? e->value(x) : 0.0; }
 
 void run_simulate(const std::string& scene_file, const std::string& out_dir,
                   const std::string& keep_failed, bool force) {
-  const auto t_start = Clock::now();
+  const auto t_start = SteadyClock::now();
   SceneSpec spec = read_scene(scene_file);  // bad input fails before the folder is touched
   check_keep_failed_folder(keep_failed, out_dir);
   OutputDirectory out(out_dir, force, "simulate");
@@ -42,7 +39,7 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir,
               scene->body.num_vertices(), scene->body.volume.num_tets(),
               sim->garment().num_garment_vertices,
               static_cast<int>(sim->garment().garment_triangles.rows()));
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   NewtonReport report;
   try {
     report = sim->solve();
@@ -55,7 +52,7 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir,
   std::printf(
       "  Newton converged in %d iterations, force residual %.3e N (tolerance %.3e N), %.2f s\n",
       report.iterations, report.final_force_norm, report.tolerance, t_solve);
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   const FitAnalysis fit = sim->analyze();
   const double t_analysis = seconds_since(t0);
 

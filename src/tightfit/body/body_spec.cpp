@@ -85,7 +85,7 @@ void parse_sphere(JsonFields& f, BodySpec& spec) {
   if (s.edge_length > s.radius) f.fail("the edge length must not exceed the radius", "edge_length");
   spec.edge_length = s.edge_length;
   check_body_size(f, s.radius, 0.0);
-  const double area = 4.0 * std::numbers::pi * s.radius * s.radius;
+  const double area = sphere_area(s);
   if (const std::string problem = mesh_budget_problem(area, s.edge_length, "sphere's surface");
       !problem.empty())
     f.fail(problem, "edge_length");

@@ -13,7 +13,6 @@
 namespace tightfit {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 /// Height of an equilateral triangle relative to its edge: spacing of rings.
 const double kRowHeight = std::sqrt(3.0) / 2.0;
 
@@ -44,7 +43,7 @@ Frame make_frame(const Vec3& axis_in) {
 }
 
 int ring_count(double r, double h) {
-  return std::max(3, static_cast<int>(std::lround(2.0 * kPi * r / h)));
+  return std::max(3, static_cast<int>(std::lround(2.0 * std::numbers::pi * r / h)));
 }
 
 /// Triangulates the band between ring A (vertex ids a, angles increasing) and ring B
@@ -63,7 +62,7 @@ void stitch_rings(const Ring& ra, const std::vector<int>& a, const Ring& rb,
   }
   // Start B at the vertex closest in angle to A's first vertex; walk both rings in
   // angle order, always advancing the ring whose next vertex comes first.
-  const double da = 2.0 * kPi / na, db = 2.0 * kPi / nb;
+  const double da = 2.0 * std::numbers::pi / na, db = 2.0 * std::numbers::pi / nb;
   double rel =
       std::remainder(rb.phase - ra.phase, db);  // B's first angle near A[0], in (-db/2, db/2]
   const int shift = static_cast<int>(std::lround((ra.phase + rel - rb.phase) / db));
@@ -89,7 +88,7 @@ TriMesh mesh_from_rings(const std::vector<Ring>& rings, const Vec3& center, cons
   for (size_t k = 0; k < rings.size(); ++k) {
     const Ring& ring = rings[k];
     for (int j = 0; j < ring.n; ++j) {
-      const double phi = ring.phase + 2.0 * kPi * j / ring.n;
+      const double phi = ring.phase + 2.0 * std::numbers::pi * j / ring.n;
       ids[k].push_back(static_cast<int>(points.size()));
       points.push_back(center + ring.s * frame.axis +
                        ring.r * (std::cos(phi) * frame.e1 + std::sin(phi) * frame.e2));
@@ -119,7 +118,9 @@ double resolved_edge(double edge_length, double radius) {
 
 }  // namespace
 
-double default_generator_edge_length(double radius) { return radius * 2.0 * kPi / 48.0; }
+double default_generator_edge_length(double radius) {
+  return radius * 2.0 * std::numbers::pi / 48.0;
+}
 
 TriMesh cylinder_surface(const CylinderParams& p, LimitFitResult* fit) {
   const double h = resolved_edge(p.edge_length, p.radius);
@@ -135,16 +136,17 @@ TriMesh cylinder_surface(const CylinderParams& p, LimitFitResult* fit) {
 
   std::vector<Ring> side;
   for (int k = 0; k <= n_rows; ++k)
-    side.push_back(
-        {n_rows > 0 ? -half + p.length * k / n_rows : 0.0, R, n_side, (k % 2) * kPi / n_side});
+    side.push_back({n_rows > 0 ? -half + p.length * k / n_rows : 0.0, R, n_side,
+                    (k % 2) * std::numbers::pi / n_side});
 
   // Cap rings from the rim (exclusive) to the pole (inclusive), as (axial offset beyond
   // the rim, radius) pairs.
   std::vector<std::pair<double, double>> cap;
   if (p.caps == CapStyle::kRound) {
-    const int m = std::max(2, static_cast<int>(std::lround(0.5 * kPi * R / (kRowHeight * h))));
+    const int m =
+        std::max(2, static_cast<int>(std::lround(0.5 * std::numbers::pi * R / (kRowHeight * h))));
     for (int i = 1; i <= m; ++i) {
-      const double theta = 0.5 * kPi * i / m;
+      const double theta = 0.5 * std::numbers::pi * i / m;
       cap.emplace_back(R * std::sin(theta), i == m ? 0.0 : R * std::cos(theta));
     }
   } else {
@@ -153,7 +155,8 @@ TriMesh cylinder_surface(const CylinderParams& p, LimitFitResult* fit) {
   }
   auto cap_ring = [&](double offset, double r, double s_sign, double prev_phase, int prev_n) {
     const int n = r > 0.0 ? ring_count(r, h) : 1;
-    return Ring{s_sign * (half + offset), r, n, prev_phase + kPi / std::max(prev_n, n)};
+    return Ring{s_sign * (half + offset), r, n,
+                prev_phase + std::numbers::pi / std::max(prev_n, n)};
   };
 
   std::vector<Ring> rings;
@@ -268,7 +271,8 @@ namespace {
 double core_edge(double body_edge, double body_radius, double core_radius) {
   if (!(core_radius > 0.0 && core_radius < body_radius))
     throw std::invalid_argument("the core radius must be positive and smaller than the body's");
-  return std::min(resolved_edge(body_edge, body_radius), 2.0 * kPi * core_radius / 32.0);
+  return std::min(resolved_edge(body_edge, body_radius),
+                  2.0 * std::numbers::pi * core_radius / 32.0);
 }
 }  // namespace
 
@@ -322,15 +326,18 @@ Vec3 project_to_sphere(const SphereParams& p, const Vec3& x) {
 
 double cylinder_volume(const CylinderParams& p) {
   const double r2 = p.radius * p.radius;
-  return kPi * r2 * p.length + (p.caps == CapStyle::kRound ? 4.0 / 3.0 * kPi * r2 * p.radius : 0.0);
+  return std::numbers::pi * r2 * p.length +
+         (p.caps == CapStyle::kRound ? 4.0 / 3.0 * std::numbers::pi * r2 * p.radius : 0.0);
 }
 
 double cylinder_area(const CylinderParams& p) {
-  const double side = 2.0 * kPi * p.radius * p.length;
-  return side + (p.caps == CapStyle::kRound ? 4.0 : 2.0) * kPi * p.radius * p.radius;
+  const double side = 2.0 * std::numbers::pi * p.radius * p.length;
+  return side + (p.caps == CapStyle::kRound ? 4.0 : 2.0) * std::numbers::pi * p.radius * p.radius;
 }
 
-double sphere_volume(const SphereParams& p) { return 4.0 / 3.0 * kPi * std::pow(p.radius, 3); }
-double sphere_area(const SphereParams& p) { return 4.0 * kPi * p.radius * p.radius; }
+double sphere_volume(const SphereParams& p) {
+  return 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
+}
+double sphere_area(const SphereParams& p) { return 4.0 * std::numbers::pi * p.radius * p.radius; }
 
 }  // namespace tightfit

@@ -182,10 +182,8 @@ TriMesh crop_beyond_nearest_loop(const TriMesh& surface, const CropPlane& plane,
     const Vec3 x = out_vertices[static_cast<size_t>(v)] - plane.point;
     planar[static_cast<size_t>(v)] = Eigen::Vector2d(u.dot(x), w.dot(x));
   }
-  double area = 0.0;
-  for (size_t i = 0; i < loop.size(); ++i)
-    area += signed_area(Eigen::Vector2d::Zero(), planar[static_cast<size_t>(loop[i])],
-                        planar[static_cast<size_t>(loop[(i + 1) % loop.size()])]);
+  const double area = polygon_signed_area(
+      loop.size(), [&](size_t i) { return planar[static_cast<size_t>(loop[i])]; });
   if (!(area > 0.0))
     throw InputError(
         source,

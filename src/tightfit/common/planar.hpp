@@ -1,10 +1,11 @@
 #pragma once
 /// Planar (2D) vector helpers shared by the pattern code of every layer: the cross
-/// product, signed triangle areas, the angle between two directions and the
+/// product, signed triangle and polygon areas, the angle between two directions and the
 /// point-in-polygon test.
 #include <cmath>
 #include <cstddef>
 #include <numbers>
+#include <vector>
 
 #include "tightfit/common/types.hpp"
 
@@ -16,6 +17,21 @@ inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y(
 /// Signed area of the triangle (a, b, c) (units²), positive when counter-clockwise.
 inline double signed_area(const Vec2& a, const Vec2& b, const Vec2& c) {
   return 0.5 * cross2(b - a, c - a);
+}
+
+/// Signed area of the closed polygon whose k-th corner is `corner(k)`, k = 0 … n−1
+/// (units², the shoelace formula), positive when counter-clockwise.
+template <class Corner>
+double polygon_signed_area(std::size_t n, const Corner& corner) {
+  double twice = 0.0;
+  for (std::size_t i = 0; i < n; ++i) twice += cross2(corner(i), corner((i + 1) % n));
+  return 0.5 * twice;
+}
+
+/// Signed area of the closed polygon with corners `polygon` in order (units², the last
+/// corner not repeated), positive when counter-clockwise.
+inline double signed_area(const std::vector<Vec2>& polygon) {
+  return polygon_signed_area(polygon.size(), [&polygon](std::size_t i) { return polygon[i]; });
 }
 
 /// Angle between the directions a and b, in degrees in [0, 180] (0 when either is zero).

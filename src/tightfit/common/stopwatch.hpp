@@ -12,18 +12,20 @@ inline double seconds_since(SteadyClock::time_point start) {
   return std::chrono::duration<double>(SteadyClock::now() - start).count();
 }
 
+/// A clock for timing consecutive stages: each lap() returns the seconds since the
+/// previous one.
 class Stopwatch {
  public:
   /// Seconds since construction or the previous lap; restarts the clock.
   double lap() {
-    const auto now = std::chrono::steady_clock::now();
+    const auto now = SteadyClock::now();
     const double seconds = std::chrono::duration<double>(now - start_).count();
     start_ = now;
     return seconds;
   }
 
  private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  SteadyClock::time_point start_ = SteadyClock::now();
 };
 
 }  // namespace tightfit

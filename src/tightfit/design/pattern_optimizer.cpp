@@ -1,7 +1,6 @@
 #include "tightfit/design/pattern_optimizer.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -12,8 +11,6 @@
 
 namespace tightfit {
 namespace {
-
-using Clock = SteadyClock;
 
 /// Iterations without a new attempt after a remeshing that had to be undone.
 constexpr int kRemeshRetryGap = 5;
@@ -182,7 +179,7 @@ OptimizationCheckpoint PatternOptimizer::checkpoint() const {
 
 OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
                                          const std::function<bool()>& stop_requested) {
-  const auto t_start = Clock::now();
+  const auto t_start = SteadyClock::now();
   auto elapsed = [&] { return seconds_before_ + seconds_since(t_start); };
   OptimizationResult result;
 
@@ -306,7 +303,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
           break;
         }
         ++rec.line_search_trials;
-        const auto t_trial = Clock::now();
+        const auto t_trial = SteadyClock::now();
         trial = problem_.evaluate(p + alpha * d, false);
         rec.seconds_forward += seconds_since(t_trial) - trial.seconds_objective;
         rec.seconds_objective += trial.seconds_objective;
@@ -324,7 +321,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
         // alpha · move, which differs from it by round-off).
         rec.max_solved_move = std::max(rec.max_solved_move, max_point_move(VecX(alpha * d)));
         if (trial.value <= current.value + options_.armijo * alpha * slope) {
-          const auto t_gradient = Clock::now();
+          const auto t_gradient = SteadyClock::now();
           const bool gradient_ok = problem_.add_gradient(trial);
           rec.seconds_adjoint += seconds_since(t_gradient);
           rec.factorizations += trial.adjoint_factorizations;

@@ -17,8 +17,6 @@
 namespace tightfit {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 /// A triangle in its own plane: corner 0 at the origin, corner 1 on the x axis.
 struct LocalTriangle {
   std::array<Vec2, 3> x;
@@ -123,7 +121,7 @@ DistortionReport measure_distortion(const TriMesh& mesh, const Points2& uv) {
     Mat2 U, X;
     U << u1 - u0, u2 - u0;
     X << t.x[1] - t.x[0], t.x[2] - t.x[0];
-    const double a2 = 0.5 * U.determinant();
+    const double a2 = signed_area(u0, u1, u2);
     r.area_3d += t.area;
     r.area_2d += a2;
     if (a2 <= 0.0) ++r.flipped;
@@ -143,7 +141,7 @@ DistortionReport measure_distortion(const TriMesh& mesh, const Points2& uv) {
     for (int k = 0; k < 3; ++k) {
       const double a3 = angle3(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
       const double a2d = std::abs(angle(u[(k + 1) % 3] - u[k], u[(k + 2) % 3] - u[k]));
-      const double e = std::abs(a2d - a3) * 180.0 / kPi;
+      const double e = std::abs(a2d - a3) * 180.0 / std::numbers::pi;
       sum += e;
       r.max_angle_error_deg = std::max(r.max_angle_error_deg, e);
     }
@@ -167,16 +165,15 @@ std::string format_point(const Eigen::Ref<const Eigen::RowVector3d>& p) {
   return text;
 }
 
-/// The boundary edges (i, j) of all loops, each with the interior on its left.
-double signed_area2(const std::array<int, 3>& f, const Points2& uv) {
-  const Vec2 a = uv.row(f[0]), b = uv.row(f[1]), c = uv.row(f[2]);
-  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+/// Signed area of face `f` in the map.
+double face_signed_area(const std::array<int, 3>& f, const Points2& uv) {
+  return signed_area(uv.row(f[0]), uv.row(f[1]), uv.row(f[2]));
 }
 
-/// Twice the total signed area of the map.
+/// Total signed area of the map.
 double total_signed_area(const std::vector<std::array<int, 3>>& faces, const Points2& uv) {
   double sum = 0.0;
-  for (const auto& f : faces) sum += signed_area2(f, uv);
+  for (const auto& f : faces) sum += face_signed_area(f, uv);
   return sum;
 }
 
@@ -184,7 +181,7 @@ double total_signed_area(const std::vector<std::array<int, 3>>& faces, const Poi
 int count_folds(const std::vector<std::array<int, 3>>& faces, const Points2& uv,
                 double orientation) {
   int folds = 0;
-  for (const auto& f : faces) folds += orientation * signed_area2(f, uv) <= 0.0 ? 1 : 0;
+  for (const auto& f : faces) folds += orientation * face_signed_area(f, uv) <= 0.0 ? 1 : 0;
   return folds;
 }
 

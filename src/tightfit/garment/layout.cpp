@@ -13,6 +13,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/garment/plane_cut.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/surface_topology.hpp"
 
 namespace tightfit {
@@ -84,12 +85,6 @@ void compact(BuildInput& in, Layout& out) {
   };
   for (auto& flags : in.on_region_plane) compact_flags(flags);
   if (!in.on_opening.empty()) compact_flags(in.on_opening);
-}
-
-double face_area(const TriMesh& m, int f) {
-  const Vec3 a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)),
-             c = m.vertices.row(m.faces(f, 2));
-  return 0.5 * (b - a).cross(c - a).norm();
 }
 
 /// The connected parts of every panel (faces joined across edges to faces of the same

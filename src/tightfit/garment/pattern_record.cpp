@@ -23,21 +23,40 @@ json rows_json(const auto& m) {
   return a;
 }
 
+/// Throws unless `v` is a vertex index in [0, n) (JSON path `path` in `source`).
+void check_index(const json& v, int n, const std::string& source, const std::string& path) {
+  if (!v.is_number_integer())
+    throw InputError(source, path + ": expected a vertex index (an integer)");
+  const long long i = v.get<long long>();
+  if (i < 0 || i >= n) {
+    std::string what = path;
+    what += ": vertex index ";
+    what += std::to_string(i);
+    what += " is out of range [0, ";
+    what += std::to_string(n);
+    what += ")";
+    throw InputError(source, what);
+  }
+}
+
 /// Indices in [0, n) at member `key` of `f`.
 std::vector<int> read_indices(JsonFields& f, const std::string& key, int n) {
   const json& j = f.raw(key);
   if (!j.is_array()) f.fail("expected an array of vertex indices", key);
   std::vector<int> out;
   for (size_t i = 0; i < j.size(); ++i) {
-    if (!j[i].is_number_integer() || j[i].get<long long>() < 0 || j[i].get<long long>() >= n)
-      throw InputError(f.source(), at(f.child_path(key), i) + ": expected a vertex index in [0, " +
-                                       std::to_string(n) + ")");
+    check_index(j[i], n, f.source(), at(f.child_path(key), i));
     out.push_back(j[i].get<int>());
   }
   return out;
 }
 
-PatternPiece read_piece(JsonFields& f) {
+/// Marks the `keys` of `f` as known.
+void accept(JsonFields& f, const std::vector<std::string>& keys) {
+  for (const std::string& key : keys) f.raw(key);
+}
+
+PatternPiece read_piece(JsonFields& f, const std::vector<std::string>& extra) {
   PatternPiece piece;
   piece.name = f.string("name");
   if (piece.name.empty()) f.fail("expected a non-empty name", "name");
@@ -65,11 +84,7 @@ PatternPiece read_piece(JsonFields& f) {
     if (!row.is_array() || row.size() != 3)
       throw InputError(f.source(), at(tri_path, t) + ": expected [a, b, c]");
     for (int c = 0; c < 3; ++c) {
-      if (!row[c].is_number_integer() || row[c].get<long long>() < 0 ||
-          row[c].get<long long>() >= n)
-        throw InputError(f.source(), at(at(tri_path, t), static_cast<size_t>(c)) +
-                                         ": expected a vertex index in [0, " + std::to_string(n) +
-                                         ")");
+      check_index(row[c], n, f.source(), at(at(tri_path, t), static_cast<size_t>(c)));
       piece.triangles(static_cast<Eigen::Index>(t), c) = row[c].get<int>();
     }
   }
@@ -89,9 +104,7 @@ PatternPiece read_piece(JsonFields& f) {
       std::vector<int> loop;
       for (size_t i = 0; i < holes[h].size(); ++i) {
         const json& v = holes[h][i];
-        if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() >= n)
-          throw InputError(f.source(), at(path, i) + ": expected a vertex index in [0, " +
-                                           std::to_string(n) + ")");
+        check_index(v, n, f.source(), at(path, i));
         if (!used.insert(v.get<int>()).second)
           throw InputError(f.source(), at(path, i) + ": vertex " + std::to_string(v.get<int>()) +
                                            " is already on a boundary loop");
@@ -103,12 +116,16 @@ PatternPiece read_piece(JsonFields& f) {
   piece.grain = f.vec2("grain");
   if (!piece.grain.allFinite() || piece.grain.norm() == 0.0)
     f.fail("expected a finite, non-zero direction", "grain");
+  accept(f, extra);
   f.finish();
   return piece;
 }
 
-/// A piece reference and its vertex list (member names "piece", "vertices").
-void read_side(JsonFields& f, const Pattern& pattern, int& piece, std::vector<int>& vertices) {
+/// A piece reference and its vertex list (member names "piece", "vertices"), accepting the
+/// `extra` keys.
+void read_side(JsonFields& f, const Pattern& pattern, const std::vector<std::string>& extra,
+               int& piece, std::vector<int>& vertices) {
+  accept(f, extra);
   piece = f.integer("piece");
   if (piece < 0 || piece >= static_cast<int>(pattern.pieces.size()))
     f.fail("piece " + std::to_string(piece) + " does not exist (the pattern has " +
@@ -143,14 +160,15 @@ json pattern_record_json(const Pattern& pattern) {
   return {{"pieces", pieces}, {"seams", seams}, {"pinned", pinned}};
 }
 
-Pattern pattern_record_from_json(const json& j, const std::string& source,
-                                 const std::string& path) {
+Pattern pattern_record_from_json(const json& j, const std::string& source, const std::string& path,
+                                 const PatternRecordExtraKeys& extra) {
   if (!j.is_object()) throw InputError(source, path + ": expected a pattern (an object)");
   JsonFields f(j, source, path);
+  accept(f, extra.root);
   Pattern pattern;
   std::set<std::string> names;
   for (JsonFields& p : f.objects("pieces", true)) {
-    pattern.pieces.push_back(read_piece(p));
+    pattern.pieces.push_back(read_piece(p, extra.piece));
     if (!names.insert(pattern.pieces.back().name).second)
       p.fail("a second piece named \"" + pattern.pieces.back().name + "\"", "name");
   }
@@ -159,22 +177,28 @@ Pattern pattern_record_from_json(const json& j, const std::string& source,
     Seam seam;
     seam.name = s.string("name");
     auto a = s.object("a", true);
-    read_side(*a, pattern, seam.a.piece, seam.a.vertices);
+    read_side(*a, pattern, extra.side, seam.a.piece, seam.a.vertices);
     a->finish();
     auto b = s.object("b", true);
-    read_side(*b, pattern, seam.b.piece, seam.b.vertices);
+    read_side(*b, pattern, extra.side, seam.b.piece, seam.b.vertices);
     b->finish();
-    if (seam.a.vertices.size() != seam.b.vertices.size() || seam.a.vertices.size() < 2)
-      s.fail("the sides have " + std::to_string(seam.a.vertices.size()) + " and " +
-             std::to_string(seam.b.vertices.size()) +
-             " vertices (expected equal counts of at least 2)");
+    const size_t na = seam.a.vertices.size(), nb = seam.b.vertices.size();
+    if (na != nb || na < 2) {
+      std::string what = "the sides have ";
+      what += std::to_string(na);
+      what += " and ";
+      what += std::to_string(nb);
+      what += na != nb ? " vertices (different vertex counts)" : " vertices (expected at least 2)";
+      s.fail(what);
+    }
+    accept(s, extra.seam);
     s.finish();
     pattern.seams.push_back(std::move(seam));
   }
   for (JsonFields& p : f.objects("pinned", true)) {
     PinnedBoundary pin;
     pin.name = p.string("name");
-    read_side(p, pattern, pin.piece, pin.vertices);
+    read_side(p, pattern, extra.side, pin.piece, pin.vertices);
     p.finish();
     pattern.pinned.push_back(std::move(pin));
   }
@@ -205,6 +229,46 @@ bool same_pattern_meshes(const Pattern& a, const Pattern& b) {
         a.pinned[s].vertices != b.pinned[s].vertices)
       return false;
   return true;
+}
+
+void check_saved_pattern(const Pattern& saved, const Pattern& scene, const std::string& source,
+                         const std::string& path, const std::string& hint) {
+  auto fail = [&](const std::string& where, const std::string& what) {
+    std::string message = path;
+    message += "/";
+    message += where;
+    message += ": ";
+    message += what;
+    message += hint;
+    throw InputError(source, message);
+  };
+  auto count = [&](const std::string& what, size_t n, size_t m) {
+    if (n != m)
+      fail(what, std::to_string(n) + " " + what + ", the scene's pattern has " + std::to_string(m));
+  };
+  auto same = [&](const std::string& where, const std::string& a, const std::string& b) {
+    if (a != b) fail(where, "\"" + a + "\", the scene's is \"" + b + "\"");
+  };
+  auto same_piece = [&](const std::string& where, int a, int b) {
+    if (a != b)
+      fail(where, "piece " + std::to_string(a) + ", the scene's is piece " + std::to_string(b));
+  };
+  count("pieces", saved.pieces.size(), scene.pieces.size());
+  for (size_t k = 0; k < scene.pieces.size(); ++k)
+    same(at("pieces", k) + "/name", saved.pieces[k].name, scene.pieces[k].name);
+  count("seams", saved.seams.size(), scene.seams.size());
+  for (size_t k = 0; k < scene.seams.size(); ++k) {
+    const std::string seam = at("seams", k);
+    same(seam + "/name", saved.seams[k].name, scene.seams[k].name);
+    same_piece(seam + "/a/piece", saved.seams[k].a.piece, scene.seams[k].a.piece);
+    same_piece(seam + "/b/piece", saved.seams[k].b.piece, scene.seams[k].b.piece);
+  }
+  count("pinned", saved.pinned.size(), scene.pinned.size());
+  for (size_t k = 0; k < scene.pinned.size(); ++k) {
+    const std::string pin = at("pinned", k);
+    same(pin + "/name", saved.pinned[k].name, scene.pinned[k].name);
+    same_piece(pin + "/piece", saved.pinned[k].piece, scene.pinned[k].piece);
+  }
 }
 
 }  // namespace tightfit

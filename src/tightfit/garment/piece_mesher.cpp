@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,12 +33,6 @@ using Fb =
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt =
     CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
-
-double polygon_area(const std::vector<Vec2>& p) {
-  double a = 0.0;
-  for (size_t i = 0; i < p.size(); ++i) a += cross2(p[i], p[(i + 1) % p.size()]);
-  return 0.5 * a;
-}
 
 bool inside_loop(const std::vector<Vec2>& p, const Vec2& q) {
   return inside_polygon(
@@ -146,7 +141,7 @@ PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>&
     return v;
   };
   const std::vector<Vec2> outer = to_vector(boundary_points);
-  if (polygon_area(outer) <= 0)
+  if (signed_area(outer) <= 0)
     throw std::invalid_argument("mesh_piece: the boundary is not counter-clockwise");
   Loops loops;
   loops.add(outer);
@@ -156,7 +151,7 @@ PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>&
     if (hole_points[k].rows() < 3)
       throw std::invalid_argument(which + " needs at least 3 vertices");
     holes.push_back(to_vector(hole_points[k]));
-    if (polygon_area(holes.back()) >= 0) throw std::invalid_argument(which + " is not clockwise");
+    if (signed_area(holes.back()) >= 0) throw std::invalid_argument(which + " is not clockwise");
     for (const Vec2& q : holes.back())
       if (!inside_loop(outer, q))
         throw std::invalid_argument(which + " is not inside the outer boundary");
@@ -217,7 +212,7 @@ PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>&
     // vertex's triangles (near a concave stretch of boundary the circumcentres lie
     // outside, and the step would push the vertex onto the boundary).
     auto star_min_angle = [&](const std::vector<int>& triangles) {
-      double smallest = M_PI;
+      double smallest = std::numbers::pi;
       for (int t : triangles)
         for (int k = 0; k < 3; ++k) {
           const Vec2 u = point(tris[t][(k + 1) % 3]) - point(tris[t][k]);

@@ -58,14 +58,19 @@ double signed_volume(const TriMesh& mesh) {
   return six_v / 6.0;
 }
 
+double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
+double face_area(const TriMesh& mesh, int f) {
+  return triangle_area(corner(mesh.vertices, mesh.faces(f, 0)),
+                       corner(mesh.vertices, mesh.faces(f, 1)),
+                       corner(mesh.vertices, mesh.faces(f, 2)));
+}
+
 VecX face_areas(const TriMesh& mesh) {
   VecX areas(mesh.num_faces());
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    const Vec3 a = corner(mesh.vertices, mesh.faces(f, 0));
-    const Vec3 b = corner(mesh.vertices, mesh.faces(f, 1));
-    const Vec3 c = corner(mesh.vertices, mesh.faces(f, 2));
-    areas[f] = 0.5 * (b - a).cross(c - a).norm();
-  }
+  for (int f = 0; f < mesh.num_faces(); ++f) areas[f] = face_area(mesh, f);
   return areas;
 }
 

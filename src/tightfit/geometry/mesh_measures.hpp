@@ -13,6 +13,10 @@ namespace tightfit {
 /// Signed enclosed volume Σ_f a·(b×c)/6 of a closed surface; positive when the faces
 /// are counter-clockwise seen from outside. Meaningless for open surfaces.
 double signed_volume(const TriMesh& mesh);
+/// Area of the triangle (a, b, c) (units², ≥ 0).
+double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c);
+/// Area of face `f` of `mesh`.
+double face_area(const TriMesh& mesh, int f);
 /// Total surface area.
 double surface_area(const TriMesh& mesh);
 /// Area of each face (m entries).

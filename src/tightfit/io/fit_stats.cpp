@@ -6,18 +6,13 @@
 #include <limits>
 #include <utility>
 
+#include "tightfit/geometry/mesh_measures.hpp"
+
 namespace tightfit {
 
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double face_area(const TriMesh& mesh, int f) {
-  const Vec3 a = mesh.vertices.row(mesh.faces(f, 0));
-  const Vec3 b = mesh.vertices.row(mesh.faces(f, 1));
-  const Vec3 c = mesh.vertices.row(mesh.faces(f, 2));
-  return 0.5 * (b - a).cross(c - a).norm();
-}
 
 FaceSetStatistics statistics_of(const std::string& name, const std::vector<int>& faces,
                                 const std::vector<double>& areas, const FitView& view) {

@@ -1,6 +1,7 @@
 #include "tightfit/io/pattern_dxf.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <ostream>
 #include <set>
 
@@ -45,7 +46,7 @@ class DxfWriter {
   }
   void text(const std::string& layer, const PlacedText& t) {
     text(layer, t.at, t.height, t.text,
-         std::atan2(t.direction.y(), t.direction.x()) * 180.0 / 3.141592653589793);
+         std::atan2(t.direction.y(), t.direction.x()) * 180.0 / std::numbers::pi);
   }
   void point_entity(const std::string& layer, const Vec2& q) {
     pair(0, "POINT");

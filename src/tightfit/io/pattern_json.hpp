@@ -9,7 +9,8 @@
 
 namespace tightfit {
 
-/// Writes pieces.json (atomically). Format (version 1):
+/// Writes pieces.json (atomically): the pattern's record (garment/pattern_record.hpp) with
+/// the derived keys below beside its own. Format (version 1):
 /// {
 ///   "format": "tightfit-pieces", "version": 1,
 ///   "units": {"rest": "m", "outlines": "mm"},
@@ -41,10 +42,11 @@ void write_pieces_json(const Pattern& pattern, const PatternExportOptions& optio
                        const std::filesystem::path& path,
                        const std::vector<SeamStatistics>* fit_seams = nullptr);
 
-/// Reads the pattern (pieces' name, rest, triangles, boundary, corners, grain; seams;
-/// pinned boundaries) back from pieces.json. The derived fields (outlines, notches,
-/// allowances, quantity, seam lengths and fit) are accepted and ignored. InputError naming the file
-/// and JSON path for a malformed file, and validate_pattern's errors for an invalid pattern.
+/// Reads the pattern (pieces' name, rest, triangles, boundary, holes, corners, grain;
+/// seams; pinned boundaries) back from pieces.json with pattern_record_from_json. The
+/// derived fields (outlines, notches, allowances, quantity, piece names of seam sides,
+/// seam lengths and fit) are accepted and ignored. InputError naming the file and JSON
+/// path for a malformed file, and validate_pattern's errors for an invalid pattern.
 Pattern read_pieces_json(const std::filesystem::path& path);
 
 }  // namespace tightfit

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
 #include "tightfit/io/pattern_dxf.hpp"
 #include "tightfit/io/pattern_pdf.hpp"
 #include "tightfit/io/pattern_svg.hpp"
@@ -19,7 +20,7 @@ Vec2 area_centroid(const PatternPiece& piece) {
     const Vec2 a = piece.rest.row(piece.triangles(t, 0)).transpose();
     const Vec2 b = piece.rest.row(piece.triangles(t, 1)).transpose();
     const Vec2 c = piece.rest.row(piece.triangles(t, 2)).transpose();
-    const double w = 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    const double w = std::abs(signed_area(a, b, c));
     sum += w * (a + b + c) / 3.0;
     area += w;
   }

@@ -243,14 +243,6 @@ Polygon2 outer_envelope(const std::vector<Vec2>& curve, double scale) {
 
 }  // namespace
 
-double signed_area(const Polygon2& polygon) {
-  double area2 = 0.0;
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    area2 += cross2(polygon[i], polygon[(i + 1) % polygon.size()]);
-  }
-  return 0.5 * area2;
-}
-
 Vec2 area_centroid(const Polygon2& polygon) {
   // Relative to the first point for accuracy.
   const Vec2 origin = polygon.empty() ? Vec2::Zero() : polygon.front();

@@ -3,6 +3,7 @@
 /// the sew line. Works in whatever length unit the caller uses (the exports use mm).
 #include <vector>
 
+#include "tightfit/common/planar.hpp"  // signed_area of a Polygon2
 #include "tightfit/common/types.hpp"
 #include "tightfit/io/pattern_export_options.hpp"
 
@@ -10,9 +11,6 @@ namespace tightfit {
 
 /// A closed polygon: points in order, the last point not repeated.
 using Polygon2 = std::vector<Vec2>;
-
-/// The signed area (positive for counter-clockwise) of a closed polygon.
-double signed_area(const Polygon2& polygon);
 
 /// Area centroid of a closed polygon with non-zero area.
 Vec2 area_centroid(const Polygon2& polygon);

@@ -1,6 +1,7 @@
 #include "tightfit/io/pattern_svg.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "tightfit/common/atomic_file.hpp"
@@ -41,7 +42,7 @@ std::string placed_text(const PatternLayout& layout, size_t piece, const PlacedT
                     fixed(at.y(), 3) + "\" font-size=\"" + fixed(t.height, 2) + "\"";
   if (t.bold) out += " font-weight=\"bold\"";
   // Layout y points down: the piece direction (x, y) is (x, −y) there.
-  const double angle = std::atan2(-t.direction.y(), t.direction.x()) * 180.0 / 3.141592653589793;
+  const double angle = std::atan2(-t.direction.y(), t.direction.x()) * 180.0 / std::numbers::pi;
   if (std::abs(angle) > 1e-9) {
     out += " transform=\"rotate(" + fixed(angle, 3) + " " + fixed(at.x(), 3) + " " +
            fixed(at.y(), 3) + ")\"";

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/planar.hpp"
 
 namespace tightfit {
 namespace {
@@ -42,18 +43,16 @@ void validate_piece(const Pattern& pattern, int p, const std::string& source,
     }
     if (!on_boundary.insert(v).second) fail("boundary loop repeats vertex " + std::to_string(v));
   }
-  double area2 = 0.0;
-  for (size_t i = 0; i < piece.boundary.size(); ++i) {
-    const Vec2 a = piece.rest.row(piece.boundary[i]).transpose();
-    const Vec2 b = piece.rest.row(piece.boundary[(i + 1) % piece.boundary.size()]).transpose();
-    area2 += a.x() * b.y() - a.y() * b.x();
-  }
-  if (!(area2 > 0.0)) fail("boundary loop is not counter-clockwise (signed area <= 0)");
+  auto loop_area = [&piece](const std::vector<int>& loop) {
+    return polygon_signed_area(
+        loop.size(), [&](size_t i) -> Vec2 { return piece.rest.row(loop[i]).transpose(); });
+  };
+  if (!(loop_area(piece.boundary) > 0.0))
+    fail("boundary loop is not counter-clockwise (signed area <= 0)");
   for (size_t h = 0; h < piece.holes.size(); ++h) {
     const std::vector<int>& hole = piece.holes[h];
     const std::string which = "hole " + std::to_string(h) + " ";
     if (hole.size() < 3) fail(which + "has fewer than 3 vertices");
-    double hole_area2 = 0.0;
     for (size_t i = 0; i < hole.size(); ++i) {
       const int v = hole[i];
       if (v < 0 || v >= n)
@@ -61,11 +60,8 @@ void validate_piece(const Pattern& pattern, int p, const std::string& source,
              std::to_string(n) + ")");
       if (!on_boundary.insert(v).second)
         fail(which + "repeats vertex " + std::to_string(v) + " of a boundary loop");
-      const Vec2 a = piece.rest.row(v).transpose();
-      const Vec2 b = piece.rest.row(hole[(i + 1) % hole.size()]).transpose();
-      hole_area2 += a.x() * b.y() - a.y() * b.x();
     }
-    if (!(hole_area2 < 0.0)) fail(which + "is not clockwise (signed area >= 0)");
+    if (!(loop_area(hole) < 0.0)) fail(which + "is not clockwise (signed area >= 0)");
   }
   for (int c : piece.corners) {
     if (!on_boundary.count(c)) fail("corner " + std::to_string(c) + " is not a boundary vertex");

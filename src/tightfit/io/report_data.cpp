@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/io/ease_json.hpp"
 #include "tightfit/io/fit_stats.hpp"
 #include "tightfit/io/pressure_statistics.hpp"
@@ -127,10 +128,7 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
     std::vector<double> areas(static_cast<std::size_t>(view.garment.num_faces()));
     std::vector<int> all(areas.size());
     for (int f = 0; f < view.garment.num_faces(); ++f) {
-      const Vec3 a = view.garment.vertices.row(view.garment.faces(f, 0));
-      const Vec3 b = view.garment.vertices.row(view.garment.faces(f, 1));
-      const Vec3 c = view.garment.vertices.row(view.garment.faces(f, 2));
-      areas[f] = 0.5 * (b - a).cross(c - a).norm();
+      areas[f] = face_area(view.garment, f);
       all[f] = f;
     }
     for (const FitRegion& region : view.pressure_regions)

@@ -250,48 +250,13 @@ void check_scene_pieces(const RunState& s, const Garment& garment, const std::st
   }
 }
 
-/// A remeshed pattern against the scene's: remeshing keeps the pieces, seams and pinned
-/// boundaries (their names and the pieces they join), only the meshes change.
-void check_remeshed_pattern(const Pattern& saved, const Pattern& scene, const std::string& source) {
-  auto count = [&](const std::string& what, size_t n, size_t m) {
-    if (n != m)
-      throw InputError(source, "/pattern/" + what + ": " + std::to_string(n) + " " + what +
-                                   ", the scene's pattern has " + std::to_string(m) + kChanged);
-  };
-  auto same = [&](const std::string& path, const std::string& a, const std::string& b) {
-    if (a != b)
-      throw InputError(source, path + ": \"" + a + "\", the scene's is \"" + b + "\"" + kChanged);
-  };
-  auto same_piece = [&](const std::string& path, int a, int b) {
-    if (a != b)
-      throw InputError(source, path + ": piece " + std::to_string(a) + ", the scene's is piece " +
-                                   std::to_string(b) + kChanged);
-  };
-  count("pieces", saved.pieces.size(), scene.pieces.size());
-  for (size_t k = 0; k < scene.pieces.size(); ++k)
-    same(at("/pattern/pieces", k) + "/name", saved.pieces[k].name, scene.pieces[k].name);
-  count("seams", saved.seams.size(), scene.seams.size());
-  for (size_t k = 0; k < scene.seams.size(); ++k) {
-    const std::string path = at("/pattern/seams", k);
-    same(path + "/name", saved.seams[k].name, scene.seams[k].name);
-    same_piece(path + "/a/piece", saved.seams[k].a.piece, scene.seams[k].a.piece);
-    same_piece(path + "/b/piece", saved.seams[k].b.piece, scene.seams[k].b.piece);
-  }
-  count("pinned", saved.pinned.size(), scene.pinned.size());
-  for (size_t k = 0; k < scene.pinned.size(); ++k) {
-    const std::string path = at("/pattern/pinned", k);
-    same(path + "/name", saved.pinned[k].name, scene.pinned[k].name);
-    same_piece(path + "/piece", saved.pinned[k].piece, scene.pinned[k].piece);
-  }
-}
-
 }  // namespace
 
 Garment run_state_garment(const RunState& s, const Garment& scene_garment, const Body& body,
                           int num_surface_faces, const std::string& source) {
   Garment garment;
   if (s.pattern) {
-    check_remeshed_pattern(*s.pattern, scene_garment.pattern, source);
+    check_saved_pattern(*s.pattern, scene_garment.pattern, source, "/pattern", kChanged);
     try {
       garment = weld_pattern(*s.pattern);
     } catch (const InputError& e) {
@@ -314,11 +279,6 @@ Garment run_state_garment(const RunState& s, const Garment& scene_garment, const
                                  std::to_string(body.num_vertices()) + " vertices" + kChanged);
   garment.embedding = s.state.garment;
   return garment;
-}
-
-void check_run_state(const RunState& s, const Garment& scene_garment, const Body& body,
-                     int num_surface_faces, const std::string& source) {
-  run_state_garment(s, scene_garment, body, num_surface_faces, source);
 }
 
 Points2 stacked_rest_positions(const RunState& state) {

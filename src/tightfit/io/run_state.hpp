@@ -100,10 +100,6 @@ SceneSpec run_state_scene(const RunState& state, const std::string& source);
 Garment run_state_garment(const RunState& state, const Garment& scene_garment, const Body& body,
                           int num_surface_faces, const std::string& source);
 
-/// The checks of run_state_garment, without keeping the garment.
-void check_run_state(const RunState& state, const Garment& scene_garment, const Body& body,
-                     int num_surface_faces, const std::string& source);
-
 /// The saved rest positions stacked over all pieces (num_pattern_vertices × 2, m), for
 /// Garment::set_rest_positions / GarmentSimulation::set_rest_positions.
 Points2 stacked_rest_positions(const RunState& state);

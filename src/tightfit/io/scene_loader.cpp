@@ -1,32 +1,25 @@
 #include "tightfit/io/scene_loader.hpp"
 
-#include <chrono>
 #include <cstdio>
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/stopwatch.hpp"
 
 namespace tightfit {
-namespace {
-
-using Clock = SteadyClock;
-
-}  // namespace
-
 std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
   auto scene = std::make_unique<LoadedScene>();
   scene->spec = std::move(spec);
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   scene->body = build_body(scene->spec.body, &scene->body_report);
   for (const std::string& w : scene->body_report.warnings)
     std::fprintf(stderr, "warning: %s\n", w.c_str());
   scene->stage_seconds.emplace_back("body", seconds_since(t0));
 
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   scene->surface = std::make_unique<LimitSurface>(scene->body.surface, scene->spec.limit);
   scene->stage_seconds.emplace_back("limit surface", seconds_since(t0));
 
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   const Points3& control = scene->body.surface.vertices;
   const GarmentSpec& g = scene->spec.garment;
   switch (g.kind) {

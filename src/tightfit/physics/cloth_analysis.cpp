@@ -7,6 +7,8 @@
 
 #include <Eigen/Geometry>
 
+#include "tightfit/geometry/mesh_measures.hpp"
+
 namespace tightfit {
 
 std::vector<ClothElementFit> analyze_cloth(const ClothEnergy& cloth, const VecX& x) {
@@ -65,7 +67,7 @@ VecX mixed_voronoi_areas(const Points3& vertices, const Triangles& faces) {
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     std::array<Vec3, 3> p;
     for (int k = 0; k < 3; ++k) p[k] = vertices.row(faces(f, k)).transpose();
-    const double a = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    const double a = triangle_area(p[0], p[1], p[2]);
     if (!(a > 0.0)) continue;
     // cot of the angle at corner k, and whether that angle is obtuse.
     std::array<double, 3> cot{};
