@@ -24,13 +24,13 @@ namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
 using namespace cgal_surface;
-using Tree =
+using FaceTree =
     CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
 
 /// Projection of remeshed vertices onto the original input surface.
 struct ProjectOntoInput {
   const Mesh* mesh;
-  const Tree* tree;
+  const FaceTree* tree;
   Point operator()(Mesh::Vertex_index v) const { return tree->closest_point(mesh->point(v)); }
 };
 
@@ -155,7 +155,7 @@ RemeshResult remesh_isotropic(const TriMesh& surface, const RemeshOptions& optio
   int rounds = 0;
   std::vector<Mesh::Face_index> region = intersecting_region(mesh, 2);
   if (!region.empty()) {
-    Tree tree(CGAL::faces(input).first, CGAL::faces(input).second, input);
+    FaceTree tree(CGAL::faces(input).first, CGAL::faces(input).second, input);
     tree.accelerate_distance_queries();
     for (; !region.empty() && rounds < options.max_refinements; ++rounds) {
       PMP::isotropic_remeshing(region, options.edge_length / std::pow(2.0, rounds + 1), mesh,

@@ -19,7 +19,7 @@
 namespace tightfit {
 namespace {
 
-std::string format_point(const Vec3& p) {
+std::string format_position(const Vec3& p) {
   std::ostringstream s;
   s.precision(4);
   s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ") m";
@@ -164,7 +164,7 @@ void drop_parts_cut_off_by_openings(const CutMesh& cut, const LayoutSpec& spec,
     if (names.empty()) continue;  // not made by an opening: the topology check names it
     warnings.push_back(
         spec.source + ": opening " + names + " cuts a part of " + std::to_string(part_area[k]) +
-        " m² near " + format_point(face_centroid(m, part_face[k])) + " off panel \"" +
+        " m² near " + format_position(face_centroid(m, part_face[k])) + " off panel \"" +
         spec.panels[part_panel[k]].name + "\"; it is left out of the garment with the opening");
     drop[k] = 1;
   }
@@ -205,7 +205,7 @@ void join_stray_parts(const TriMesh& m, const LayoutSpec& spec, std::vector<int>
                })->first;
     warnings.push_back(spec.source + ": panel \"" + spec.panels[panel].name +
                        "\" has a stray part of " + std::to_string(parts.area[k] * 1e4) +
-                       " cm² near " + format_point(face_centroid(m, parts.face[k])) +
+                       " cm² near " + format_position(face_centroid(m, parts.face[k])) +
                        " apart from the rest (a divider grazes the "
                        "body there); it joins panel \"" +
                        spec.panels[static_cast<size_t>(joins[k])].name + "\"");
@@ -278,7 +278,7 @@ OpenEdges assign_pins(const Layout& layout, const SurfaceTopology& topo, const B
         throw InputError(spec.source, pin.source_path + ": pinned boundary \"" + pin.name +
                                           "\" does not exist: the nearest open boundary is " +
                                           std::to_string(best) + " m from " +
-                                          format_point(pin.point) + " (max_distance " +
+                                          format_position(pin.point) + " (max_distance " +
                                           std::to_string(pin.max_distance) + " m)");
       for (const auto& e : loops[best_loop]) claim(e);
     } else {
@@ -349,7 +349,7 @@ void check_panel_topology(const LayoutPanel& panel, const std::string& source,
   const Vec3 at = face_centroid(panel.mesh, 0);
   if (!topo.non_manifold_edges().empty())
     throw InputError(source,
-                     path + ": " + what + "it has non-manifold edges near " + format_point(at));
+                     path + ": " + what + "it has non-manifold edges near " + format_position(at));
   // Connected?
   std::vector<char> seen(nf, 0);
   std::queue<int> queue;
@@ -372,13 +372,13 @@ void check_panel_topology(const LayoutPanel& panel, const std::string& source,
     int other = 0;
     while (seen[other]) ++other;
     throw InputError(source, path + ": " + what + "it falls apart into separate parts (near " +
-                                 format_point(at) + " and " +
-                                 format_point(face_centroid(panel.mesh, other)) + ")");
+                                 format_position(at) + " and " +
+                                 format_position(face_centroid(panel.mesh, other)) + ")");
   }
   const auto nm = topo.non_manifold_vertices();
   if (!nm.empty())
     throw InputError(source, path + ": " + what + "it touches itself at " +
-                                 format_point(panel.mesh.vertices.row(nm[0]).transpose()));
+                                 format_position(panel.mesh.vertices.row(nm[0]).transpose()));
   const auto loops = topo.boundary_loops();
   if (loops.empty())
     throw InputError(source, path + ": " + what + "it is closed (it has no boundary)");
@@ -433,7 +433,7 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
     const auto ev = topo.edge_vertices(nm[0]);
     throw InputError(spec.source,
                      "the layout surface has an edge shared by more than two faces at " +
-                         format_point(surf.vertices.row(ev[0]).transpose()));
+                         format_position(surf.vertices.row(ev[0]).transpose()));
   }
   const OpenEdges open = assign_pins(layout, topo, in, spec);
 
@@ -499,21 +499,21 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
             throw InputError(spec.source,
                              in.panel_paths[p] + ": panel \"" + panel.name +
                                  "\" is not a disc: it has " + std::to_string(loops.size()) +
-                                 " boundary loops, one of them near " + format_point(at) +
+                                 " boundary loops, one of them near " + format_position(at) +
                                  " not made by an opening (a band around the body? add a divider)");
       const auto label = label_loop(loops[l]);
       for (const auto& [other, pin] : label)
         if (other >= 0)
           throw InputError(spec.source,
                            in.panel_paths[p] + ": panel \"" + panel.name + "\" surrounds panel \"" +
-                               in.panel_names[other] + "\" (near " + format_point(at) +
+                               in.panel_names[other] + "\" (near " + format_position(at) +
                                "); a seam along a piece's inner boundary is not supported: "
                                "cut the surrounding panel with a divider through the inner one");
       for (const auto& entry : label)
         if (entry.second != label[0].second)
           throw InputError(spec.source,
                            in.panel_paths[p] + ": the opening of panel \"" + panel.name +
-                               "\" near " + format_point(at) +
+                               "\" near " + format_position(at) +
                                " is pinned along part of its rim only; pin the whole rim or none");
       panel.holes.push_back({loops[l], label[0].second});
     }
@@ -576,7 +576,7 @@ Layout build_layout(BuildInput in, const LayoutSpec& spec) {
                          "panels \"" + layout.panels[p].name + "\" and \"" + layout.panels[q].name +
                              "\" meet along an edge chain that is not one seam on both sides "
                              "(panels touching at a single vertex near " +
-                             format_point(surf.vertices.row(va[0]).transpose()) + "?)");
+                             format_position(surf.vertices.row(va[0]).transpose()) + "?)");
       LayoutSeam seam;  // named by name_seams_top_down
       seam.panel_a = p;
       seam.segment_a = static_cast<int>(si);
@@ -684,11 +684,12 @@ Layout layout_from_rules(const TriMesh& body_surface, const LayoutSpec& spec) {
         sides += std::string(sides.empty() ? "" : ", ") + (cut.side[nr + d][f] > 0 ? "+" : "-") +
                  spec.dividers[d].name;
       throw InputError(spec.source, spec.path + "/panels: a gap: the surface near " +
-                                        format_point(at) + " (sides " + sides + ") is in no panel");
+                                        format_position(at) + " (sides " + sides +
+                                        ") is in no panel");
     }
     if (matches.size() > 1)
       throw InputError(spec.source, spec.path + "/panels: an overlap: the surface near " +
-                                        format_point(at) + " is in panels \"" +
+                                        format_position(at) + " is in panels \"" +
                                         spec.panels[matches[0]].name + "\" and \"" +
                                         spec.panels[matches[1]].name + "\"");
     in.face_panel[f] = matches[0];
@@ -741,7 +742,8 @@ Layout layout_from_groups(const TriMesh& mesh, const std::vector<int>& face_grou
     for (int c = 0; c < 3; ++c) key[c] = in.surface.faces(f, c) = id[mesh.faces(f, c)];
     const Vec3 at = face_centroid(mesh, f);
     if (key[0] == key[1] || key[1] == key[2] || key[0] == key[2])
-      throw InputError(mesh_source, "face " + std::to_string(f + 1) + " near " + format_point(at) +
+      throw InputError(mesh_source, "face " + std::to_string(f + 1) + " near " +
+                                        format_position(at) +
                                         " is degenerate (two corners coincide)");
     std::sort(key.begin(), key.end());
     const int g = face_group[f];
@@ -753,9 +755,9 @@ Layout layout_from_groups(const TriMesh& mesh, const std::vector<int>& face_grou
     if (!inserted) {
       if (it->second == g)
         throw InputError(mesh_source, "face " + std::to_string(f + 1) + " near " +
-                                          format_point(at) + " appears twice in group \"" +
+                                          format_position(at) + " appears twice in group \"" +
                                           group_names[g] + "\"");
-      throw InputError(mesh_source, "an overlap: the face near " + format_point(at) +
+      throw InputError(mesh_source, "an overlap: the face near " + format_position(at) +
                                         " is in panels \"" + group_names[it->second] + "\" and \"" +
                                         group_names[g] + "\"");
     }
@@ -763,7 +765,7 @@ Layout layout_from_groups(const TriMesh& mesh, const std::vector<int>& face_grou
   if (no_panel > 0)
     throw InputError(mesh_source, "a gap: " + std::to_string(no_panel) +
                                       " faces belong to no panel (no group), e.g. near " +
-                                      format_point(no_panel_at));
+                                      format_position(no_panel_at));
   // Map the used groups to panels, in order of first use.
   std::vector<int> panel_of_group(group_names.size(), -1);
   in.face_panel.resize(mesh.num_faces());
@@ -803,7 +805,7 @@ Layout layout_from_groups(const TriMesh& mesh, const std::vector<int>& face_grou
               mesh_source,
               "a gap between panels \"" + in.panel_names[boundary[i].second] + "\" and \"" +
                   in.panel_names[boundary[j].second] + "\" near " +
-                  format_point(in.surface.vertices.row(boundary[i].first).transpose()) +
+                  format_position(in.surface.vertices.row(boundary[i].first).transpose()) +
                   ": their boundaries are " + std::to_string(d) +
                   " m apart but not shared (weld_tolerance " + std::to_string(spec.weld_tolerance) +
                   " m)");

@@ -383,7 +383,7 @@ PlyData read_ply(const std::filesystem::path& path) {
 
 namespace {
 
-void check_fields(const std::vector<MeshField>& fields, int rows, const char* what) {
+void check_ply_fields(const std::vector<MeshField>& fields, int rows, const char* what) {
   for (const auto& f : fields) {
     if (f.name.empty() || f.name.find_first_of(" \t\r\n") != std::string::npos)
       throw std::invalid_argument(std::string("write_ply: bad ") + what + " field name '" + f.name +
@@ -430,8 +430,8 @@ void write_ply(const std::filesystem::path& path, const TriMesh& mesh,
                const PlyAttributes& attributes, PlyEncoding encoding) {
   const int nv = mesh.num_vertices();
   const int nf = mesh.num_faces();
-  check_fields(attributes.vertex_fields, nv, "vertex");
-  check_fields(attributes.face_fields, nf, "face");
+  check_ply_fields(attributes.vertex_fields, nv, "vertex");
+  check_ply_fields(attributes.face_fields, nf, "face");
   const bool colors = attributes.vertex_colors.rows() > 0;
   if (colors && attributes.vertex_colors.rows() != nv)
     throw std::invalid_argument("write_ply: vertex_colors needs one row per vertex");

@@ -18,15 +18,15 @@ std::int64_t edge_parts(double length, double spacing) {
   return parts > 1.0 ? static_cast<std::int64_t>(std::min(parts, 1e9)) : 1;
 }
 
-struct Edge {
+struct SampledEdge {
   int a, b;  // a < b
   int face;  // a face with non-zero area on it
 };
 
 struct Layout {
-  std::vector<int> vertex_face;  // a face with non-zero area using the vertex, or −1
-  std::vector<Edge> edges;       // distinct edges of those faces
-  std::vector<int> faces;        // faces with non-zero area
+  std::vector<int> vertex_face;    // a face with non-zero area using the vertex, or −1
+  std::vector<SampledEdge> edges;  // distinct edges of those faces
+  std::vector<int> faces;          // faces with non-zero area
 };
 
 Layout layout_of(const TriMesh& mesh) {
@@ -42,12 +42,13 @@ Layout layout_of(const TriMesh& mesh) {
       l.edges.push_back({std::min(a, b), std::max(a, b), f});
     }
   }
-  auto key = [](const Edge& e) { return std::pair(e.a, e.b); };
+  auto key = [](const SampledEdge& e) { return std::pair(e.a, e.b); };
   std::stable_sort(l.edges.begin(), l.edges.end(),
-                   [&](const Edge& x, const Edge& y) { return key(x) < key(y); });
-  l.edges.erase(std::unique(l.edges.begin(), l.edges.end(),
-                            [&](const Edge& x, const Edge& y) { return key(x) == key(y); }),
-                l.edges.end());
+                   [&](const SampledEdge& x, const SampledEdge& y) { return key(x) < key(y); });
+  l.edges.erase(
+      std::unique(l.edges.begin(), l.edges.end(),
+                  [&](const SampledEdge& x, const SampledEdge& y) { return key(x) == key(y); }),
+      l.edges.end());
   return l;
 }
 
@@ -86,7 +87,7 @@ std::int64_t count_surface_samples(const TriMesh& mesh, double spacing) {
   const Layout l = layout_of(mesh);
   double count = static_cast<double>(
       std::count_if(l.vertex_face.begin(), l.vertex_face.end(), [](int f) { return f >= 0; }));
-  for (const Edge& e : l.edges)
+  for (const SampledEdge& e : l.edges)
     count += static_cast<double>(edge_parts(edge_length(mesh, e.a, e.b), spacing) - 1);
   for (int f : l.faces) {
     const double n = static_cast<double>(face_level(mesh, f, spacing));
@@ -116,7 +117,7 @@ OrientedPoints sample_surface(const TriMesh& mesh, double spacing) {
     if (const int f = l.vertex_face[static_cast<size_t>(v)]; f >= 0)
       add(mesh.vertices.row(v).transpose(), vertex_normal.row(v).transpose(),
           face_normal.row(f).transpose());
-  for (const Edge& e : l.edges) {
+  for (const SampledEdge& e : l.edges) {
     const int a = e.a, b = e.b;
     const std::int64_t n = edge_parts(edge_length(mesh, a, b), spacing);
     const Vec3 pa = mesh.vertices.row(a).transpose(), pb = mesh.vertices.row(b).transpose();

@@ -17,7 +17,7 @@ namespace {
 
 constexpr int kVtkTetra = 10;
 
-void check_fields(const std::vector<MeshField>& fields, int rows, const char* what) {
+void check_vtu_fields(const std::vector<MeshField>& fields, int rows, const char* what) {
   for (const auto& f : fields)
     if (f.name.empty() || f.values.rows() != rows || f.values.cols() < 1)
       throw std::invalid_argument(std::string("write_vtu: ") + what + " field '" + f.name +
@@ -189,8 +189,8 @@ MeshField to_field(XmlScanner& xml, const DataArray& array, std::int64_t rows, c
 void write_vtu(const std::filesystem::path& path, const TetMesh& mesh,
                const std::vector<MeshField>& point_fields,
                const std::vector<MeshField>& cell_fields) {
-  check_fields(point_fields, mesh.num_vertices(), "point");
-  check_fields(cell_fields, mesh.num_tets(), "cell");
+  check_vtu_fields(point_fields, mesh.num_vertices(), "point");
+  check_vtu_fields(cell_fields, mesh.num_tets(), "cell");
   write_file_atomically(path, [&](std::ostream& out) {
     require_finite_matrix(mesh.vertices, "the point positions");
     for (const auto& f : point_fields)

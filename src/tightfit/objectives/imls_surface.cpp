@@ -13,23 +13,23 @@
 namespace tightfit {
 namespace {
 
-const std::string kSource = "shape target";
+const std::string kImlsSource = "shape target";
 
 }  // namespace
 
 ImlsSurface::ImlsSurface(Points3 points, Points3 normals, double radius)
     : points_(std::move(points)), normals_(std::move(normals)), radius_(radius) {
-  if (points_.rows() == 0) throw InputError(kSource, "has no points");
+  if (points_.rows() == 0) throw InputError(kImlsSource, "has no points");
   if (normals_.rows() != points_.rows())
-    throw InputError(kSource, "has " + std::to_string(points_.rows()) + " points but " +
-                                  std::to_string(normals_.rows()) + " normals");
+    throw InputError(kImlsSource, "has " + std::to_string(points_.rows()) + " points but " +
+                                      std::to_string(normals_.rows()) + " normals");
   if (!(radius_ > 0.0) || !std::isfinite(radius_))
-    throw InputError(kSource, "IMLS radius must be positive and finite");
-  if (!points_.allFinite()) throw InputError(kSource, "has non-finite point coordinates");
+    throw InputError(kImlsSource, "IMLS radius must be positive and finite");
+  if (!points_.allFinite()) throw InputError(kImlsSource, "has non-finite point coordinates");
   for (Eigen::Index k = 0; k < normals_.rows(); ++k) {
     const double len = normals_.row(k).norm();
     if (!(len > 0.0) || !std::isfinite(len))
-      throw InputError(kSource, "normal " + std::to_string(k) + " is zero or not finite");
+      throw InputError(kImlsSource, "normal " + std::to_string(k) + " is zero or not finite");
     normals_.row(k) /= len;
   }
   index_ = std::make_shared<const PointCloudIndex>(points_);

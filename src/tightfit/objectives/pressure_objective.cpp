@@ -19,7 +19,7 @@ namespace {
 
 using namespace autodiff;  // NOLINT: the AD helper types
 
-const std::string kSource = "pressure objective";
+const std::string kPressureSource = "pressure objective";
 
 /// Mid-edge operator pieces of one face: Λ = Σ_i (θ_i/2 + s_i φ_i) B_i.
 template <typename S>
@@ -161,32 +161,33 @@ PressureObjective::PressureObjective(const Garment& garment, const ClothMaterial
       law_(material),
       min_pressure_(std::move(min_pressure)),
       max_pressure_(std::move(max_pressure)),
-      regions_(garment, {}, kSource) {
+      regions_(garment, {}, kPressureSource) {
   const Eigen::Index m = garment_triangles_.rows();
   if (pattern_triangles_.rows() != m)
-    throw InputError(kSource, "garment and pattern triangle counts differ");
+    throw InputError(kPressureSource, "garment and pattern triangle counts differ");
   if (min_pressure_.size() != m || max_pressure_.size() != m)
-    throw InputError(kSource, "pressure range has " + std::to_string(min_pressure_.size()) + "/" +
-                                  std::to_string(max_pressure_.size()) + " entries for " +
-                                  std::to_string(m) + " triangles");
+    throw InputError(kPressureSource, "pressure range has " + std::to_string(min_pressure_.size()) +
+                                          "/" + std::to_string(max_pressure_.size()) +
+                                          " entries for " + std::to_string(m) + " triangles");
   const double inf = std::numeric_limits<double>::infinity();
   for (Eigen::Index e = 0; e < m; ++e) {
     const bool no_range = min_pressure_[e] == -inf && max_pressure_[e] == inf;
     if (!no_range && (!std::isfinite(min_pressure_[e]) || !std::isfinite(max_pressure_[e]) ||
                       min_pressure_[e] > max_pressure_[e]))
-      throw InputError(kSource, "pressure range of triangle " + std::to_string(e) +
-                                    " must be finite with min <= max");
+      throw InputError(kPressureSource, "pressure range of triangle " + std::to_string(e) +
+                                            " must be finite with min <= max");
   }
   for (Eigen::Index e = 0; e < m; ++e)
     for (int k = 0; k < 3; ++k)
       if (garment_triangles_(e, k) < 0 || garment_triangles_(e, k) >= num_garment_ ||
           pattern_triangles_(e, k) < 0 || pattern_triangles_(e, k) >= num_pattern_)
-        throw InputError(kSource, "triangle " + std::to_string(e) + " has an index out of range");
+        throw InputError(kPressureSource,
+                         "triangle " + std::to_string(e) + " has an index out of range");
   const SurfaceTopology topo(garment_triangles_, num_garment_);
   if (!topo.non_manifold_edges().empty())
-    throw InputError(kSource, "garment mesh has edges with more than two faces");
+    throw InputError(kPressureSource, "garment mesh has edges with more than two faces");
   if (!topo.inconsistently_oriented_edges().empty())
-    throw InputError(kSource, "garment mesh faces are not consistently oriented");
+    throw InputError(kPressureSource, "garment mesh faces are not consistently oriented");
   num_edges_ = topo.num_edges();
   face_edge_.resize(m);
   face_sign_.resize(m);

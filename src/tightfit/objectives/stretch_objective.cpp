@@ -12,8 +12,8 @@
 namespace tightfit {
 namespace {
 
-ElementKinematics kinematics(const DesignState& s, const Triangles& tri,
-                             const std::vector<int>& to_garment, Eigen::Index e) {
+ElementKinematics stretch_kinematics(const DesignState& s, const Triangles& tri,
+                                     const std::vector<int>& to_garment, Eigen::Index e) {
   return element_kinematics(s, tri, to_garment, e, "stretch objective");
 }
 
@@ -60,7 +60,7 @@ std::vector<Vec2> StretchObjective::cauchy_green_eigenvalues(const DesignState& 
   check(state);
   std::vector<Vec2> out(triangles_.rows());
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
-    const Eigen2 ev = eigen2(kinematics(state, triangles_, pattern_to_garment_, e).c);
+    const Eigen2 ev = eigen2(stretch_kinematics(state, triangles_, pattern_to_garment_, e).c);
     out[e] = Vec2(ev.l1(), ev.l2());
   }
   return out;
@@ -75,7 +75,7 @@ double StretchObjective::value(const DesignState& state) const {
   };
   double total = 0.0;
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
-    const ElementKinematics k = kinematics(state, triangles_, pattern_to_garment_, e);
+    const ElementKinematics k = stretch_kinematics(state, triangles_, pattern_to_garment_, e);
     const Eigen2 ev = eigen2(k.c);
     total += k.area * (pen(ev.l1()) + pen(ev.l2()));
   }
@@ -98,7 +98,7 @@ void StretchObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& d
   };
   auto ddpen = [&](double l) { return (l < lambda_min_ || l > lambda_max_) ? 2.0 : 0.0; };
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
-    const ElementKinematics k = kinematics(state, triangles_, pattern_to_garment_, e);
+    const ElementKinematics k = stretch_kinematics(state, triangles_, pattern_to_garment_, e);
     const Eigen2 ev = eigen2(k.c);
     const double l1 = ev.l1(), l2 = ev.l2();
     const double s = pen(l1) + pen(l2);

@@ -20,7 +20,7 @@ using Vec9 = Eigen::Matrix<double, 9, 1>;
 using Mat9 = Eigen::Matrix<double, 9, 9>;
 using Mat3x9 = Eigen::Matrix<double, 3, 9>;
 
-const std::string kSource = "cloth pattern";
+const std::string kClothSource = "cloth pattern";
 
 /// Edge metric (E1·E1, E2·E2, E1·E2) of a triangle, E1 = p1 - p0, E2 = p2 - p0, with its
 /// Jacobian with respect to (p0, p1, p2) (each Dim coordinates).
@@ -132,33 +132,34 @@ ClothEnergy::ClothEnergy(Triangles triangles, Points2 rest, std::vector<int> pat
       law_(material) {
   const Eigen::Index np = rest_.rows();
   if (static_cast<Eigen::Index>(pattern_to_garment_.size()) != np)
-    throw InputError(kSource, "pattern-to-garment map has " +
-                                  std::to_string(pattern_to_garment_.size()) + " entries for " +
-                                  std::to_string(np) + " pattern vertices");
+    throw InputError(kClothSource, "pattern-to-garment map has " +
+                                       std::to_string(pattern_to_garment_.size()) +
+                                       " entries for " + std::to_string(np) + " pattern vertices");
   for (std::size_t p = 0; p < pattern_to_garment_.size(); ++p)
     if (pattern_to_garment_[p] < 0 || pattern_to_garment_[p] >= num_garment_)
-      throw InputError(kSource, "pattern vertex " + std::to_string(p) + " maps to garment vertex " +
-                                    std::to_string(pattern_to_garment_[p]) + " outside [0, " +
-                                    std::to_string(num_garment_) + ")");
+      throw InputError(kClothSource, "pattern vertex " + std::to_string(p) +
+                                         " maps to garment vertex " +
+                                         std::to_string(pattern_to_garment_[p]) + " outside [0, " +
+                                         std::to_string(num_garment_) + ")");
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e)
     for (int k = 0; k < 3; ++k)
       if (triangles_(e, k) < 0 || triangles_(e, k) >= np)
-        throw InputError(kSource, "triangle " + std::to_string(e) + " has pattern vertex " +
-                                      std::to_string(triangles_(e, k)) + " outside [0, " +
-                                      std::to_string(np) + ")");
+        throw InputError(kClothSource, "triangle " + std::to_string(e) + " has pattern vertex " +
+                                           std::to_string(triangles_(e, k)) + " outside [0, " +
+                                           std::to_string(np) + ")");
   validate_rest(rest_);
 }
 
 void ClothEnergy::validate_rest(const Points2& rest) const {
   if (rest.rows() != rest_.rows())
-    throw InputError(kSource, "rest positions have " + std::to_string(rest.rows()) +
-                                  " rows, expected " + std::to_string(rest_.rows()));
+    throw InputError(kClothSource, "rest positions have " + std::to_string(rest.rows()) +
+                                       " rows, expected " + std::to_string(rest_.rows()));
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
     const Vec2 e1 = (rest.row(triangles_(e, 1)) - rest.row(triangles_(e, 0))).transpose();
     const Vec2 e2 = (rest.row(triangles_(e, 2)) - rest.row(triangles_(e, 0))).transpose();
     const double cross = e1.x() * e2.y() - e1.y() * e2.x();
     if (!(std::abs(cross) > 1e-14 * (e1.squaredNorm() + e2.squaredNorm())))
-      throw InputError(kSource,
+      throw InputError(kClothSource,
                        "rest triangle " + std::to_string(e) + " is degenerate (zero area)");
   }
 }

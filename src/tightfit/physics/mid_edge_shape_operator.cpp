@@ -13,7 +13,7 @@
 namespace tightfit {
 namespace {
 
-const std::string kSource = "garment mesh (shape operator)";
+const std::string kMidEdgeSource = "garment mesh (shape operator)";
 
 using Vec9 = Eigen::Matrix<double, 9, 1>;
 using Mat9x3 = Eigen::Matrix<double, 9, 3>;
@@ -54,20 +54,20 @@ MidEdgeShapeOperator::MidEdgeShapeOperator(const Triangles& faces, int num_verti
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     for (int k = 0; k < 3; ++k)
       if (faces(f, k) < 0 || faces(f, k) >= num_vertices)
-        throw InputError(kSource, "face " + std::to_string(f) + " has vertex index " +
-                                      std::to_string(faces(f, k)) + " outside [0, " +
-                                      std::to_string(num_vertices) + ")");
+        throw InputError(kMidEdgeSource, "face " + std::to_string(f) + " has vertex index " +
+                                             std::to_string(faces(f, k)) + " outside [0, " +
+                                             std::to_string(num_vertices) + ")");
     if (faces(f, 0) == faces(f, 1) || faces(f, 1) == faces(f, 2) || faces(f, 2) == faces(f, 0))
-      throw InputError(kSource, "face " + std::to_string(f) + " repeats a vertex");
+      throw InputError(kMidEdgeSource, "face " + std::to_string(f) + " repeats a vertex");
   }
   const SurfaceTopology topo(faces, num_vertices);
   if (!topo.non_manifold_edges().empty())
-    throw InputError(kSource, "has " + std::to_string(topo.non_manifold_edges().size()) +
-                                  " edges with more than two faces");
+    throw InputError(kMidEdgeSource, "has " + std::to_string(topo.non_manifold_edges().size()) +
+                                         " edges with more than two faces");
   if (!topo.inconsistently_oriented_edges().empty())
-    throw InputError(kSource, "faces are not consistently oriented at " +
-                                  std::to_string(topo.inconsistently_oriented_edges().size()) +
-                                  " edges");
+    throw InputError(kMidEdgeSource,
+                     "faces are not consistently oriented at " +
+                         std::to_string(topo.inconsistently_oriented_edges().size()) + " edges");
   const int m = topo.num_faces();
   unknown_.assign(3 * m, -1);
   sign_.assign(3 * m, 1);

@@ -21,7 +21,7 @@ using Mat9 = Eigen::Matrix<double, 9, 9>;
 using Mat9x12 = Eigen::Matrix<double, 9, 12>;
 using Mat12 = Eigen::Matrix<double, 12, 12>;
 
-const std::string kSource = "body tet mesh";
+const std::string kNeoHookeanSource = "body tet mesh";
 
 Mat3 cross_matrix(const Vec3& v) {
   Mat3 m;
@@ -87,16 +87,16 @@ NeoHookeanEnergy::NeoHookeanEnergy(const Points3& rest, const Tetrahedra& tets,
     for (int k = 0; k < 4; ++k) {
       t[k] = tets(e, k);
       if (t[k] < 0 || t[k] >= num_vertices_)
-        throw InputError(kSource, "tet " + std::to_string(e) + " has vertex index " +
-                                      std::to_string(t[k]) + " outside [0, " +
-                                      std::to_string(num_vertices_) + ")");
+        throw InputError(kNeoHookeanSource, "tet " + std::to_string(e) + " has vertex index " +
+                                                std::to_string(t[k]) + " outside [0, " +
+                                                std::to_string(num_vertices_) + ")");
     }
     Mat3 dm;
     for (int k = 0; k < 3; ++k) dm.col(k) = (rest.row(t[k + 1]) - rest.row(t[0])).transpose();
     const double v = dm.determinant() / 6.0;
     if (!(v > 0.0))
-      throw InputError(
-          kSource, "tet " + std::to_string(e) + " has non-positive rest volume (inverted or flat)");
+      throw InputError(kNeoHookeanSource, "tet " + std::to_string(e) +
+                                              " has non-positive rest volume (inverted or flat)");
     tets_.push_back(t);
     rest_inverse_.push_back(dm.inverse());
     volume_.push_back(v);

@@ -10,7 +10,7 @@
 namespace tightfit {
 namespace {
 
-const std::string kSource = "seam springs";
+const std::string kSeamSource = "seam springs";
 
 /// One spring evaluated at (x, Xbar).
 struct Spring {
@@ -40,31 +40,33 @@ SeamSpringEnergy::SeamSpringEnergy(std::vector<std::array<int, 2>> edges, Points
       num_garment_(num_garment_vertices),
       material_(material) {
   if (!(material.width > 0.0) || !(material.depth > 0.0) || !(material.youngs_modulus >= 0.0))
-    throw InputError(kSource, "seam width and depth must be > 0 and Young's modulus >= 0");
+    throw InputError(kSeamSource, "seam width and depth must be > 0 and Young's modulus >= 0");
   const Eigen::Index np = rest_.rows();
   if (static_cast<Eigen::Index>(pattern_to_garment_.size()) != np)
-    throw InputError(kSource, "pattern-to-garment map size differs from the pattern vertex count");
+    throw InputError(kSeamSource,
+                     "pattern-to-garment map size differs from the pattern vertex count");
   for (std::size_t p = 0; p < pattern_to_garment_.size(); ++p)
     if (pattern_to_garment_[p] < 0 || pattern_to_garment_[p] >= num_garment_)
-      throw InputError(kSource, "pattern vertex " + std::to_string(p) + " maps to garment vertex " +
-                                    std::to_string(pattern_to_garment_[p]) + " outside [0, " +
-                                    std::to_string(num_garment_) + ")");
+      throw InputError(kSeamSource, "pattern vertex " + std::to_string(p) +
+                                        " maps to garment vertex " +
+                                        std::to_string(pattern_to_garment_[p]) + " outside [0, " +
+                                        std::to_string(num_garment_) + ")");
   for (std::size_t s = 0; s < edges_.size(); ++s)
     for (int v : edges_[s])
       if (v < 0 || v >= np)
-        throw InputError(kSource, "seam edge " + std::to_string(s) + " has pattern vertex " +
-                                      std::to_string(v) + " outside [0, " + std::to_string(np) +
-                                      ")");
+        throw InputError(kSeamSource, "seam edge " + std::to_string(s) + " has pattern vertex " +
+                                          std::to_string(v) + " outside [0, " + std::to_string(np) +
+                                          ")");
   validate_rest(rest_);
 }
 
 void SeamSpringEnergy::validate_rest(const Points2& rest) const {
   if (rest.rows() != rest_.rows())
-    throw InputError(kSource, "rest positions have " + std::to_string(rest.rows()) +
-                                  " rows, expected " + std::to_string(rest_.rows()));
+    throw InputError(kSeamSource, "rest positions have " + std::to_string(rest.rows()) +
+                                      " rows, expected " + std::to_string(rest_.rows()));
   for (std::size_t s = 0; s < edges_.size(); ++s)
     if (!((rest.row(edges_[s][1]) - rest.row(edges_[s][0])).norm() > 0.0))
-      throw InputError(kSource, "seam edge " + std::to_string(s) + " has zero rest length");
+      throw InputError(kSeamSource, "seam edge " + std::to_string(s) + " has zero rest length");
 }
 
 void SeamSpringEnergy::set_rest(const Points2& rest) {

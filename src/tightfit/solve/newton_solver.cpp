@@ -10,11 +10,6 @@
 #include "tightfit/common/truncated_cg.hpp"
 
 namespace tightfit {
-namespace {
-
-using Clock = SteadyClock;
-
-}  // namespace
 
 double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factorizations,
                                            const CholeskyOrdering* ordering) {
@@ -42,7 +37,7 @@ double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factoriza
 
 NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
   const SparseCholesky* held = chords.held;
-  const auto t_start = Clock::now();
+  const auto t_start = SteadyClock::now();
   NewtonReport report;
   report.tolerance = options_.force_tolerance(problem.force_scale());
   double energy = problem.energy();
@@ -61,7 +56,7 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
 
   for (int it = 0;; ++it) {
     NewtonIteration record;
-    auto t0 = Clock::now();
+    auto t0 = SteadyClock::now();
     const VecX g = problem.gradient();
     record.energy = energy;
     record.force_norm = problem.force_norm(g);
@@ -92,7 +87,7 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
       const SparseMatrix H = problem.hessian();
       record.seconds_assembly = seconds_since(t0);
       report.hessian_nonzeros = H.nonZeros();
-      t0 = Clock::now();
+      t0 = SteadyClock::now();
       record.regularization =
           factorize_regularized(H, report.factorizations, held ? &held->ordering() : nullptr);
       record.seconds_factorization = seconds_since(t0);
@@ -107,10 +102,10 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
     if (record.chord && options_.krylov_chords) {
       // Newton–Krylov: the Newton system at this state, solved by conjugate gradients
       // preconditioned with the held factorization.
-      t0 = Clock::now();
+      t0 = SteadyClock::now();
       const std::optional<LinearOperator> H = problem.hessian_operator();
       record.seconds_assembly += seconds_since(t0);
-      t0 = Clock::now();
+      t0 = SteadyClock::now();
       if (H) {
         TruncatedCgReport cg;
         dq = truncated_cg(*H, [&](const VecX& r) { return factor->solve(r); }, VecX(-g), cg,
@@ -124,12 +119,12 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
       }
       record.seconds_solve = seconds_since(t0);
     } else {
-      t0 = Clock::now();
+      t0 = SteadyClock::now();
       dq = factor->solve(VecX(-g));
       record.seconds_solve = seconds_since(t0);
     }
 
-    t0 = Clock::now();
+    t0 = SteadyClock::now();
     const double slope = g.dot(dq);
     double alpha = 1.0;
     bool accepted = false;

@@ -1,0 +1,101 @@
+/// Every design term that a garment alone defines, through the one contract
+/// (tests/support/energy_contract.hpp): ∂T/∂x and ∂T/∂Xbar against finite differences,
+/// and no ∂T/∂x from a term that says it does not depend on positions. The terms that
+/// need a simulation (pinned traction, sliding, every-pose terms) are checked through the
+/// whole pipeline in their own tests (tests/objectives/sliding_objective_test.cpp,
+/// all_poses). A new term gets a case in kTerms.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <memory>
+#include <numbers>
+
+#include "objective_test_garments.hpp"
+#include "support/energy_contract.hpp"
+#include "tightfit/design/regularizer_compactness.hpp"
+#include "tightfit/design/regularizer_corner_angle.hpp"
+#include "tightfit/design/regularizer_edge_lengths.hpp"
+#include "tightfit/design/regularizer_smoothness.hpp"
+#include "tightfit/objectives/directional_stretch_objective.hpp"
+#include "tightfit/objectives/pressure_objective.hpp"
+#include "tightfit/objectives/seam_traction_objective.hpp"
+#include "tightfit/objectives/shape_objective.hpp"
+#include "tightfit/objectives/stretch_objective.hpp"
+
+namespace tightfit::design_term_contract_test {
+
+using TermFactory = std::function<std::shared_ptr<const DesignTerm>(const Garment&)>;
+
+/// A sphere of radius 0.06 m about the sleeve's middle, sampled at about 5 mm.
+ImlsSurface sphere_target() {
+  const int m = 2000;
+  Points3 points(m, 3), normals(m, 3);
+  for (int k = 0; k < m; ++k) {
+    const double z = 1.0 - 2.0 * (k + 0.5) / m, phi = k * 2.399963229728653;
+    const Vec3 d(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
+    points.row(k) = (Vec3(0, 0, 0.05) + 0.06 * d).transpose();
+    normals.row(k) = d.transpose();
+  }
+  return ImlsSurface(points, normals, 0.008);
+}
+
+const std::vector<std::pair<std::string, TermFactory>> kTerms = {
+    {"stretch",
+     [](const Garment& g) {
+       return std::make_shared<StretchObjective>(g, StretchBounds{1.0, 1.05});
+     }},
+    {"directional_stretch",
+     [](const Garment& g) {
+       return std::make_shared<DirectionalStretchObjective>(g, FabricDirection::kAcrossGrain,
+                                                            StretchBounds{1.0, 1.05});
+     }},
+    {"pressure",
+     [](const Garment& g) {
+       return std::make_shared<PressureObjective>(g, ClothMaterial{}, 200.0, 800.0);
+     }},
+    {"seam_traction",
+     [](const Garment& g) { return std::make_shared<SeamTractionObjective>(g, ClothMaterial{}); }},
+    {"shape",
+     [](const Garment& g) {
+       return std::make_shared<ShapeObjective>(sphere_target(), g.num_garment_vertices);
+     }},
+    {"seam_length",
+     [](const Garment& g) {
+       return std::make_shared<EdgeLengthDifferenceTerm>(seam_length_regularizer(g));
+     }},
+    {"boundary_spacing",
+     [](const Garment& g) {
+       return std::make_shared<EdgeLengthDifferenceTerm>(even_spacing_regularizer(g));
+     }},
+    {"boundary_smoothness",
+     [](const Garment& g) { return std::make_shared<BoundarySmoothnessRegularizer>(g); }},
+    {"corner_angle", [](const Garment& g) { return std::make_shared<CornerAngleRegularizer>(g); }},
+    {"compactness",
+     [](const Garment& g) {
+       return std::make_shared<CompactnessRegularizer>(g, CompactnessOptions{0.5, 1});
+     }},
+};
+
+class DesignTermContract : public ::testing::TestWithParam<size_t> {};
+
+TEST_P(DesignTermContract, GradientsMatchFiniteDifferences) {
+  const test::GarmentState s = test::sleeve(9, 5, 0.05, 0.28, 0.1, 0.2, 4);
+  const auto term = kTerms[GetParam()].second(s.garment);
+  test::ContractTolerances tol;
+  tol.step = 1e-7;
+  for (unsigned seed = 1; seed <= 2; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    // Moved off the initial pattern, where the regularizers are at their minimum.
+    const VecX x = test::perturb(s.x, 0.004, seed);
+    const Points2 rest = test::perturb(s.garment.rest_positions(), 0.003, seed + 10);
+    EXPECT_GT(term->value(DesignState{x, rest}), 0.0) << "a term at zero checks nothing";
+    test::expect_design_term_contract(*term, x, rest, nullptr, tol);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Terms, DesignTermContract, ::testing::Range<size_t>(0, kTerms.size()),
+                         [](const ::testing::TestParamInfo<size_t>& param) {
+                           return kTerms[param.param].first;
+                         });
+
+}  // namespace tightfit::design_term_contract_test
