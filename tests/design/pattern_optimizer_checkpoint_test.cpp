@@ -46,6 +46,15 @@ TEST(OptimizationCheckpoint, JsonRoundTripIsExact) {
   it.gradient_norm = 3e-9;
   it.seconds = 1.25;
   c.history = {it, it};
+  SnapRecord snap;
+  snap.trials = 3;
+  snap.rise = 1.0 / 3.0;
+  snap.step = 2e-4;
+  snap.move = 0.0107;
+  snap.vertex = 8;
+  snap.position = Vec3(0.1, 1.0 / 7.0, -0.2);
+  snap.label = "pieces 'left_front', 'right_front'";
+  c.history[1].snap = snap;
   c.held_ordering.permutation = {2, 0, 3, 1};
   c.held_ordering.factor_nonzeros = 7.0;
   const std::vector<std::string> names{"stretch", "seam length"};
@@ -63,6 +72,14 @@ TEST(OptimizationCheckpoint, JsonRoundTripIsExact) {
   ASSERT_EQ(r.history.size(), 2u);
   EXPECT_EQ(r.history[1].term_values, it.term_values);
   EXPECT_EQ(r.history[1].value, it.value);
+  EXPECT_FALSE(r.history[0].snap);
+  ASSERT_TRUE(r.history[1].snap);
+  EXPECT_EQ(r.history[1].snap->trials, 3);
+  EXPECT_EQ(r.history[1].snap->rise, 1.0 / 3.0);
+  EXPECT_EQ(r.history[1].snap->move, 0.0107);
+  EXPECT_EQ(r.history[1].snap->vertex, 8);
+  EXPECT_EQ(r.history[1].snap->position, snap.position);
+  EXPECT_EQ(r.history[1].snap->label, snap.label);
   EXPECT_EQ(r.held_ordering.permutation, c.held_ordering.permutation);
   EXPECT_EQ(r.held_ordering.factor_nonzeros, 7.0);
 

@@ -55,6 +55,9 @@ std::string OptimizeProgress::row(const OptimizationIteration& it) const {
   if (it.iteration > 0 && it.iteration < max_iterations_)
     text += "  " + duration_text(it.seconds / it.iteration * (max_iterations_ - it.iteration));
   if (it.failed_solves > 0) text += format("  (failed trials %d)", it.failed_solves);
+  if (it.snap)
+    text += format("  (snapped trials %d: T +%.2e, garment vertex %d moved %.1f mm)",
+                   it.snap->trials, it.snap->rise, it.snap->vertex, 1e3 * it.snap->move);
   if (it.hessian_shift > 0.0)
     text += format("  [adjoint H shifted by %.1e: inexact]", it.hessian_shift);
   return text + "\n";

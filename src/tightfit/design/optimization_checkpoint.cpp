@@ -109,6 +109,27 @@ RemeshRecord remesh_from_json(JsonFields f, const std::vector<std::string>& term
   return r;
 }
 
+nlohmann::json snap_json(const SnapRecord& s) {
+  return {{"trials", s.trials}, {"rise", s.rise},
+          {"step", s.step},     {"move", s.move},
+          {"vertex", s.vertex}, {"position", {s.position.x(), s.position.y(), s.position.z()}},
+          {"label", s.label}};
+}
+
+SnapRecord snap_from_json(JsonFields f) {
+  SnapRecord s;
+  s.trials = f.integer("trials");
+  if (s.trials < 1) f.fail("must be >= 1", "trials");
+  s.rise = f.number("rise");
+  s.step = f.number("step");
+  s.move = f.number("move");
+  s.vertex = f.integer("vertex");
+  s.position = f.vec3("position");
+  s.label = f.string("label", "");
+  f.finish();
+  return s;
+}
+
 }  // namespace
 
 nlohmann::json iteration_json(const OptimizationIteration& it,
@@ -137,6 +158,7 @@ nlohmann::json iteration_json(const OptimizationIteration& it,
                       {"seconds_assembly", it.seconds_assembly},
                       {"seconds_factorization", it.seconds_factorization}};
   if (it.remesh) j["remesh"] = remesh_json(*it.remesh, term_names);
+  if (it.snap) j["snap"] = snap_json(*it.snap);
   return j;
 }
 
@@ -171,6 +193,7 @@ OptimizationIteration iteration_from_json(const nlohmann::json& j,
   it.seconds_assembly = f.number("seconds_assembly", 0.0);
   it.seconds_factorization = f.number("seconds_factorization", 0.0);
   if (auto r = f.object("remesh")) it.remesh = remesh_from_json(*r, term_names);
+  if (auto s = f.object("snap")) it.snap = snap_from_json(*s);
   f.finish();
   return it;
 }

@@ -334,6 +334,7 @@ DesignEvaluation DesignProblem::evaluate_at(const Reference& ref, const VecX& p,
   gradient_generation_ = -1;
   try {
     sim_.set_state(start);
+    const Points3 start_positions = sim_.problem().garment_positions();
     sim_.set_rest_positions(rest);
     const NewtonReport report = sim_.solve({held, options_.reuse_factorizations});
     ev.newton_iterations = report.iterations;
@@ -352,6 +353,7 @@ DesignEvaluation DesignProblem::evaluate_at(const Reference& ref, const VecX& p,
       ev.failure = "forward solve: the equilibrium is not finite at " + place;
       return ev;
     }
+    record_equilibrium_move(start_positions, ev);
   } catch (const InputError& e) {
     ev.failure = std::string("pattern rejected: ") + e.what();
     return ev;
@@ -380,6 +382,17 @@ DesignEvaluation DesignProblem::evaluate_at(const Reference& ref, const VecX& p,
   last_ok_ = true;
   if (with_gradient) add_gradient_at(ref, ev);
   return ev;
+}
+
+void DesignProblem::record_equilibrium_move(const Points3& accepted_positions,
+                                            DesignEvaluation& ev) const {
+  const Points3& x = sim_.problem().garment_positions();
+  if (x.rows() != accepted_positions.rows() || x.rows() == 0) return;
+  Eigen::Index vertex = 0;
+  ev.equilibrium_move = (x - accepted_positions).rowwise().norm().maxCoeff(&vertex);
+  ev.moved_vertex = static_cast<int>(vertex);
+  ev.moved_vertex_position = accepted_positions.row(vertex).transpose();
+  ev.moved_vertex_label = sim_.problem().garment_vertex_label(ev.moved_vertex);
 }
 
 bool DesignProblem::add_gradient(DesignEvaluation& ev) { return add_gradient_at(ref_, ev); }

@@ -83,8 +83,15 @@ struct DesignEvaluation {
   int factorizations = 0;           ///< Cholesky factorizations of the forward solve
   int adjoint_factorizations = 0;   ///< and of the gradient
   AdjointMethod adjoint_method = AdjointMethod::kNone;
-  int krylov_iterations = 0;           ///< GMRES iterations of the adjoint solve
-  double force_residual = 0.0;         ///< N, final force norm of the forward solve
+  int krylov_iterations = 0;    ///< GMRES iterations of the adjoint solve
+  double force_residual = 0.0;  ///< N, final force norm of the forward solve
+  /// How far the equilibrium moved from the accepted one (m): the largest displacement of
+  /// a garment vertex, which one, where it was (m) and what it belongs to ("piece 'front'").
+  /// A step that makes the fit snap to another equilibrium moves it far (PatternOptimizer).
+  double equilibrium_move = 0.0;
+  int moved_vertex = -1;
+  Vec3 moved_vertex_position = Vec3::Zero();
+  std::string moved_vertex_label;
   double seconds_assembly = 0.0;       ///< of seconds_forward: gradients and Hessians (s)
   double seconds_factorization = 0.0;  ///< of seconds_forward: Cholesky factorizations (s)
   double seconds_forward = 0.0;        ///< forward Newton solve (s)
@@ -221,6 +228,8 @@ class DesignProblem {
   bool add_gradient_at(const Reference& ref, DesignEvaluation& ev);
   Points2 rest_positions_at(const Reference& ref, const VecX& p) const;
   double min_area_ratio_at(const Reference& ref, const VecX& p) const;
+  /// Sets ev's equilibrium_move and moved_vertex* from the simulation's equilibrium.
+  void record_equilibrium_move(const Points3& accepted_positions, DesignEvaluation& ev) const;
 
   GarmentSimulation& sim_;
   DesignProblemOptions options_;

@@ -71,6 +71,8 @@ void parse_lbfgs(JsonFields f, PatternOptimizerOptions& o) {
       f.positive("relative_decrease_tolerance", o.relative_decrease_tolerance, true);
   o.stall_iterations = f.integer("stall_iterations", o.stall_iterations);
   if (o.stall_iterations < 1) f.fail("must be >= 1", "stall_iterations");
+  o.snap_iterations = f.integer("snap_iterations", o.snap_iterations);
+  if (o.snap_iterations < 0) f.fail("must be >= 0", "snap_iterations");
   o.max_step = f.positive("max_step", o.max_step, true);
   o.max_step_fraction = f.positive("max_step_fraction", o.max_step_fraction);
   o.step_growth = f.positive("step_growth", o.step_growth, true);

@@ -30,6 +30,8 @@
 ///     "lbfgs": {"memory": 8, "gradient_tolerance": 0, "relative_gradient_tolerance": 1e-6,
 ///               "value_tolerance": 0, "relative_decrease_tolerance": 1e-9,
 ///               "stall_iterations": 3, "max_step": 0, "max_step_fraction": 0.5,
+///               "snap_iterations": 3,     // stop after 3 iterations limited by a
+///                                         // snap-through (0: off)
 ///               "step_growth": 2,         // first trial moves no point more than 2x
 ///                                         // the previous iteration's farthest
 ///                                         // converged trial (0: off)

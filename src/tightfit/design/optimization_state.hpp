@@ -31,6 +31,20 @@ struct RemeshRecord {
   std::string failure;
 };
 
+/// A line search that met a discontinuity of the objective (design/snap_detector.hpp):
+/// trials whose objective rose by about the same amount however much the step was
+/// shortened, because the fit snapped to another equilibrium. Fields of the shortest
+/// such trial.
+struct SnapRecord {
+  int trials = 0;                ///< trials that landed on the other equilibrium
+  double rise = 0.0;             ///< T(trial) − T(accepted), units of T
+  double step = 0.0;             ///< the trial's largest boundary-point move (m)
+  double move = 0.0;             ///< largest garment-vertex displacement between the equilibria (m)
+  int vertex = -1;               ///< that garment vertex
+  Vec3 position = Vec3::Zero();  ///< where it was at the accepted equilibrium (m)
+  std::string label;             ///< what it belongs to ("pieces 'front', 'back'")
+};
+
 /// One accepted iteration (iteration 0 is the initial pattern).
 struct OptimizationIteration {
   int iteration = 0;
@@ -64,6 +78,7 @@ struct OptimizationIteration {
   double seconds_assembly = 0.0;
   double seconds_factorization = 0.0;
   std::optional<RemeshRecord> remesh;  ///< set when pieces were remeshed after this step
+  std::optional<SnapRecord> snap;      ///< set when the line search met a snap-through
 };
 
 /// L-BFGS curvature pairs, oldest first: s_k = p_{k+1} − p_k (m), y_k = ∇T_{k+1} − ∇T_k.

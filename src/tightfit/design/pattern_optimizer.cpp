@@ -8,6 +8,7 @@
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/stopwatch.hpp"
+#include "tightfit/design/snap_detector.hpp"
 
 namespace tightfit {
 namespace {
@@ -16,6 +17,22 @@ using Clock = SteadyClock;
 
 /// Iterations without a new attempt after a remeshing that had to be undone.
 constexpr int kRemeshRetryGap = 5;
+
+/// Why a run stopped at a snap-through, and where (the last iteration's SnapRecord).
+std::string snap_stop_reason(const SnapRecord& snap, int iterations, int iteration, double value) {
+  std::ostringstream out;
+  out.precision(3);
+  out << "snap-through: in the last " << iterations
+      << " iterations every longer step made the fit jump to another equilibrium with a "
+         "higher objective (by "
+      << snap.rise << ", " << 100.0 * snap.rise / std::max(value, 1e-300)
+      << " % of T, for a step of " << 1e3 * snap.step << " mm; garment vertex " << snap.vertex;
+  if (!snap.label.empty()) out << " (" << snap.label << ")";
+  out << " at (" << snap.position.x() << ", " << snap.position.y() << ", " << snap.position.z()
+      << ") m moved " << 1e3 * snap.move << " mm); the pattern of iteration " << iteration
+      << " is at the edge of that jump";
+  return out.str();
+}
 
 }  // namespace
 
@@ -140,11 +157,14 @@ void PatternOptimizer::update_counters(double value_before, const OptimizationIt
   const double decrease = value_before - record.value;
   stalled_ =
       decrease <= options_.relative_decrease_tolerance * std::abs(value_before) ? stalled_ + 1 : 0;
+  snapped_ = record.snap ? snapped_ + 1 : 0;
   if (const auto& r = record.remesh) {
-    if (r->failure.empty())
+    if (r->failure.empty()) {
       stalled_ = 0;
-    else
+      snapped_ = 0;
+    } else {
       remesh_blocked_until_ = record.iteration + kRemeshRetryGap;
+    }
   }
 }
 
@@ -197,6 +217,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
     first.seconds = elapsed();
     history_.push_back(first);
     stalled_ = 0;
+    snapped_ = 0;
     remesh_blocked_until_ = -1;
     if (on_iteration) on_iteration(first);
   }
@@ -223,6 +244,10 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
       reason << "relative decrease below " << options_.relative_decrease_tolerance << " for "
              << stalled_ << " iterations";
       result.converged = true;
+      break;
+    }
+    if (options_.snap_iterations > 0 && snapped_ >= options_.snap_iterations) {
+      reason << snap_stop_reason(*history_.back().snap, snapped_, iteration_, current.value);
       break;
     }
     if (iteration_ >= options_.max_iterations) {
@@ -254,7 +279,9 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
     double alpha = 0.0;
     bool accepted = false;
     bool stopped_in_line_search = false;
+    SnapDetector snaps;
     for (int attempt = 0; attempt < 2 && !accepted && !stopped_in_line_search; ++attempt) {
+      snaps.reset();
       if (attempt == 1) {
         if (memory_.s.empty()) break;  // steepest descent already failed
         memory_ = {};
@@ -309,6 +336,8 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
           alpha *= 0.5;
           continue;
         }
+        if (const double rise = trial.value - current.value; rise > 0.0)
+          snaps.add_rising_trial(alpha, max_point_move(VecX(alpha * d)), rise, trial);
         // Minimizer of the quadratic through T(0), T'(0) and T(α), kept in [0.1, 0.5]·α.
         const double curvature = 2.0 * (trial.value - current.value - alpha * slope);
         const double next = curvature > 0.0 ? -slope * alpha * alpha / curvature : 0.5 * alpha;
@@ -348,6 +377,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
     rec.hessian_shift = current.hessian_shift;
     rec.adjoint_method = adjoint_method_name(current.adjoint_method);
     rec.krylov_iterations = current.krylov_iterations;
+    rec.snap = snaps.record();
 
     if (problem_.options().remesh.enabled && problem_.can_remesh() &&
         iteration_ > remesh_blocked_until_) {

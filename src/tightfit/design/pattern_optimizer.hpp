@@ -38,7 +38,9 @@
 /// Stopping (checked on each accepted point): ‖∇T‖ ≤ max(gradient_tolerance,
 /// relative_gradient_tolerance·‖∇T_0‖); T ≤ value_tolerance (range objectives reach 0
 /// exactly); `stall_iterations` consecutive steps with relative decrease below
-/// relative_decrease_tolerance; max_iterations; or a failed line search.
+/// relative_decrease_tolerance; `snap_iterations` consecutive iterations whose line
+/// search met a snap-through (the stop reason says where); max_iterations; or a failed
+/// line search.
 #include <functional>
 #include <string>
 
@@ -67,6 +69,11 @@ struct PatternOptimizerOptions {
   double step_growth = 2.0;
   double armijo = 1e-4;
   int max_line_search = 30;  ///< trials per line search
+  /// Stop after this many consecutive iterations whose line search met a snap-through
+  /// (design/snap_detector.hpp: the fit jumps to another equilibrium with a higher
+  /// objective for every step beyond a short one); 0: never stop for that. Such a run
+  /// creeps along the edge of the jump with steps of micrometres and costly trials.
+  int snap_iterations = 3;
 };
 
 struct OptimizationResult {
@@ -128,6 +135,7 @@ class PatternOptimizer {
   double seconds_before_ = 0.0;  // wall time of earlier runs (resume)
   bool resumed_ = false;
   int stalled_ = 0;                // consecutive steps below the relative decrease tolerance
+  int snapped_ = 0;                // consecutive iterations whose line search met a snap
   int remesh_blocked_until_ = -1;  // no remeshing attempt up to this iteration
 };
 

@@ -282,9 +282,8 @@ std::string EmbeddedEquilibrium::locate_largest_force(const VecX& g) {
   Vec3 at;
   if (garment >= 0) {
     out << "garment vertex " << garment;
-    if (setup_.garment_vertex_label)
-      if (const std::string label = setup_.garment_vertex_label(garment); !label.empty())
-        out << " (" << label << ")";
+    if (const std::string label = garment_vertex_label(garment); !label.empty())
+      out << " (" << label << ")";
     at = x_.row(garment).transpose();
   } else {
     out << (body < num_control_ ? "body surface vertex " : "body interior vertex ") << body;
@@ -292,6 +291,10 @@ std::string EmbeddedEquilibrium::locate_largest_force(const VecX& g) {
   }
   out << " at (" << at.x() << ", " << at.y() << ", " << at.z() << ") m";
   return out.str();
+}
+
+std::string EmbeddedEquilibrium::garment_vertex_label(int i) const {
+  return setup_.garment_vertex_label ? setup_.garment_vertex_label(i) : std::string();
 }
 
 Vec3 EmbeddedEquilibrium::garment_normal(int i) const {

@@ -78,6 +78,9 @@ class EmbeddedEquilibrium : public NewtonProblem {
   const EmbeddedState& state() const { return state_; }
   /// Garment positions x (n_g×3, m) at the current state.
   const Points3& garment_positions() const { return x_; }
+  /// What garment vertex i belongs to, for messages ("piece 'front'"; empty when the
+  /// setup gives no labels).
+  std::string garment_vertex_label(int i) const;
   /// dU/dx (3·n_g) at the current state: minus the elastic forces on garment vertices.
   VecX garment_energy_gradient() const;
   /// Sparse Jacobian dx/dq (3·n_g × num_dofs) at the current state.
