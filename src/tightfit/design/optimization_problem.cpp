@@ -16,6 +16,20 @@ namespace {
 
 using Clock = SteadyClock;
 
+/// Per piece: the quality of its mesh as it is.
+std::vector<PieceQuality> fresh_qualities(const Pattern& pattern) {
+  std::vector<PieceQuality> out;
+  for (const PatternPiece& piece : pattern.pieces) out.push_back(piece_quality(piece));
+  return out;
+}
+
+/// Per piece: its rest positions.
+std::vector<Points2> mesh_rest_positions(const Pattern& pattern) {
+  std::vector<Points2> out;
+  for (const PatternPiece& piece : pattern.pieces) out.push_back(piece.rest);
+  return out;
+}
+
 VecX signed_areas(const Triangles& triangles, const Points2& rest) {
   VecX a(triangles.rows());
   for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
@@ -30,30 +44,32 @@ VecX signed_areas(const Triangles& triangles, const Points2& rest) {
 DesignProblem::DesignProblem(GarmentSimulation& sim, std::shared_ptr<const DesignTermSum> objective,
                              DesignProblemOptions options, ObjectiveFactory make_objective)
     : sim_(sim),
-      objective_(std::move(objective)),
       options_(options),
-      coordinates_(sim.garment().pattern),
       adjoint_(options.adjoint),
-      make_objective_(std::move(make_objective)) {
-  if (!objective_) throw std::invalid_argument("DesignProblem: null objective");
+      make_objective_(std::move(make_objective)),
+      ref_(make_reference(std::move(objective), BiharmonicCoordinates(sim.garment().pattern),
+                          fresh_qualities(sim.garment().pattern),
+                          mesh_rest_positions(sim.garment().pattern))) {
+  if (!ref_.objective) throw std::invalid_argument("DesignProblem: null objective");
   if (options_.remesh.edge_length < 0.0 || !(options_.remesh.min_area_fraction >= 0.0) ||
       !(options_.remesh.min_angle_deg >= 0.0 && options_.remesh.min_angle_deg < 60.0) ||
       options_.remesh.smoothing_iterations < 0)
     throw std::invalid_argument("DesignProblem: invalid remesh options");
-  for (const PatternPiece& piece : sim_.garment().pattern.pieces) {
+  for (const PatternPiece& piece : sim_.garment().pattern.pieces)
     target_edge_.push_back(options_.remesh.edge_length > 0.0 ? options_.remesh.edge_length
                                                              : mean_edge_length(piece));
-    fresh_.push_back(piece_quality(piece));
-    mesh_rest_.push_back(piece.rest);
-  }
-  reset_reference();
+  accept_reference();
 }
 
-void DesignProblem::reset_reference() {
+DesignProblem::Reference DesignProblem::make_reference(
+    std::shared_ptr<const DesignTermSum> objective, BiharmonicCoordinates coordinates,
+    std::vector<PieceQuality> fresh, std::vector<Points2> mesh_rest) const {
   const Garment& g = sim_.garment();
-  initial_rest_ = g.rest_positions();
-  initial_parameters_ = coordinates_.parameters(initial_rest_);
-  initial_areas_ = signed_areas(g.pattern_triangles, initial_rest_);
+  Reference ref{
+      std::move(objective), std::move(coordinates), g.rest_positions(), VecX(), VecX(), 0.0,
+      std::move(fresh),     std::move(mesh_rest)};
+  ref.initial_parameters = ref.coordinates.parameters(ref.initial_rest);
+  ref.initial_areas = signed_areas(g.pattern_triangles, ref.initial_rest);
   double sum = 0.0;
   int count = 0;
   for (const PatternPiece& piece : g.pattern.pieces)
@@ -61,9 +77,13 @@ void DesignProblem::reset_reference() {
       sum += (piece.rest.row(piece.boundary[k]) -
               piece.rest.row(piece.boundary[(k + 1) % piece.boundary.size()]))
                  .norm();
-  mean_boundary_edge_ = count > 0 ? sum / count : 0.0;
-  accepted_p_ = initial_parameters_;
-  current_p_ = initial_parameters_;
+  ref.mean_boundary_edge = count > 0 ? sum / count : 0.0;
+  return ref;
+}
+
+void DesignProblem::accept_reference() {
+  accepted_p_ = ref_.initial_parameters;
+  current_p_ = ref_.initial_parameters;
   accepted_state_ = sim_.problem().state();
   last_ok_ = false;
   gradient_generation_ = -1;
@@ -82,9 +102,9 @@ std::vector<int> DesignProblem::degraded_pieces() const {
     row += static_cast<int>(piece.rest.rows());
     const PieceQuality q = piece_quality(piece);
     const double h = target_edge_[k];
-    const double angle_floor = std::min(o.min_angle_deg, 0.75 * fresh_[k].min_angle_deg);
+    const double angle_floor = std::min(o.min_angle_deg, 0.75 * ref_.fresh[k].min_angle_deg);
     const double area_floor =
-        std::min(o.min_area_fraction * std::sqrt(3.0) / 4.0 * h * h, 0.75 * fresh_[k].min_area);
+        std::min(o.min_area_fraction * std::sqrt(3.0) / 4.0 * h * h, 0.75 * ref_.fresh[k].min_area);
     if (q.min_area <= 0.0 || q.min_angle_deg < angle_floor || q.min_area < area_floor)
       out.push_back(static_cast<int>(k));
   }
@@ -120,8 +140,8 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
   out.pieces = r.remeshed;
   out.min_angle_before = 180.0;
   out.min_angle_after = 180.0;
-  std::vector<PieceQuality> fresh = fresh_;
-  std::vector<Points2> mesh_rest = mesh_rest_;
+  std::vector<PieceQuality> fresh = ref_.fresh;
+  std::vector<Points2> mesh_rest = ref_.mesh_rest;
   for (int k : r.remeshed) {
     mesh_rest[static_cast<size_t>(k)] = r.garment.pattern.pieces[static_cast<size_t>(k)].rest;
     out.min_angle_before =
@@ -132,56 +152,44 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
         std::min(out.min_angle_after, fresh[static_cast<size_t>(k)].min_angle_deg);
   }
 
-  // Keep everything needed to undo.
-  const std::shared_ptr<const DesignTermSum> old_objective = objective_;
-  const BiharmonicCoordinates old_coordinates = coordinates_;
-  const Points2 old_initial_rest = initial_rest_;
-  const VecX old_initial_parameters = initial_parameters_, old_initial_areas = initial_areas_;
-  const double old_mean_boundary_edge = mean_boundary_edge_;
-  const VecX old_accepted_p = accepted_p_;
-  const long old_accepted_generation = accepted_generation_;
+  // The reference is swapped in only when the remeshed problem solved: a failure puts
+  // the old garment back at the accepted point, which nothing has changed.
   auto undo = [&](const std::string& why) {
     out.ok = false;
     out.failure = why;
     sim_.replace_garment(old_garment, old_state);
-    objective_ = old_objective;
-    coordinates_ = old_coordinates;
-    initial_rest_ = old_initial_rest;
-    initial_parameters_ = old_initial_parameters;
-    initial_areas_ = old_initial_areas;
-    mean_boundary_edge_ = old_mean_boundary_edge;
-    accepted_p_ = old_accepted_p;
-    accepted_state_ = old_state;
     restore_accepted();
     // The next trials start from the factorization at the accepted point, as a run
     // resumed here would: make it again if the failed re-solve replaced it.
+    const long held_generation = accepted_generation_;
     accepted_generation_ = -1;
-    if (old_accepted_generation >= 0) {
-      if (old_accepted_generation != adjoint_.generation()) adjoint_.factorize_held(sim_);
+    if (held_generation >= 0) {
+      if (held_generation != adjoint_.generation()) adjoint_.factorize_held(sim_);
       if (adjoint_.held_factorization()) accepted_generation_ = adjoint_.generation();
     }
     out.seconds = seconds_since(t0);
     return out;
   };
 
+  std::optional<Reference> next;
   try {
     sim_.replace_garment(r.garment, r.state);
-    coordinates_ = BiharmonicCoordinates(sim_.garment().pattern, old_coordinates, r.unchanged);
+    BiharmonicCoordinates coordinates(sim_.garment().pattern, ref_.coordinates, r.unchanged);
     auto objective = make_objective_(sim_);
-    if (!objective || objective->entries().size() != old_objective->entries().size())
+    if (!objective || objective->entries().size() != ref_.objective->entries().size())
       throw std::invalid_argument("the objective factory built other terms after remeshing");
-    objective_ = std::move(objective);
+    next = make_reference(std::move(objective), std::move(coordinates), std::move(fresh),
+                          std::move(mesh_rest));
   } catch (const std::exception& e) {
     // Whatever failed (a rejected pattern, a solver, an objective factory that built
     // other terms): the problem is put back as it was, never left half-remeshed.
     return undo(std::string("remeshing: ") + e.what());
   }
-  reset_reference();
-  out.evaluation = evaluate(initial_parameters_, true);
+  const EmbeddedState start = sim_.problem().state();
+  out.evaluation = evaluate_at(*next, next->initial_parameters, start, nullptr, true);
   if (!out.evaluation.ok) return undo("re-solve after remeshing: " + out.evaluation.failure);
+  ref_ = std::move(*next);
   accept();
-  fresh_ = std::move(fresh);
-  mesh_rest_ = std::move(mesh_rest);
   remeshed_ = true;
   out.ok = true;
   out.parameters_after = num_parameters();
@@ -195,9 +203,9 @@ std::optional<RemeshedDesign> DesignProblem::remeshed_design() const {
   if (!remeshed_) return std::nullopt;
   RemeshedDesign d;
   Garment g = sim_.garment();
-  g.set_rest_positions(initial_rest_);
+  g.set_rest_positions(ref_.initial_rest);
   d.pattern = std::move(g.pattern);
-  d.mesh_rest = mesh_rest_;
+  d.mesh_rest = ref_.mesh_rest;
   return d;
 }
 
@@ -254,7 +262,7 @@ void DesignProblem::restore_remeshed_design(const RemeshedDesign& design,
   }
 
   Garment garment;
-  BiharmonicCoordinates coordinates = coordinates_;
+  BiharmonicCoordinates coordinates = ref_.coordinates;
   try {
     garment = weld_pattern(p);
     coordinates = BiharmonicCoordinates(mesh_pattern);
@@ -275,50 +283,58 @@ void DesignProblem::restore_remeshed_design(const RemeshedDesign& design,
                                  std::to_string(sim_.body().volume.vertices.rows()));
   sim_.replace_garment(std::move(garment), state);
   auto objective = make_objective_(sim_);
-  if (!objective || objective->entries().size() != objective_->entries().size())
+  if (!objective || objective->entries().size() != ref_.objective->entries().size())
     throw std::invalid_argument("the objective factory built other terms for the remeshed pattern");
-  objective_ = std::move(objective);
-  coordinates_ = std::move(coordinates);
-  fresh_ = std::move(fresh);
-  mesh_rest_ = design.mesh_rest;
+  ref_ = make_reference(std::move(objective), std::move(coordinates), std::move(fresh),
+                        design.mesh_rest);
   remeshed_ = true;
-  reset_reference();
+  accept_reference();
 }
 
-Points2 DesignProblem::rest_positions(const VecX& p) const {
-  if (p.size() != num_parameters())
+Points2 DesignProblem::rest_positions(const VecX& p) const { return rest_positions_at(ref_, p); }
+
+Points2 DesignProblem::rest_positions_at(const Reference& ref, const VecX& p) const {
+  if (p.size() != ref.coordinates.num_parameters())
     throw std::invalid_argument("DesignProblem: parameter vector has the wrong length");
-  return initial_rest_ + coordinates_.rest_positions(VecX(p - initial_parameters_));
+  return ref.initial_rest + ref.coordinates.rest_positions(VecX(p - ref.initial_parameters));
 }
 
-double DesignProblem::min_area_ratio(const VecX& p) const {
-  const VecX a = signed_areas(sim_.garment().pattern_triangles, rest_positions(p));
+double DesignProblem::min_area_ratio(const VecX& p) const { return min_area_ratio_at(ref_, p); }
+
+double DesignProblem::min_area_ratio_at(const Reference& ref, const VecX& p) const {
+  const VecX a = signed_areas(sim_.garment().pattern_triangles, rest_positions_at(ref, p));
   double ratio = std::numeric_limits<double>::infinity();
-  for (Eigen::Index t = 0; t < a.size(); ++t) ratio = std::min(ratio, a[t] / initial_areas_[t]);
+  for (Eigen::Index t = 0; t < a.size(); ++t) ratio = std::min(ratio, a[t] / ref.initial_areas[t]);
   return ratio;
 }
 
 DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
+  const SparseCholesky* held =
+      accepted_generation_ == adjoint_.generation() ? adjoint_.held_factorization() : nullptr;
+  return evaluate_at(ref_, p, accepted_state_, held, with_gradient);
+}
+
+DesignEvaluation DesignProblem::evaluate_at(const Reference& ref, const VecX& p,
+                                            const EmbeddedState& start, const SparseCholesky* held,
+                                            bool with_gradient) {
   DesignEvaluation ev;
   last_ok_ = false;
   const auto t0 = Clock::now();
-  const Points2 rest = rest_positions(p);
+  const Points2 rest = rest_positions_at(ref, p);
   if (!p.allFinite()) {
     ev.failure = "the parameters are not finite";
     return ev;
   }
-  if (const double ratio = min_area_ratio(p); ratio < options_.min_area_ratio) {
+  if (const double ratio = min_area_ratio_at(ref, p); ratio < options_.min_area_ratio) {
     ev.failure = "a pattern triangle " + std::string(ratio <= 0.0 ? "flipped" : "degenerated") +
                  " (area ratio " + std::to_string(ratio) + ")";
     return ev;
   }
   current_p_ = p;
   gradient_generation_ = -1;
-  const SparseCholesky* held =
-      accepted_generation_ == adjoint_.generation() ? adjoint_.held_factorization() : nullptr;
   try {
-    sim_.set_state(accepted_state_);
-    const Points3 accepted_positions = sim_.problem().garment_positions();
+    sim_.set_state(start);
+    const Points3 start_positions = sim_.problem().garment_positions();
     sim_.set_rest_positions(rest);
     const NewtonReport report = sim_.solve({held, options_.reuse_factorizations});
     ev.newton_iterations = report.iterations;
@@ -337,7 +353,7 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
       ev.failure = "forward solve: the equilibrium is not finite at " + place;
       return ev;
     }
-    record_equilibrium_move(accepted_positions, ev);
+    record_equilibrium_move(start_positions, ev);
   } catch (const InputError& e) {
     ev.failure = std::string("pattern rejected: ") + e.what();
     return ev;
@@ -350,7 +366,7 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
   const auto t1 = Clock::now();
   const SimulationDesignState ds(sim_);
   try {
-    ev.term_values = objective_->weighted_values(ds.view());
+    ev.term_values = ref.objective->weighted_values(ds.view());
   } catch (const SolverError& e) {
     ev.failure = std::string("design objective: ") + e.what();
     return ev;
@@ -364,7 +380,7 @@ DesignEvaluation DesignProblem::evaluate(const VecX& p, bool with_gradient) {
   }
   ev.ok = true;
   last_ok_ = true;
-  if (with_gradient) add_gradient(ev);
+  if (with_gradient) add_gradient_at(ref, ev);
   return ev;
 }
 
@@ -379,13 +395,15 @@ void DesignProblem::record_equilibrium_move(const Points3& accepted_positions,
   ev.moved_vertex_label = sim_.problem().garment_vertex_label(ev.moved_vertex);
 }
 
-bool DesignProblem::add_gradient(DesignEvaluation& ev) {
+bool DesignProblem::add_gradient(DesignEvaluation& ev) { return add_gradient_at(ref_, ev); }
+
+bool DesignProblem::add_gradient_at(const Reference& ref, DesignEvaluation& ev) {
   if (!last_ok_ || !ev.ok)
     throw std::logic_error("DesignProblem::add_gradient: no successful evaluation to complete");
   const auto t0 = Clock::now();
   try {
-    const AdjointResult r = adjoint_.rest_gradient(sim_, *objective_);
-    ev.gradient = coordinates_.pull_back(r.rest_gradient);
+    const AdjointResult r = adjoint_.rest_gradient(sim_, *ref.objective);
+    ev.gradient = ref.coordinates.pull_back(r.rest_gradient);
     ev.hessian_shift = r.hessian_shift;
     ev.adjoint_residual = r.adjoint_residual;
     ev.adjoint_method = r.method;

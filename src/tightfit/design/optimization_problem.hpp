@@ -29,9 +29,11 @@
 /// (degraded_pieces()), remesh() replaces the garment by a remeshed one with the
 /// embedding transferred, rebuilds the simulation's energies, the objective (through
 /// the ObjectiveFactory: terms hold index sets of one topology) and the biharmonic
-/// coordinates (pieces left unchanged keep theirs), makes the remeshed pattern the new
-/// reference (initial parameters, areas), and solves the equilibrium from the
-/// transferred state. If that solve fails, everything is put back as it was. A remeshed
+/// coordinates (pieces left unchanged keep theirs), builds a new reference from the
+/// remeshed pattern (initial rest positions, parameters and areas, coordinates,
+/// objective, fresh-mesh qualities) and solves the equilibrium from the transferred
+/// state against it. The new reference is swapped in only when all of that succeeded;
+/// otherwise the old garment is put back at the accepted point and nothing else changed. A remeshed
 /// pattern or transferred state holding a NaN or infinity is a SolverError instead
 /// (finite_state.hpp): the run ends there, nothing is changed.
 /// remeshed_design() describes the result for a checkpoint, and restore_remeshed_design()
@@ -126,12 +128,12 @@ class DesignProblem {
 
   GarmentSimulation& simulation() { return sim_; }
   const GarmentSimulation& simulation() const { return sim_; }
-  const DesignTermSum& objective() const { return *objective_; }
+  const DesignTermSum& objective() const { return *ref_.objective; }
   const DesignProblemOptions& options() const { return options_; }
-  const BiharmonicCoordinates& coordinates() const { return coordinates_; }
-  int num_parameters() const { return coordinates_.num_parameters(); }
-  /// p of the garment's rest positions at construction.
-  const VecX& initial_parameters() const { return initial_parameters_; }
+  const BiharmonicCoordinates& coordinates() const { return ref_.coordinates; }
+  int num_parameters() const { return ref_.coordinates.num_parameters(); }
+  /// p of the garment's rest positions at construction (or at the last remeshing).
+  const VecX& initial_parameters() const { return ref_.initial_parameters; }
 
   /// Evaluates T (and dT/dp when `with_gradient`) at p; see the header comment.
   DesignEvaluation evaluate(const VecX& p, bool with_gradient = true);
@@ -163,7 +165,7 @@ class DesignProblem {
   /// Smallest signed rest-area ratio (current / initial) over all triangles at p.
   double min_area_ratio(const VecX& p) const;
   /// Mean length (m) of the initial boundary edges (a natural step scale for p).
-  double mean_boundary_edge() const { return mean_boundary_edge_; }
+  double mean_boundary_edge() const { return ref_.mean_boundary_edge; }
 
   /// True when an objective factory was given (remesh() can rebuild the objective).
   bool can_remesh() const { return static_cast<bool>(make_objective_); }
@@ -200,24 +202,42 @@ class DesignProblem {
   void restore_remeshed_design(const RemeshedDesign& design, const EmbeddedState& state);
 
  private:
-  void reset_reference();  // the garment's current rest shape becomes the reference
+  /// What the design parameters and evaluations refer to, for one garment topology: a
+  /// remesh() builds a new one and swaps it in only when the remeshed problem solved.
+  struct Reference {
+    std::shared_ptr<const DesignTermSum> objective;
+    BiharmonicCoordinates coordinates;
+    Points2 initial_rest;             // n_p×2 (m): Xbar0
+    VecX initial_parameters;          // p0 = the parameters of initial_rest
+    VecX initial_areas;               // signed rest areas of the pattern triangles (m²)
+    double mean_boundary_edge = 0.0;  // m, of initial_rest
+    std::vector<PieceQuality> fresh;  // per piece: quality of its last fresh mesh
+    std::vector<Points2> mesh_rest;   // per piece: rest positions its mesh was made with
+  };
+  /// The reference of the simulation's current garment at its current rest shape.
+  Reference make_reference(std::shared_ptr<const DesignTermSum> objective,
+                           BiharmonicCoordinates coordinates, std::vector<PieceQuality> fresh,
+                           std::vector<Points2> mesh_rest) const;
+  /// Makes the reference's initial point at the simulation's current state the
+  /// accepted point.
+  void accept_reference();
+  /// evaluate() and add_gradient() against `ref`, warm-started from `start` with the
+  /// held factorization `held` (may be null).
+  DesignEvaluation evaluate_at(const Reference& ref, const VecX& p, const EmbeddedState& start,
+                               const SparseCholesky* held, bool with_gradient);
+  bool add_gradient_at(const Reference& ref, DesignEvaluation& ev);
+  Points2 rest_positions_at(const Reference& ref, const VecX& p) const;
+  double min_area_ratio_at(const Reference& ref, const VecX& p) const;
   /// Sets ev's equilibrium_move and moved_vertex* from the simulation's equilibrium.
   void record_equilibrium_move(const Points3& accepted_positions, DesignEvaluation& ev) const;
 
   GarmentSimulation& sim_;
-  std::shared_ptr<const DesignTermSum> objective_;
   DesignProblemOptions options_;
-  BiharmonicCoordinates coordinates_;
   AdjointSolver adjoint_;
-  Points2 initial_rest_;
-  VecX initial_parameters_;
-  VecX initial_areas_;  // signed rest areas of the pattern triangles
-  double mean_boundary_edge_ = 0.0;
   ObjectiveFactory make_objective_;
   std::vector<double> target_edge_;  // per piece (m)
-  std::vector<PieceQuality> fresh_;  // per piece: quality of its last fresh mesh
-  std::vector<Points2> mesh_rest_;   // per piece: rest positions its mesh was made with
-  bool remeshed_ = false;            // a remesh() succeeded (or one was restored)
+  Reference ref_;
+  bool remeshed_ = false;  // a remesh() succeeded (or one was restored)
   VecX accepted_p_;
   EmbeddedState accepted_state_;
   CholeskyOrdering accepted_ordering_;

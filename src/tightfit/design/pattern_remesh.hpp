@@ -4,7 +4,9 @@
 /// As the optimizer moves the boundary points, the biharmonic coordinates drag the
 /// interior along and triangles can degrade (small angles, tiny or inverted elements).
 /// remesh_garment then replaces the meshes of the chosen pieces:
-///  1. Boundary: every piece's boundary loop is cut into units at its break points
+///  1. Boundary (remesh_boundary.hpp, remesh_piece.hpp; the arc-length sampling and edge
+///     counts of garment/boundary_resampling.hpp, as the pattern builder's): every piece's
+///     boundary loop is cut into units at its break points
 ///     (corners, ends of seam sides and of open pinned boundaries). A free unit of a
 ///     remeshed piece is resampled at `edge_length` by even 2D arc length. A seam is
 ///     resampled as a whole in the seam's own index space (side vertex i of a meets
@@ -21,7 +23,8 @@
 ///     old first vertex.
 ///  2. Interior: the new boundary polygon is meshed in 2D by mesh_piece at
 ///     `edge_length` (garment/piece_mesher.hpp, as the layout builder does).
-///  3. Embedding transfer (EmbeddingTransfer): each new vertex's 3D point is
+///  3. Embedding transfer (EmbeddingTransfer, embedding_transfer.hpp): each new vertex's 3D point
+///  is
 ///     interpolated in the old rest mesh from the old equilibrium positions (linearly
 ///     along the old boundary edge for boundary samples, barycentrically in the old
 ///     triangle containing it for interior ones) and projected onto the body's limit
@@ -33,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "tightfit/design/embedding_transfer.hpp"
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/solve/embedded_equilibrium.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
@@ -69,36 +73,6 @@ PieceQuality piece_quality(const PatternPiece& piece);
 
 /// Mean rest edge length of a piece's triangles (m).
 double mean_edge_length(const PatternPiece& piece);
-
-/// Transfers garment vertices of a remeshed pattern onto the limit surface, from the
-/// old garment at an equilibrium. Keeps references to its arguments (keep them alive).
-class EmbeddingTransfer {
- public:
-  /// `old_garment` with its rest positions; `state` its equilibrium (surface points of
-  /// its garment vertices, body positions); `positions` the 3D garment positions at
-  /// that state (n_g × 3, m); `surface` the body's limit surface.
-  EmbeddingTransfer(const Garment& old_garment, const EmbeddedState& state,
-                    const Points3& positions, const LimitSurface& surface);
-
-  /// Surface point of the old pattern vertex `v` (piece-local) of piece `piece`.
-  SurfacePoint at_vertex(int piece, int v) const;
-  /// Surface point at parameter t ∈ [0, 1) along the old edge from local vertex `from`
-  /// to local vertex `to` of `piece` (t = 0: exactly vertex `from`).
-  SurfacePoint on_edge(int piece, int from, int to, double t) const;
-  /// Surface point of the 2D rest point `q` (m) of `piece`, located in the old rest
-  /// mesh (the nearest triangle, with weights of its closest point, when outside).
-  SurfacePoint at_rest_point(int piece, const Vec2& q) const;
-
- private:
-  int garment_vertex(int piece, int v) const;
-  SurfacePoint project(const Vec3& point, int hint_garment_vertex) const;
-
-  const Garment& old_;
-  const EmbeddedState& state_;
-  const Points3& positions_;
-  const LimitSurface& surface_;
-  Points3 control_;
-};
 
 struct PatternRemeshResult {
   Garment garment;            ///< the new garment, welded, with its embedding

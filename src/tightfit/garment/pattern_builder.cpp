@@ -12,8 +12,10 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/mesh_budget.hpp"
 #include "tightfit/common/planar.hpp"
+#include "tightfit/garment/boundary_resampling.hpp"
 #include "tightfit/garment/piece_mesher.hpp"
 #include "tightfit/garment/triangle_geometry.hpp"
+#include "tightfit/garment/triangle_locator.hpp"
 #include "tightfit/geometry/surface_topology.hpp"
 
 namespace tightfit {
@@ -102,111 +104,27 @@ Vec2 grain_direction(const LayoutPanel& panel, const Points2& flat, const Patter
   return d;
 }
 
-/// Point location in the flattened panel.
-class FlatLocator {
- public:
-  FlatLocator(const TriMesh& mesh, const Points2& flat) : mesh_(mesh), flat_(flat) {
-    box_.setEmpty();
-    for (Eigen::Index i = 0; i < flat.rows(); ++i) box_.extend(flat.row(i).transpose());
-    const int nf = mesh.num_faces();
-    cells_ = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(nf))));
-    grid_.assign(static_cast<size_t>(cells_ * cells_), {});
-    for (int f = 0; f < nf; ++f) {
-      Eigen::AlignedBox2d b;
-      for (int c = 0; c < 3; ++c) b.extend(flat.row(mesh.faces(f, c)).transpose());
-      const auto lo = cell(b.min()), hi = cell(b.max());
-      for (int i = lo.first; i <= hi.first; ++i)
-        for (int j = lo.second; j <= hi.second; ++j)
-          grid_[static_cast<size_t>(i * cells_ + j)].push_back(f);
-    }
-  }
-
-  PanelPoint locate(const Vec2& q) const {
-    if (box_.contains(q)) {
-      const auto c = cell(q);
-      for (int f : grid_[static_cast<size_t>(c.first * cells_ + c.second)]) {
-        const Vec3 w = weights(f, q);
-        if (w.minCoeff() >= -1e-12) return {f, w};
-      }
-    }
-    // Outside the flat panel: the nearest face, weights extrapolated linearly.
-    int best = 0;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (int f = 0; f < mesh_.num_faces(); ++f) {
-      const Vec2 a = flat_.row(mesh_.faces(f, 0)), b = flat_.row(mesh_.faces(f, 1)),
-                 c = flat_.row(mesh_.faces(f, 2));
-      const Vec3 w = closest_point_weights_2d(q, a, b, c);
-      const double d = (w[0] * a + w[1] * b + w[2] * c - q).squaredNorm();
-      if (d < best_d) {
-        best_d = d;
-        best = f;
-      }
-    }
-    return {best, weights(best, q)};
-  }
-
- private:
-  std::pair<int, int> cell(const Vec2& q) const {
-    const Vec2 s =
-        (q - box_.min()).cwiseQuotient((box_.max() - box_.min()).cwiseMax(1e-300)) * cells_;
-    return {std::clamp(static_cast<int>(s.x()), 0, cells_ - 1),
-            std::clamp(static_cast<int>(s.y()), 0, cells_ - 1)};
-  }
-  Vec3 weights(int f, const Vec2& q) const {
-    return barycentric_2d(q, flat_.row(mesh_.faces(f, 0)), flat_.row(mesh_.faces(f, 1)),
-                          flat_.row(mesh_.faces(f, 2)));
-  }
-
-  const TriMesh& mesh_;
-  const Points2& flat_;
-  Eigen::AlignedBox2d box_;
-  int cells_ = 1;
-  std::vector<std::vector<int>> grid_;
-};
-
-/// One boundary sample of a panel: on boundary edge `edge` of the loop at parameter t.
-struct BoundarySample {
-  int edge = 0;
-  double t = 0.0;
-};
-
-/// Samples at 3D arc-length fractions k/n, k = 0..n−1, of a segment.
-std::vector<BoundarySample> sample_segment(const LayoutPanel& panel, const BoundarySegment& s,
-                                           int n) {
-  std::vector<double> cum(1, 0.0);
-  for (int e = 0; e < s.count; ++e)
-    cum.push_back(cum.back() + (panel.mesh.vertices.row(loop_vertex(panel, s.first + e + 1)) -
-                                panel.mesh.vertices.row(loop_vertex(panel, s.first + e)))
-                                   .norm());
-  std::vector<BoundarySample> out;
-  int e = 0;
-  for (int k = 0; k < n; ++k) {
-    const double target = cum.back() * k / n;
-    while (e + 1 < s.count && cum[e + 1] <= target) ++e;
-    const double len = cum[e + 1] - cum[e];
-    out.push_back({s.first + e, len > 0 ? std::clamp((target - cum[e]) / len, 0.0, 1.0) : 0.0});
-  }
-  return out;
+/// Where a point of the flattened panel (flat coordinates, m) lies on the panel: the
+/// triangle containing it, or outside the flat panel the nearest one with weights
+/// extrapolated linearly.
+PanelPoint locate_flat(const TriangleLocator& locator, const Vec2& q) {
+  int f = locator.containing(q);
+  if (f < 0) f = locator.nearest(q);
+  return {f, locator.weights(f, q)};
 }
 
-/// Samples at 3D arc-length fractions k/n, k = 0..n−1, of a closed loop starting at
-/// loop[0]; sample edge e runs from loop[e] to loop[(e + 1) % size].
-std::vector<BoundarySample> sample_closed_loop(const TriMesh& mesh, const std::vector<int>& loop,
-                                               int n) {
-  const int m = static_cast<int>(loop.size());
-  std::vector<double> cum(1, 0.0);
-  for (int e = 0; e < m; ++e)
-    cum.push_back(cum.back() +
-                  (mesh.vertices.row(loop[(e + 1) % m]) - mesh.vertices.row(loop[e])).norm());
-  std::vector<BoundarySample> out;
-  int e = 0;
-  for (int k = 0; k < n; ++k) {
-    const double target = cum.back() * k / n;
-    while (e + 1 < m && cum[e + 1] <= target) ++e;
-    const double len = cum[e + 1] - cum[e];
-    out.push_back({e, len > 0 ? std::clamp((target - cum[e]) / len, 0.0, 1.0) : 0.0});
-  }
-  return out;
+/// Loop positions first … first + count of a run as panel vertex indices.
+std::vector<int> run_path(const LayoutPanel& panel, const BoundarySegment& s) {
+  std::vector<int> path;
+  for (int e = 0; e <= s.count; ++e) path.push_back(loop_vertex(panel, s.first + e));
+  return path;
+}
+
+/// A closed loop of panel vertices as a path back to its start.
+std::vector<int> closed_path(const std::vector<int>& loop) {
+  std::vector<int> path = loop;
+  path.push_back(loop.front());
+  return path;
 }
 
 /// Length (m) of a closed loop of flattened vertices after the piece's linear map.
@@ -324,30 +242,22 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
             s.first += i;
             break;
           }
-      BoundarySegment r = s;
-      r.count = 0;
-      for (int e = 0; e < s.count; ++e) {
-        ++r.count;
-        if (e + 1 < s.count && sharp(s.first + e + 1)) {
-          runs[p].push_back(r);
-          r.first = s.first + e + 1;
-          r.count = 0;
-        }
+      for (const LoopRun& r : cut_run({s.first, s.count}, sharp)) {
+        BoundarySegment run = s;
+        run.first = r.first;
+        run.count = r.count;
+        runs[p].push_back(run);
       }
-      runs[p].push_back(r);
     }
   }
 
   // Vertex counts per run (edges): seams shared by both sides.
   std::vector<std::vector<int>> count(np);
-  auto min_count = [&](int p) {
-    const size_t k = runs[p].size();
-    return k == 1 ? 3 : (k == 2 ? 2 : 1);
-  };
+  auto min_count = [&](int p) { return min_edge_count(static_cast<int>(runs[p].size())); };
   for (int p = 0; p < np; ++p)
     for (const BoundarySegment& r : runs[p]) {
       const double len = flat_length(layout.panels[p], r, out.maps[p].flat, out.maps[p].linear);
-      count[p].push_back(std::max(min_count(p), static_cast<int>(std::lround(len / h))));
+      count[p].push_back(edge_count(len, h, min_count(p)));
     }
   for (size_t k = 0; k < layout.seams.size(); ++k) {
     const LayoutSeam& seam = layout.seams[k];
@@ -357,8 +267,7 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
                                   out.maps[seam.panel_a].flat, out.maps[seam.panel_a].linear);
     const double lb = flat_length(layout.panels[seam.panel_b], runs[seam.panel_b][rb],
                                   out.maps[seam.panel_b].flat, out.maps[seam.panel_b].linear);
-    const int n = std::max({min_count(seam.panel_a), min_count(seam.panel_b),
-                            static_cast<int>(std::lround(0.5 * (la + lb) / h))});
+    const int n = seam_edge_count(la, lb, h, min_count(seam.panel_a), min_count(seam.panel_b));
     count[seam.panel_a][ra] = count[seam.panel_b][rb] = n;
     out.seams[k].vertices = n + 1;
   }
@@ -384,15 +293,16 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
       boundary_points.push_back(map.linear * q + map.offset);
     };
     auto polygon_of = [&](size_t from) {
-      Points2 polygon(static_cast<Eigen::Index>(boundary_points.size() - from), 2);
-      for (size_t i = from; i < boundary_points.size(); ++i)
-        polygon.row(static_cast<Eigen::Index>(i - from)) = boundary_points[i].transpose();
-      return polygon;
+      return polygon_rows(std::vector<Vec2>(
+          boundary_points.begin() + static_cast<std::ptrdiff_t>(from), boundary_points.end()));
     };
     for (size_t ri = 0; ri < runs[p].size(); ++ri) {
       run_start[p].push_back(static_cast<int>(boundary_points.size()));
-      for (const BoundarySample& b : sample_segment(panel, runs[p][ri], count[p][ri]))
-        add_sample(loop_vertex(panel, b.edge), loop_vertex(panel, b.edge + 1), b.t);
+      const BoundarySegment& run = runs[p][ri];
+      for (const ArcPoint& b :
+           sample_arc(cumulative_lengths(panel.mesh.vertices, run_path(panel, run)), count[p][ri]))
+        add_sample(loop_vertex(panel, run.first + b.edge),
+                   loop_vertex(panel, run.first + b.edge + 1), b.t);
     }
     const Points2 polygon = polygon_of(0);
     // Openings: each hole loop resampled as one closed run at the edge length.
@@ -400,11 +310,12 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     std::vector<std::vector<int>> hole_vertices;
     for (const PanelHole& hole : panel.holes) {
       const size_t from = boundary_points.size();
-      const int n_hole = std::max(
-          3, static_cast<int>(std::lround(flat_loop_length(hole.loop, map.flat, map.linear) / h)));
+      const int n_hole =
+          edge_count(flat_loop_length(hole.loop, map.flat, map.linear), h, min_edge_count(1));
       const int m = static_cast<int>(hole.loop.size());
-      for (const BoundarySample& b : sample_closed_loop(panel.mesh, hole.loop, n_hole))
-        add_sample(hole.loop[b.edge], hole.loop[(b.edge + 1) % m], b.t);
+      for (const ArcPoint& b :
+           sample_arc(cumulative_lengths(panel.mesh.vertices, closed_path(hole.loop)), n_hole))
+        add_sample(hole.loop[b.edge % m], hole.loop[(b.edge + 1) % m], b.t);
       hole_polygons.push_back(polygon_of(from));
       std::vector<int> vertices(static_cast<size_t>(n_hole));
       for (int k = 0; k < n_hole; ++k)
@@ -428,11 +339,11 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     if (runs[p].size() > 1 || runs[p][0].seam >= 0) piece.corners = run_start[p];
     piece.grain = Vec2::UnitY();
     map.location = boundary_location;
-    const FlatLocator locator(panel.mesh, map.flat);
+    const TriangleLocator locator(panel.mesh.faces, map.flat);
     const Mat2 inverse = map.linear.inverse();
     for (Eigen::Index v = nb; v < piece.rest.rows(); ++v)
       map.location.push_back(
-          locator.locate(inverse * (piece.rest.row(v).transpose() - map.offset)));
+          locate_flat(locator, inverse * (piece.rest.row(v).transpose() - map.offset)));
     out.pattern.pieces.push_back(std::move(piece));
   }
 
@@ -482,8 +393,8 @@ Vec3 panel_position(const Layout& layout, const PieceMap& map, const PanelPoint&
 }
 
 PanelPoint locate_in_panel(const Layout& layout, const PieceMap& map, const Vec2& piece_point) {
-  const FlatLocator locator(layout.panels[map.panel].mesh, map.flat);
-  return locator.locate(map.linear.inverse() * (piece_point - map.offset));
+  const TriangleLocator locator(layout.panels[map.panel].mesh.faces, map.flat);
+  return locate_flat(locator, map.linear.inverse() * (piece_point - map.offset));
 }
 
 Vec3 piece_to_panel(const Layout& layout, const PieceMap& map, const Vec2& piece_point) {
