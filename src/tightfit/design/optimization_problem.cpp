@@ -10,11 +10,10 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/planar.hpp"
 #include "tightfit/common/stopwatch.hpp"
+#include "tightfit/garment/pattern_record.hpp"
 
 namespace tightfit {
 namespace {
-
-using Clock = SteadyClock;
 
 /// Per piece: the quality of its mesh as it is.
 std::vector<PieceQuality> fresh_qualities(const Pattern& pattern) {
@@ -113,7 +112,7 @@ std::vector<int> DesignProblem::degraded_pieces() const {
 
 RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
   if (!make_objective_) throw std::logic_error("DesignProblem::remesh: no objective factory");
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   RemeshOutcome out;
   restore_accepted();
   const Garment old_garment = sim_.garment();
@@ -216,36 +215,7 @@ void DesignProblem::restore_remeshed_design(const RemeshedDesign& design,
   const std::string source = "checkpoint";
   const Pattern& scene = sim_.garment().pattern;
   const Pattern& p = design.pattern;
-  auto mismatch = [&](const std::string& path, const std::string& what) {
-    throw InputError(
-        source, "/remeshed/pattern/" + path + ": " + what + " (a checkpoint of another garment?)");
-  };
-  if (p.pieces.size() != scene.pieces.size())
-    mismatch("pieces", std::to_string(p.pieces.size()) + " pieces, the scene's garment has " +
-                           std::to_string(scene.pieces.size()));
-  for (size_t k = 0; k < p.pieces.size(); ++k)
-    if (p.pieces[k].name != scene.pieces[k].name)
-      mismatch(
-          "pieces/" + std::to_string(k) + "/name",
-          "\"" + p.pieces[k].name + "\", the scene's piece is \"" + scene.pieces[k].name + "\"");
-  if (p.seams.size() != scene.seams.size())
-    mismatch("seams", std::to_string(p.seams.size()) + " seams, the scene's garment has " +
-                          std::to_string(scene.seams.size()));
-  for (size_t k = 0; k < p.seams.size(); ++k)
-    if (p.seams[k].name != scene.seams[k].name || p.seams[k].a.piece != scene.seams[k].a.piece ||
-        p.seams[k].b.piece != scene.seams[k].b.piece)
-      mismatch("seams/" + std::to_string(k), "seam \"" + p.seams[k].name +
-                                                 "\" differs from the scene's \"" +
-                                                 scene.seams[k].name + "\" (name or pieces)");
-  if (p.pinned.size() != scene.pinned.size())
-    mismatch("pinned", std::to_string(p.pinned.size()) +
-                           " pinned boundaries, the scene's garment has " +
-                           std::to_string(scene.pinned.size()));
-  for (size_t k = 0; k < p.pinned.size(); ++k)
-    if (p.pinned[k].name != scene.pinned[k].name || p.pinned[k].piece != scene.pinned[k].piece)
-      mismatch("pinned/" + std::to_string(k), "pinned boundary \"" + p.pinned[k].name +
-                                                  "\" differs from the scene's \"" +
-                                                  scene.pinned[k].name + "\" (name or piece)");
+  check_saved_pattern(p, scene, source, "/remeshed/pattern", " (a checkpoint of another garment?)");
   if (design.mesh_rest.size() != p.pieces.size())
     throw InputError(source, "/remeshed/mesh_rest: " + std::to_string(design.mesh_rest.size()) +
                                  " pieces, the pattern has " + std::to_string(p.pieces.size()));
@@ -319,7 +289,7 @@ DesignEvaluation DesignProblem::evaluate_at(const Reference& ref, const VecX& p,
                                             bool with_gradient) {
   DesignEvaluation ev;
   last_ok_ = false;
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   const Points2 rest = rest_positions_at(ref, p);
   if (!p.allFinite()) {
     ev.failure = "the parameters are not finite";
@@ -363,7 +333,7 @@ DesignEvaluation DesignProblem::evaluate_at(const Reference& ref, const VecX& p,
   }
   ev.seconds_forward = seconds_since(t0);
 
-  const auto t1 = Clock::now();
+  const auto t1 = SteadyClock::now();
   const SimulationDesignState ds(sim_);
   try {
     ev.term_values = ref.objective->weighted_values(ds.view());
@@ -400,7 +370,7 @@ bool DesignProblem::add_gradient(DesignEvaluation& ev) { return add_gradient_at(
 bool DesignProblem::add_gradient_at(const Reference& ref, DesignEvaluation& ev) {
   if (!last_ok_ || !ev.ok)
     throw std::logic_error("DesignProblem::add_gradient: no successful evaluation to complete");
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   try {
     const AdjointResult r = adjoint_.rest_gradient(sim_, *ref.objective);
     ev.gradient = ref.coordinates.pull_back(r.rest_gradient);

@@ -16,6 +16,7 @@
 #include "tightfit/garment/piece_mesher.hpp"
 #include "tightfit/garment/triangle_geometry.hpp"
 #include "tightfit/garment/triangle_locator.hpp"
+#include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/surface_topology.hpp"
 
 namespace tightfit {
@@ -71,13 +72,13 @@ Vec2 grain_direction(const LayoutPanel& panel, const Points2& flat, const Patter
                  p2 = m.vertices.row(m.faces(f, 2));
       Eigen::Matrix<double, 3, 2> E;
       E << p1 - p0, p2 - p0;
-      const double area2 = (p1 - p0).cross(p2 - p0).norm();
-      if (area2 <= 0) continue;
+      const double area = triangle_area(p0, p1, p2);
+      if (area <= 0) continue;
       // Tangential part of the grain in edge coordinates, mapped to the flat triangle.
       const Vec2 ab = (E.transpose() * E).ldlt().solve(E.transpose() * *options.grain);
       const Vec2 q0 = flat.row(m.faces(f, 0)), q1 = flat.row(m.faces(f, 1)),
                  q2 = flat.row(m.faces(f, 2));
-      sum += 0.5 * area2 * (ab.x() * (q1 - q0) + ab.y() * (q2 - q0));
+      sum += area * (ab.x() * (q1 - q0) + ab.y() * (q2 - q0));
     }
     if (sum.norm() > 0) return sum.normalized();
     // The grain is normal to the whole panel: fall back to the principal axis.
