@@ -28,15 +28,8 @@ using TermFactory = std::function<std::shared_ptr<const DesignTerm>(const Garmen
 
 /// A sphere of radius 0.06 m about the sleeve's middle, sampled at about 5 mm.
 ImlsSurface sphere_target() {
-  const int m = 2000;
-  Points3 points(m, 3), normals(m, 3);
-  for (int k = 0; k < m; ++k) {
-    const double z = 1.0 - 2.0 * (k + 0.5) / m, phi = k * 2.399963229728653;
-    const Vec3 d(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
-    points.row(k) = (Vec3(0, 0, 0.05) + 0.06 * d).transpose();
-    normals.row(k) = d.transpose();
-  }
-  return ImlsSurface(points, normals, 0.008);
+  const test::OrientedPoints sphere = test::fibonacci_sphere(Vec3(0, 0, 0.05), 0.06, 2000);
+  return ImlsSurface(sphere.points, sphere.normals, 0.008);
 }
 
 const std::vector<std::pair<std::string, TermFactory>> kTerms = {

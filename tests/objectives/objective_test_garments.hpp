@@ -46,6 +46,24 @@ inline GarmentState sleeve(int nx, int ny, double r, double w, double h, double 
   return s;
 }
 
+/// Points with unit outward normals on a sphere (m points, about evenly spread: the
+/// Fibonacci lattice), e.g. the sample of a shape target.
+struct OrientedPoints {
+  Points3 points;
+  Points3 normals;
+};
+
+inline OrientedPoints fibonacci_sphere(const Vec3& centre, double radius, int m) {
+  OrientedPoints out{Points3(m, 3), Points3(m, 3)};
+  for (int k = 0; k < m; ++k) {
+    const double z = 1.0 - 2.0 * (k + 0.5) / m, phi = k * 2.399963229728653;
+    const Vec3 d(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
+    out.points.row(k) = (centre + radius * d).transpose();
+    out.normals.row(k) = d.transpose();
+  }
+  return out;
+}
+
 /// x moved by up to `amount` (m) per coordinate, reproducibly.
 inline VecX perturb(const VecX& x, double amount, unsigned seed) {
   return x + amount * random_vector(x.size(), seed);

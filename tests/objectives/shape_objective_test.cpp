@@ -134,14 +134,10 @@ TEST(ShapeObjective, ValueAndGradientOnASleeve) {
   // Sleeve of radius 0.05 against a sphere of radius 0.06 centred at the sleeve's middle:
   // some vertices within the cut-off, some in the fallback.
   test::GarmentState s = test::sleeve(13, 6, 0.05, 0.3, 0.1, 0.2, 2);
-  const int m = 2000;  // Fibonacci sphere, spacing about 5 mm
-  Points3 pts(m, 3), nrm(m, 3);
-  for (int k = 0; k < m; ++k) {
-    const double z = 1.0 - 2.0 * (k + 0.5) / m, phi = k * 2.399963229728653;
-    const Vec3 d(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
-    pts.row(k) = (Vec3(0, 0, 0.05) + 0.06 * d).transpose();
-    nrm.row(k) = d.transpose();
-  }
+  const test::OrientedPoints sphere =
+      test::fibonacci_sphere(Vec3(0, 0, 0.05), 0.06, 2000);  // spacing about 5 mm
+  const Points3& pts = sphere.points;
+  const Points3& nrm = sphere.normals;
   const ShapeObjective t(ImlsSurface(pts, nrm, 0.008), s.garment.num_garment_vertices);
   const VecX x = test::perturb(s.x, 0.003, 1);
   const Points2 rest = s.garment.rest_positions();
