@@ -21,10 +21,10 @@
 #include "tightfit/common/parallel.hpp"
 #include "tightfit/common/sparse_cholesky.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
-#include "tightfit/design/regularizer_edge_lengths.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/io/optimization_setup.hpp"
 #include "tightfit/io/scene_loader.hpp"
+#include "tightfit/objectives/regularizer_edge_lengths.hpp"
 #include "tightfit/objectives/shape_objective.hpp"
 #include "tightfit/objectives/stretch_objective.hpp"
 

@@ -10,7 +10,7 @@
 #include "tightfit/design/adjoint_check.hpp"
 #include "tightfit/design/adjoint_gradient.hpp"
 #include "tightfit/design/optimization_problem.hpp"
-#include "tightfit/design/regularizer_corner_angle.hpp"
+#include "tightfit/objectives/regularizer_corner_angle.hpp"
 
 namespace tightfit {
 namespace {

@@ -8,11 +8,11 @@
 
 #include "tightfit/body/body_builder.hpp"
 #include "tightfit/body/generators.hpp"
-#include "tightfit/design/design_term.hpp"
-#include "tightfit/design/regularizer_compactness.hpp"
-#include "tightfit/design/regularizer_edge_lengths.hpp"
-#include "tightfit/design/regularizer_smoothness.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
+#include "tightfit/objectives/design_term.hpp"
+#include "tightfit/objectives/regularizer_compactness.hpp"
+#include "tightfit/objectives/regularizer_edge_lengths.hpp"
+#include "tightfit/objectives/regularizer_smoothness.hpp"
 #include "tightfit/physics/cloth_energy.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 

@@ -7,8 +7,8 @@
 
 #include "support/finite_difference.hpp"
 #include "support/test_pieces.hpp"
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
 
 namespace tightfit::test {
 

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "support/finite_difference.hpp"
-#include "tightfit/design/design_term.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/physics/assembly.hpp"
 #include "tightfit/physics/rest_dependent_energy.hpp"
 

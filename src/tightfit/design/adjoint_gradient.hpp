@@ -48,7 +48,7 @@
 
 #include "tightfit/common/preconditioned_gmres.hpp"
 #include "tightfit/common/sparse_cholesky.hpp"
-#include "tightfit/design/design_term.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit {

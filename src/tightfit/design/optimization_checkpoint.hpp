@@ -25,8 +25,8 @@
 #include <string>
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/design/optimization_state.hpp"
+#include "tightfit/objectives/design_term.hpp"
 
 namespace tightfit {
 

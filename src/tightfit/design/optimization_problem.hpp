@@ -46,9 +46,9 @@
 
 #include "tightfit/design/adjoint_gradient.hpp"
 #include "tightfit/design/biharmonic_coordinates.hpp"
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/design/optimization_state.hpp"
 #include "tightfit/design/pattern_remesh.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit {

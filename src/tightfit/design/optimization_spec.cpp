@@ -1,7 +1,7 @@
 #include "tightfit/design/optimization_spec.hpp"
 
 #include "tightfit/common/json_fields.hpp"
-#include "tightfit/design/pressure_region.hpp"
+#include "tightfit/objectives/pressure_region.hpp"
 
 namespace tightfit {
 namespace {

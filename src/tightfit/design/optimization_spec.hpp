@@ -60,8 +60,8 @@
 #include "tightfit/body/skinning.hpp"
 #include "tightfit/design/optimization_problem.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
-#include "tightfit/design/pressure_region.hpp"
-#include "tightfit/design/regularizer_compactness.hpp"
+#include "tightfit/objectives/pressure_region.hpp"
+#include "tightfit/objectives/regularizer_compactness.hpp"
 
 namespace tightfit {
 

@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/design/optimization_spec.hpp"
 #include "tightfit/io/scene_spec.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/objectives/imls_surface.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "tightfit/body/skin_weights.hpp"
-#include "tightfit/design/pressure_region.hpp"
 #include "tightfit/io/fit_view.hpp"
+#include "tightfit/objectives/pressure_region.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit {

@@ -38,13 +38,13 @@
 
 #include "tightfit/body/body_spec.hpp"
 #include "tightfit/body/skin_weights.hpp"
-#include "tightfit/design/pressure_region.hpp"
 #include "tightfit/garment/layout_spec.hpp"
 #include "tightfit/garment/measurement_levels.hpp"
 #include "tightfit/garment/pattern_options.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/io/pattern_export_spec.hpp"
 #include "tightfit/io/scene_poses.hpp"
+#include "tightfit/objectives/pressure_region.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/objectives/posed_garment.hpp"
 
 namespace tightfit {

@@ -15,8 +15,8 @@
 /// m². pen is C¹, so T is C¹ in x and Xbar; depends on both.
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/objectives/stretch_objective.hpp"
 
 namespace tightfit {

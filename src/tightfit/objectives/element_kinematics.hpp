@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
+#include "tightfit/objectives/design_term.hpp"
 
 namespace tightfit {
 

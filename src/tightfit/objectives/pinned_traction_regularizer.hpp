@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/physics/rest_dependent_energy.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"

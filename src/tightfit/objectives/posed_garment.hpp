@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tightfit/body/skinning.hpp"
-#include "tightfit/design/design_term.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
 namespace tightfit {

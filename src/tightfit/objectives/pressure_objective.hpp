@@ -28,8 +28,8 @@
 #include <array>
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/objectives/pressure_regions.hpp"
 #include "tightfit/physics/relaxed_stvk.hpp"
 

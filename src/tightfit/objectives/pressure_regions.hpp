@@ -24,10 +24,10 @@
 
 #include "tightfit/body/skin_weights.hpp"
 #include "tightfit/common/types.hpp"
-#include "tightfit/design/pressure_region.hpp"
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/autodiff.hpp"
 #include "tightfit/objectives/point_field.hpp"
+#include "tightfit/objectives/pressure_region.hpp"
 
 namespace tightfit {
 

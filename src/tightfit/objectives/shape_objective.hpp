@@ -6,8 +6,8 @@
 /// over a set V of garment vertices (all by default). Depends on x only.
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/objectives/imls_surface.hpp"
 
 namespace tightfit {

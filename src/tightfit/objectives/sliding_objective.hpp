@@ -28,8 +28,8 @@
 #include <vector>
 
 #include "tightfit/body/skinning.hpp"
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
 #include "tightfit/objectives/posed_garment.hpp"
 #include "tightfit/physics/rest_dependent_energy.hpp"
 #include "tightfit/solve/garment_simulation.hpp"

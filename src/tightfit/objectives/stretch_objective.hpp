@@ -18,8 +18,8 @@
 /// and Xbar (through F and A_e).
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
 
 namespace tightfit {
 

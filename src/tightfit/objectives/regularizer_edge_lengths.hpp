@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
 
 namespace tightfit {
 

@@ -16,8 +16,8 @@
 /// array). Independent of the garment positions x.
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
 
 namespace tightfit {
 

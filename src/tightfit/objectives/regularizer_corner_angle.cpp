@@ -1,4 +1,4 @@
-#include "tightfit/design/regularizer_corner_angle.hpp"
+#include "tightfit/objectives/regularizer_corner_angle.hpp"
 
 #include <cmath>
 #include <limits>
@@ -8,7 +8,7 @@
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/planar.hpp"
-#include "tightfit/design/rest_term_checks.hpp"
+#include "tightfit/objectives/rest_term_checks.hpp"
 
 namespace tightfit {
 namespace {

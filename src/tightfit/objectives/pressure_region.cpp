@@ -1,4 +1,4 @@
-#include "tightfit/design/pressure_region.hpp"
+#include "tightfit/objectives/pressure_region.hpp"
 
 namespace tightfit {
 

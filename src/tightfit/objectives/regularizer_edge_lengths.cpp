@@ -1,11 +1,11 @@
-#include "tightfit/design/regularizer_edge_lengths.hpp"
+#include "tightfit/objectives/regularizer_edge_lengths.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-#include "tightfit/design/rest_term_checks.hpp"
+#include "tightfit/objectives/rest_term_checks.hpp"
 
 namespace tightfit {
 namespace {

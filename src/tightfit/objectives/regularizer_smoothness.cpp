@@ -1,4 +1,4 @@
-#include "tightfit/design/regularizer_smoothness.hpp"
+#include "tightfit/objectives/regularizer_smoothness.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -7,7 +7,7 @@
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/planar.hpp"
-#include "tightfit/design/rest_term_checks.hpp"
+#include "tightfit/objectives/rest_term_checks.hpp"
 
 namespace tightfit {
 namespace {

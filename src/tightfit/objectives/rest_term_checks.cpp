@@ -1,4 +1,4 @@
-#include "tightfit/design/rest_term_checks.hpp"
+#include "tightfit/objectives/rest_term_checks.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -20,8 +20,8 @@
 #include <array>
 #include <vector>
 
-#include "tightfit/design/design_term.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
 
 namespace tightfit {
 

@@ -7,12 +7,12 @@
 
 #include "support/finite_difference.hpp"
 #include "tightfit/common/error.hpp"
-#include "tightfit/design/design_term.hpp"
-#include "tightfit/design/regularizer_compactness.hpp"
-#include "tightfit/design/regularizer_corner_angle.hpp"
-#include "tightfit/design/regularizer_edge_lengths.hpp"
-#include "tightfit/design/regularizer_smoothness.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/objectives/design_term.hpp"
+#include "tightfit/objectives/regularizer_compactness.hpp"
+#include "tightfit/objectives/regularizer_corner_angle.hpp"
+#include "tightfit/objectives/regularizer_edge_lengths.hpp"
+#include "tightfit/objectives/regularizer_smoothness.hpp"
 
 namespace tightfit {
 namespace {

@@ -1,10 +1,10 @@
-#include "tightfit/design/regularizer_compactness.hpp"
+#include "tightfit/objectives/regularizer_compactness.hpp"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "tightfit/design/rest_term_checks.hpp"
+#include "tightfit/objectives/rest_term_checks.hpp"
 
 namespace tightfit {
 namespace {
