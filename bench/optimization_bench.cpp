@@ -136,7 +136,8 @@ void report(benchmark::State& state, DesignProblem& problem, const PatternOptimi
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double d = std::max(1, n);
   state.counters["threads"] = thread_count();
-  state.counters["garment_triangles"] = static_cast<double>(sim.garment().garment_triangles.rows());
+  state.counters["garment_triangles"] =
+      static_cast<double>(sim.garment().topology->garment_triangles.rows());
   state.counters["body_tets"] = static_cast<double>(sim.body().volume.num_tets());
   state.counters["dofs"] = static_cast<double>(sim.problem().num_dofs());
   state.counters["parameters"] = problem.num_parameters();
@@ -214,7 +215,7 @@ void BM_OptimizeSoftSleeveShape(benchmark::State& state) {
     GarmentSimulation& sim = *scene->sim;
     auto objective = std::make_shared<DesignTermSum>();
     objective->add(
-        std::make_shared<ShapeObjective>(tapered_target(), sim.garment().num_garment_vertices),
+        std::make_shared<ShapeObjective>(tapered_target(), sim.garment().num_garment_vertices()),
         1.0);
     objective->add(
         std::make_shared<EdgeLengthDifferenceTerm>(seam_length_regularizer(sim.garment())), 1.0);

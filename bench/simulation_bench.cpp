@@ -48,7 +48,8 @@ void report(benchmark::State& state, const SleeveScene& s, const NewtonReport& r
     solve += it.seconds_solve;
   }
   const double n = std::max<double>(1.0, static_cast<double>(r.history.size()));
-  state.counters["garment_triangles"] = static_cast<double>(s.garment.garment_triangles.rows());
+  state.counters["garment_triangles"] =
+      static_cast<double>(s.garment.topology->garment_triangles.rows());
   state.counters["body_tets"] = s.body.volume.num_tets();
   state.counters["newton_iterations"] = r.iterations;
   state.counters["assembly_s_per_it"] = assembly / n;

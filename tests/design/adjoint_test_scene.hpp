@@ -91,23 +91,20 @@ class TargetPositionTerm : public DesignTerm {
 class ClothEnergyTerm : public DesignTerm {
  public:
   explicit ClothEnergyTerm(const Garment& g, ClothMaterial material = {})
-      : energy_(g.pattern_triangles, g.rest_positions(), g.pattern_to_garment,
-                g.num_garment_vertices, material) {}
+      : topology_(g.topology), material_(material) {}
   std::string name() const override { return "cloth energy"; }
   double value(const DesignState& s) const override { return at(s).value(s.x); }
   void add_gradient(const DesignState& s, VecX& d_x, VecX& d_rest) const override {
-    const ClothEnergy& e = at(s);
+    const ClothEnergy e = at(s);
     e.add_gradient(s.x, d_x);
     e.add_gradient_rest(s.x, d_rest);
   }
   bool depends_on_positions() const override { return true; }
 
  private:
-  const ClothEnergy& at(const DesignState& s) const {
-    energy_.set_rest(s.rest);
-    return energy_;
-  }
-  mutable ClothEnergy energy_;
+  ClothEnergy at(const DesignState& s) const { return ClothEnergy(topology_, s.rest, material_); }
+  std::shared_ptr<const GarmentTopology> topology_;
+  ClothMaterial material_;
 };
 
 /// Targets: the current garment positions turned by `angle` (rad) about the z axis and

@@ -30,7 +30,7 @@ class DipTerm : public DesignTerm {
       : top_(top), depth_(depth), width_(width) {
     for (const PinnedBoundary& pin : g.pattern.pinned)
       if (pin.name == ring)
-        for (int v : pin.vertices) vertices_.push_back(g.piece_offset[pin.piece] + v);
+        for (int v : pin.vertices) vertices_.push_back(g.topology->piece_offset[pin.piece] + v);
     if (vertices_.empty()) throw std::invalid_argument("DipTerm: no such ring");
   }
   std::string name() const override { return "dip"; }
@@ -99,7 +99,7 @@ TEST(EmbeddingTransfer, IsExactAtOldVerticesAndOnTheSurfaceElsewhere) {
   const PatternPiece& piece = g.pattern.pieces[0];
   double worst = 0.0, worst_edge = 0.0;
   for (Eigen::Index v = 0; v < piece.rest.rows(); ++v) {
-    const Vec3 old = sim.garment_positions().row(g.pattern_to_garment[v]).transpose();
+    const Vec3 old = sim.garment_positions().row(g.topology->pattern_to_garment[v]).transpose();
     worst = std::max(
         worst,
         (position(sim, transfer.at_rest_point(0, piece.rest.row(v).transpose())) - old).norm());
@@ -118,8 +118,10 @@ TEST(EmbeddingTransfer, IsExactAtOldVerticesAndOnTheSurfaceElsewhere) {
                  3.0;
   Vec3 interpolated = Vec3::Zero();
   for (int k = 0; k < 3; ++k)
-    interpolated +=
-        sim.garment_positions().row(g.pattern_to_garment[piece.triangles(0, k)]).transpose() / 3.0;
+    interpolated += sim.garment_positions()
+                        .row(g.topology->pattern_to_garment[piece.triangles(0, k)])
+                        .transpose() /
+                    3.0;
   const Vec3 x = position(sim, transfer.at_rest_point(0, c));
   EXPECT_LT((x - interpolated).norm(), 1e-3);
   EXPECT_NEAR(std::hypot(x.x(), x.y()), 0.05, 2e-3);  // on the capsule's side
@@ -138,8 +140,8 @@ TEST(RemeshGarment, ResampledSeamsWeldAndTheTransferredStateConverges) {
   const PatternPiece& piece = g.pattern.pieces[0];
   std::printf(
       "  %d -> %d pattern vertices, %d -> %d garment vertices, min angle %.1f -> %.1f deg\n",
-      old.num_pattern_vertices(), g.num_pattern_vertices(), old.num_garment_vertices,
-      g.num_garment_vertices,
+      old.num_pattern_vertices(), g.num_pattern_vertices(), old.num_garment_vertices(),
+      g.num_garment_vertices(),
       min_angle_deg(old.pattern.pieces[0].rest, old.pattern.pieces[0].triangles),
       min_angle_deg(piece.rest, piece.triangles));
   EXPECT_GT(g.num_pattern_vertices(), old.num_pattern_vertices());
@@ -148,17 +150,19 @@ TEST(RemeshGarment, ResampledSeamsWeldAndTheTransferredStateConverges) {
   ASSERT_EQ(seam.a.vertices.size(), seam.b.vertices.size());
   EXPECT_GT(seam.a.vertices.size(), old.pattern.seams[0].a.vertices.size());
   for (size_t k = 0; k < seam.a.vertices.size(); ++k)
-    EXPECT_EQ(g.pattern_to_garment[seam.a.vertices[k]], g.pattern_to_garment[seam.b.vertices[k]]);
+    EXPECT_EQ(g.topology->pattern_to_garment[seam.a.vertices[k]],
+              g.topology->pattern_to_garment[seam.b.vertices[k]]);
   // Welding merged exactly the seam pairs (the corners meet the pinned rings).
-  EXPECT_EQ(g.num_garment_vertices,
+  EXPECT_EQ(g.num_garment_vertices(),
             g.num_pattern_vertices() - static_cast<int>(seam.a.vertices.size()));
   // Corners and the pinned rings' ends are old vertices, at their old surface points.
   ASSERT_EQ(piece.corners.size(), 4u);
   for (size_t k = 0; k < 4; ++k) {
     const Vec2 q = piece.rest.row(piece.corners[k]);
     EXPECT_EQ(q, Vec2(old.pattern.pieces[0].rest.row(old.pattern.pieces[0].corners[k])));
-    const SurfacePoint a = g.embedding[g.pattern_to_garment[piece.corners[k]]];
-    const SurfacePoint b = old.embedding[old.pattern_to_garment[old.pattern.pieces[0].corners[k]]];
+    const SurfacePoint a = g.embedding[g.topology->pattern_to_garment[piece.corners[k]]];
+    const SurfacePoint b =
+        old.embedding[old.topology->pattern_to_garment[old.pattern.pieces[0].corners[k]]];
     EXPECT_EQ(a.face, b.face);
     EXPECT_EQ(a.u, b.u);
     EXPECT_EQ(a.v, b.v);
@@ -212,13 +216,13 @@ TEST(DesignProblemRemesh, AFailureAfterTheNewGarmentIsBuiltPutsEverythingBack) {
   ASSERT_TRUE(before.ok) << before.failure;
   problem.accept();
   const int parameters = problem.num_parameters();
-  const int vertices = sim.garment().num_garment_vertices;
+  const int vertices = sim.garment().num_garment_vertices();
 
   const RemeshOutcome out = problem.remesh({0});
   EXPECT_FALSE(out.ok);
   EXPECT_NE(out.failure.find("objective factory"), std::string::npos) << out.failure;
   EXPECT_EQ(problem.num_parameters(), parameters);
-  EXPECT_EQ(sim.garment().num_garment_vertices, vertices);
+  EXPECT_EQ(sim.garment().num_garment_vertices(), vertices);
   EXPECT_EQ(problem.objective().entries().size(), 1u);
   const DesignEvaluation after = problem.evaluate(p, true);
   ASSERT_TRUE(after.ok) << after.failure;
@@ -291,8 +295,8 @@ TEST(PatternOptimizerRemesh, ADegradingPieceIsRemeshedAndTheRunGoesOn) {
   const Seam& seam = sim.garment().pattern.seams[0];
   ASSERT_EQ(seam.a.vertices.size(), seam.b.vertices.size());
   for (size_t k = 0; k < seam.a.vertices.size(); ++k)
-    EXPECT_EQ(sim.garment().pattern_to_garment[seam.a.vertices[k]],
-              sim.garment().pattern_to_garment[seam.b.vertices[k]]);
+    EXPECT_EQ(sim.garment().topology->pattern_to_garment[seam.a.vertices[k]],
+              sim.garment().topology->pattern_to_garment[seam.b.vertices[k]]);
   EXPECT_GE(piece_quality(sim.garment().pattern.pieces[0]).min_angle_deg, 0.75 * 30.0);
 
   // The remesh record survives the history's JSON form.
@@ -333,8 +337,8 @@ TEST(PatternOptimizerRemesh, ADegradingPieceIsRemeshedAndTheRunGoesOn) {
       again.final_value, result.final_value,
       (g2.rest_positions() - g1.rest_positions()).cwiseAbs().maxCoeff(),
       (fresh->sim->garment_positions() - sim.garment_positions()).cwiseAbs().maxCoeff());
-  ASSERT_EQ(g2.num_garment_vertices, g1.num_garment_vertices);
-  ASSERT_EQ(g2.pattern_triangles, g1.pattern_triangles);
+  ASSERT_EQ(g2.num_garment_vertices(), g1.num_garment_vertices());
+  ASSERT_EQ(g2.topology->pattern_triangles, g1.topology->pattern_triangles);
   EXPECT_LE((g2.rest_positions() - g1.rest_positions()).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_LE((fresh->sim->garment_positions() - sim.garment_positions()).cwiseAbs().maxCoeff(),
             1e-7);

@@ -93,7 +93,7 @@ TEST(SlidingObjective, PosesPullTheClothAcrossTheBodyAndFrictionHoldsPartOfIt) {
   EXPECT_GT(with_friction, 0.0);
   const SlidingForces f = s.term->pose_view(ds.view(), 0).forces;
   EXPECT_GT(f.normal.maxCoeff(), 0.0);  // the sleeve presses on the body
-  for (int v : s.scene->sim->garment().pinned) EXPECT_EQ(f.excess[v], 0.0);
+  for (int v : s.scene->sim->garment().topology->pinned) EXPECT_EQ(f.excess[v], 0.0);
   // More friction holds more; none at all lets every tangential force slide.
   const SlidingScene frictionless = sliding_scene(0.0);
   EXPECT_GT(frictionless.term->value(ds.view()), with_friction);

@@ -43,13 +43,13 @@ Garment tube_garment(double scale, bool closed, Points3& fitted, int rows = 9) {
   pattern.seams.push_back({"right", column(0, nx - 1), column(1, 0)});
   if (closed) pattern.seams.push_back({"left", column(1, nx - 1), column(0, 0)});
   Garment garment = weld_pattern(std::move(pattern));
-  fitted.resize(garment.num_garment_vertices, 3);
+  fitted.resize(garment.num_garment_vertices(), 3);
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < rows; ++j)
       for (int i = 0; i < nx; ++i) {
         const double angle = 2.0 * test::kPi * (k * (nx - 1) + i) / kColumns;
-        const int g = garment.pattern_to_garment[static_cast<size_t>(
-            garment.piece_offset[static_cast<size_t>(k)] + j * nx + i)];
+        const int g = garment.topology->pattern_to_garment[static_cast<size_t>(
+            garment.topology->piece_offset[static_cast<size_t>(k)] + j * nx + i)];
         fitted.row(g) << kRadius * std::cos(angle), kBottom + (kTop - kBottom) * j / (rows - 1),
             -kRadius * std::sin(angle);
       }
@@ -160,7 +160,7 @@ TEST(MeasurementLevels, PlanesAcrossTheGarmentEveryFiveCentimetres) {
   Points3 fitted;
   const Garment garment = tube_garment(0.9, true, fitted);
   const std::vector<MeasurementLevel> levels =
-      plane_levels(TriMesh{fitted, garment.garment_triangles}, Vec3::UnitY(), 0.05);
+      plane_levels(TriMesh{fitted, garment.topology->garment_triangles}, Vec3::UnitY(), 0.05);
   ASSERT_EQ(levels.size(), 3u);  // y = 0.15, 0.20, 0.25 within [0.105, 0.295]
   const char* names[] = {"y 0.15 m", "y 0.20 m", "y 0.25 m"};
   for (size_t k = 0; k < 3; ++k) {
@@ -176,8 +176,9 @@ TEST(MeasurementLevels, PlanesAcrossTheGarmentEveryFiveCentimetres) {
   TriMesh both;
   both.vertices.resize(2 * two.rows(), 3);
   both.vertices << two, two.rowwise() + Eigen::RowVector3d(0.3, 0.0, 0.0);
-  both.faces.resize(2 * g2.garment_triangles.rows(), 3);
-  both.faces << g2.garment_triangles, g2.garment_triangles.array() + static_cast<int>(two.rows());
+  both.faces.resize(2 * g2.topology->garment_triangles.rows(), 3);
+  both.faces << g2.topology->garment_triangles,
+      g2.topology->garment_triangles.array() + static_cast<int>(two.rows());
   const auto pairs = plane_levels(both, Vec3::UnitY(), 0.05);
   ASSERT_EQ(pairs.size(), 6u);
   EXPECT_EQ(pairs[0].name, "y 0.15 m (x +0.00 m)");

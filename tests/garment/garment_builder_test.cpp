@@ -48,8 +48,11 @@ void check_garment(const GarmentBuild& b, double max_projection) {
   for (const Seam& seam : g.pattern.seams) {
     ASSERT_EQ(seam.a.vertices.size(), seam.b.vertices.size()) << seam.name;
     for (size_t i = 0; i < seam.a.vertices.size(); ++i)
-      EXPECT_EQ(g.pattern_to_garment[g.piece_offset[seam.a.piece] + seam.a.vertices[i]],
-                g.pattern_to_garment[g.piece_offset[seam.b.piece] + seam.b.vertices[i]]);
+      EXPECT_EQ(
+          g.topology
+              ->pattern_to_garment[g.topology->piece_offset[seam.a.piece] + seam.a.vertices[i]],
+          g.topology
+              ->pattern_to_garment[g.topology->piece_offset[seam.b.piece] + seam.b.vertices[i]]);
   }
   // Piece → 3D panel → piece.
   double worst = 0.0;
@@ -72,7 +75,7 @@ void check_garment(const GarmentBuild& b, double max_projection) {
   const double max_dist =
       *std::max_element(b.projection_distance.begin(), b.projection_distance.end());
   EXPECT_LT(max_dist, max_projection);
-  EXPECT_EQ(static_cast<int>(g.embedding.size()), g.num_garment_vertices);
+  EXPECT_EQ(static_cast<int>(g.embedding.size()), g.num_garment_vertices());
 }
 
 TEST(BuildGarment, SleeveOnCylinder) {
@@ -148,8 +151,8 @@ TEST(BuildGarment, SleeveOnTheGeneratedCapsule) {
   for (Eigen::Index v = 0; v < b.positions.rows(); ++v)
     EXPECT_NEAR(std::hypot(b.positions(v, 0), b.positions(v, 2)), 0.05, 2e-4);
   // Pinned: exactly the two cuff rings, at y = 0.1 and 0.4.
-  ASSERT_FALSE(b.garment.pinned.empty());
-  for (int v : b.garment.pinned) {
+  ASSERT_FALSE(b.garment.topology->pinned.empty());
+  for (int v : b.garment.topology->pinned) {
     const double y = b.positions(v, 1);
     EXPECT_LT(std::min(std::abs(y - 0.1), std::abs(y - 0.4)), 1e-9);
   }
@@ -157,9 +160,9 @@ TEST(BuildGarment, SleeveOnTheGeneratedCapsule) {
   for (Eigen::Index v = 0; v < b.positions.rows(); ++v)
     on_cuffs +=
         std::min(std::abs(b.positions(v, 1) - 0.1), std::abs(b.positions(v, 1) - 0.4)) < 1e-9;
-  EXPECT_EQ(on_cuffs, static_cast<int>(b.garment.pinned.size()));
+  EXPECT_EQ(on_cuffs, static_cast<int>(b.garment.topology->pinned.size()));
   // Garment triangles face outward.
-  const Triangles& t = b.garment.garment_triangles;
+  const Triangles& t = b.garment.topology->garment_triangles;
   for (Eigen::Index f = 0; f < t.rows(); ++f) {
     const Vec3 p0 = b.positions.row(t(f, 0)), p1 = b.positions.row(t(f, 1)),
                p2 = b.positions.row(t(f, 2));
@@ -313,8 +316,8 @@ TEST(BuildGarment, ObjGroupLayoutGivesTheSamePiecesAsTheRules) {
     ASSERT_EQ(b.garment.pattern.seams.size(), a.garment.pattern.seams.size());
     for (size_t s = 0; s < a.garment.pattern.seams.size(); ++s)
       EXPECT_EQ(a.garment.pattern.seams[s].a.vertices, b.garment.pattern.seams[s].a.vertices);
-    EXPECT_EQ(b.garment.pinned, a.garment.pinned) << file;
-    EXPECT_EQ(b.garment.num_garment_vertices, a.garment.num_garment_vertices);
+    EXPECT_EQ(b.garment.topology->pinned, a.garment.topology->pinned) << file;
+    EXPECT_EQ(b.garment.num_garment_vertices(), a.garment.num_garment_vertices());
     EXPECT_LT((b.positions - a.positions).cwiseAbs().maxCoeff(), 1e-9);
   }
 }

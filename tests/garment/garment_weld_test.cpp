@@ -26,12 +26,12 @@ TEST(WeldPattern, SharesOneGarmentVertexPerSeamPair) {
   pattern.pinned.push_back({"hem", 0, {0, 1}});
   const Garment g = weld_pattern(pattern);
   EXPECT_EQ(g.num_pattern_vertices(), 8);
-  EXPECT_EQ(g.num_garment_vertices, 6);
-  EXPECT_EQ(g.pattern_to_garment[1], g.pattern_to_garment[4 + 0]);
-  EXPECT_EQ(g.pattern_to_garment[2], g.pattern_to_garment[4 + 3]);
-  EXPECT_EQ(g.garment_triangles.rows(), 4);
-  EXPECT_EQ(g.seam_edges().size(), 2u);
-  EXPECT_EQ(g.pinned.size(), 2u);
+  EXPECT_EQ(g.num_garment_vertices(), 6);
+  EXPECT_EQ(g.topology->pattern_to_garment[1], g.topology->pattern_to_garment[4 + 0]);
+  EXPECT_EQ(g.topology->pattern_to_garment[2], g.topology->pattern_to_garment[4 + 3]);
+  EXPECT_EQ(g.topology->garment_triangles.rows(), 4);
+  EXPECT_EQ(g.topology->seam_edges.size(), 2u);
+  EXPECT_EQ(g.topology->pinned.size(), 2u);
   const Points2 rest = g.rest_positions();
   EXPECT_EQ(rest(5, 0), 3.0);
 }

@@ -278,7 +278,9 @@ TEST(Openings, BuildPiecesWithClockwiseHolesThatSurviveTheWholeBuild) {
     }
   EXPECT_TRUE(found);
   for (int v : hole) {
-    const int g = b.garment.pattern_to_garment[static_cast<size_t>(b.garment.piece_offset[0] + v)];
+    const int g =
+        b.garment.topology
+            ->pattern_to_garment[static_cast<size_t>(b.garment.topology->piece_offset[0] + v)];
     EXPECT_NEAR((Vec3(b.positions.row(g)) - Vec3(0.05, 0.2, 0.0)).norm(), 0.015, 1e-3);
   }
 }

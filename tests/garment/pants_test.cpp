@@ -60,8 +60,11 @@ class Pants : public ::testing::Test {
     for (const Seam& seam : g.pattern.seams) {
       ASSERT_EQ(seam.a.vertices.size(), seam.b.vertices.size());
       for (size_t i = 0; i < seam.a.vertices.size(); ++i)
-        EXPECT_EQ(g.pattern_to_garment[g.piece_offset[seam.a.piece] + seam.a.vertices[i]],
-                  g.pattern_to_garment[g.piece_offset[seam.b.piece] + seam.b.vertices[i]]);
+        EXPECT_EQ(
+            g.topology
+                ->pattern_to_garment[g.topology->piece_offset[seam.a.piece] + seam.a.vertices[i]],
+            g.topology
+                ->pattern_to_garment[g.topology->piece_offset[seam.b.piece] + seam.b.vertices[i]]);
     }
     for (const auto& p : b.pieces) {
       EXPECT_EQ(p.distortion.flipped, 0);
@@ -74,7 +77,7 @@ class Pants : public ::testing::Test {
     // from the piecewise-flat panels (2-3 cm body edges at 5 cm radius: ~2 mm).
     EXPECT_LT(*std::max_element(b.projection_distance.begin(), b.projection_distance.end()), 5e-3);
     // Both cuffs and the waistband are pinned, on every piece that reaches them.
-    EXPECT_FALSE(g.pinned.empty());
+    EXPECT_FALSE(g.topology->pinned.empty());
     // Piece → 3D panel → piece.
     double worst = 0.0;
     for (size_t k = 0; k < g.pattern.pieces.size(); ++k)
@@ -105,8 +108,8 @@ TEST_F(Pants, FourPiecesOnTheLegsBody) {
   EXPECT_EQ(b.garment.pattern.pinned.size(), 8u);
   check(b, 0.005);
   // The four pieces meet at the crotch: one garment vertex shared by four pattern vertices.
-  std::vector<int> uses(b.garment.num_garment_vertices, 0);
-  for (int v : b.garment.pattern_to_garment) ++uses[v];
+  std::vector<int> uses(b.garment.num_garment_vertices(), 0);
+  for (int v : b.garment.topology->pattern_to_garment) ++uses[v];
   EXPECT_EQ(*std::max_element(uses.begin(), uses.end()), 4);
 }
 

@@ -40,7 +40,7 @@ void expect_converges_scaled_ten_percent(const std::string& scene_name, size_t p
   const Garment& g = sim->garment();
   const Points2 rest = g.rest_positions();
   for (size_t e = 0; e < fit.elements.size(); ++e) {
-    const auto t = g.pattern_triangles.row(static_cast<Eigen::Index>(e));
+    const auto t = g.topology->pattern_triangles.row(static_cast<Eigen::Index>(e));
     const double a = triangle_area(rest, t(0), t(1), t(2));
     area += a;
     if (fit.elements[e].regime == ClothRegime::kTaut) taut_area += a;
@@ -51,7 +51,7 @@ void expect_converges_scaled_ten_percent(const std::string& scene_name, size_t p
       "%s: %d Newton iterations, residual %.2e N (tolerance %.2e N), taut %.1f %% of the "
       "area, mean pressure %.0f Pa, %d garment vertices, %d body tets\n",
       scene_name.c_str(), report.iterations, report.final_force_norm, report.tolerance,
-      100 * taut_area / area, pressure, g.num_garment_vertices, scene->body.volume.num_tets());
+      100 * taut_area / area, pressure, g.num_garment_vertices(), scene->body.volume.num_tets());
   EXPECT_GT(taut_area / area, 0.5);  // 10 % smaller pieces are stretched on the body
   EXPECT_GT(pressure, 0.0);
 }

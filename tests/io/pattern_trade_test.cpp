@@ -36,8 +36,8 @@ test::GarmentState small_sleeve() {
 }
 
 Points3 positions_of(const test::GarmentState& s) {
-  Points3 x(s.garment.num_garment_vertices, 3);
-  for (int i = 0; i < s.garment.num_garment_vertices; ++i)
+  Points3 x(s.garment.num_garment_vertices(), 3);
+  for (int i = 0; i < s.garment.num_garment_vertices(); ++i)
     x.row(i) = s.x.segment<3>(3 * i).transpose();
   return x;
 }

@@ -148,7 +148,7 @@ TEST(RunState, RemeshedPatternIsWeldedAndCheckedAgainstTheScene) {
   scene.pieces[0].triangles << 0, 1, 3, 1, 2, 3;
   const Garment scene_garment = weld_pattern(scene);
   const Garment g = run_state_garment(s, scene_garment, body, 100, "state.json");
-  EXPECT_EQ(g.num_garment_vertices, 2);
+  EXPECT_EQ(g.num_garment_vertices(), 2);
   EXPECT_EQ(g.pattern.pieces[0].triangles, s.pattern->pieces[0].triangles);
   EXPECT_EQ(g.embedding.size(), 2u);
   auto error = [&](const RunState& state) {

@@ -16,7 +16,7 @@ namespace tightfit {
 namespace {
 
 Points3 seam_test_positions(const test::GarmentState& s) {
-  return Eigen::Map<const Points3>(s.x.data(), s.garment.num_garment_vertices, 3);
+  return Eigen::Map<const Points3>(s.x.data(), s.garment.num_garment_vertices(), 3);
 }
 
 TEST(SeamStatistics, UniformSleeveByHand) {

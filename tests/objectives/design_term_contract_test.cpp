@@ -50,7 +50,7 @@ const std::vector<std::pair<std::string, TermFactory>> kTerms = {
      [](const Garment& g) { return std::make_shared<SeamTractionObjective>(g, ClothMaterial{}); }},
     {"shape",
      [](const Garment& g) {
-       return std::make_shared<ShapeObjective>(sphere_target(), g.num_garment_vertices);
+       return std::make_shared<ShapeObjective>(sphere_target(), g.num_garment_vertices());
      }},
     {"seam_length",
      [](const Garment& g) {

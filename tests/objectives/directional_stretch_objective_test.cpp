@@ -20,10 +20,10 @@ test::GarmentState stretched_square(double s1, double s2, Vec2 grain, double jit
   pattern.pieces[0].grain = grain;
   test::GarmentState s{weld_pattern(pattern), VecX()};
   const Mat3 rot = Eigen::AngleAxisd(0.7, Vec3(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
-  s.x.resize(3 * s.garment.num_garment_vertices);
+  s.x.resize(3 * s.garment.num_garment_vertices());
   const Points2 rest = s.garment.rest_positions();
   for (int p = 0; p < rest.rows(); ++p)
-    s.x.segment<3>(3 * s.garment.pattern_to_garment[p]) =
+    s.x.segment<3>(3 * s.garment.topology->pattern_to_garment[p]) =
         rot * Vec3(s1 * rest(p, 0), s2 * rest(p, 1), 0.0) + Vec3(0.2, -0.1, 0.3);
   return s;
 }

@@ -36,11 +36,11 @@ inline GarmentState sleeve(int nx, int ny, double r, double w, double h, double 
   }
   pattern.seams.push_back(seam);
   GarmentState s{weld_pattern(pattern), VecX()};
-  s.x.resize(3 * s.garment.num_garment_vertices);
+  s.x.resize(3 * s.garment.num_garment_vertices());
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const double a = 2.0 * std::numbers::pi * i / (nx - 1);
-      s.x.segment<3>(3 * s.garment.pattern_to_garment[j * nx + i]) =
+      s.x.segment<3>(3 * s.garment.topology->pattern_to_garment[j * nx + i]) =
           Vec3(r * std::cos(a), r * std::sin(a), h * j / (ny - 1));
     }
   return s;

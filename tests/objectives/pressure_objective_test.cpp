@@ -28,7 +28,8 @@ TEST(PressureObjective, ShapeOperatorsAgreeWithThePhysicsLayer) {
   const VecX x = test::perturb(s.x, 0.002, 1);
   const PressureObjective t(s.garment, ClothMaterial{}, 0.0, 1e3);
   const std::vector<Mat3> ours = t.shape_operators(x);
-  MidEdgeShapeOperator reference(s.garment.garment_triangles, s.garment.num_garment_vertices);
+  MidEdgeShapeOperator reference(s.garment.topology->garment_triangles,
+                                 s.garment.num_garment_vertices());
   const std::vector<Mat3> theirs = reference.compute(as_points(x));
   ASSERT_EQ(ours.size(), theirs.size());
   double scale = 0.0, diff = 0.0;
@@ -47,10 +48,12 @@ TEST(PressureObjective, PressuresAgreeWithYoungLaplaceAnalysis) {
   const ClothMaterial material;
   const PressureObjective t(s.garment, material, 0.0, 1e3);
   const VecX ours = t.pressures({x, rest});
-  const ClothEnergy cloth(s.garment.pattern_triangles, rest, s.garment.pattern_to_garment,
-                          s.garment.num_garment_vertices, material);
+  const ClothEnergy cloth(s.garment.topology->pattern_triangles, rest,
+                          s.garment.topology->pattern_to_garment, s.garment.num_garment_vertices(),
+                          material);
   const VecX theirs = young_laplace_pressure(
-      analyze_cloth(cloth, x), mid_edge_shape_operators(as_points(x), s.garment.garment_triangles));
+      analyze_cloth(cloth, x),
+      mid_edge_shape_operators(as_points(x), s.garment.topology->garment_triangles));
   ASSERT_EQ(ours.size(), theirs.size());
   EXPECT_LT((ours - theirs).cwiseAbs().maxCoeff(), 1e-9 * theirs.cwiseAbs().maxCoeff());
 }
@@ -62,8 +65,9 @@ TEST(PressureObjective, UniformSleeveMatchesHoopTensionOverRadius) {
   const ClothMaterial material;
   const PressureObjective t(s.garment, material, 0.0, 1e3);
   const VecX p = t.pressures({s.x, rest});
-  const ClothEnergy cloth(s.garment.pattern_triangles, rest, s.garment.pattern_to_garment,
-                          s.garment.num_garment_vertices, material);
+  const ClothEnergy cloth(s.garment.topology->pattern_triangles, rest,
+                          s.garment.topology->pattern_to_garment, s.garment.num_garment_vertices(),
+                          material);
   const std::vector<ClothElementFit> fit = analyze_cloth(cloth, s.x);
   for (Eigen::Index e = 0; e < p.size(); ++e) {
     const double hoop = fit[e].principal_tension[0];
@@ -82,7 +86,7 @@ TEST(PressureObjective, ValueByHandAndRange) {
   const PressureObjective t(s.garment, ClothMaterial{}, lo, 2.0 * lo);
   double expected = 0.0;
   for (Eigen::Index e = 0; e < p.size(); ++e) {
-    const auto tri = s.garment.pattern_triangles.row(e);
+    const auto tri = s.garment.topology->pattern_triangles.row(e);
     const Vec2 e1 = (rest.row(tri[1]) - rest.row(tri[0])).transpose();
     const Vec2 e2 = (rest.row(tri[2]) - rest.row(tri[0])).transpose();
     const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());

@@ -36,7 +36,7 @@ PressureRegion band(const std::string& name, double lo, double hi, double transi
 
 double centroid_height(const test::GarmentState& s, Eigen::Index e) {
   double z = 0.0;
-  for (int k = 0; k < 3; ++k) z += s.x[3 * s.garment.garment_triangles(e, k) + 2] / 3.0;
+  for (int k = 0; k < 3; ++k) z += s.x[3 * s.garment.topology->garment_triangles(e, k) + 2] / 3.0;
   return z;
 }
 
@@ -68,7 +68,7 @@ TEST(PressureRegions, HardBandValueEqualsThePerElementRange) {
       s.garment, ClothMaterial{},
       PressureRegions(s.garment, {band("b", 0.03, 0.07, 0.0, lo, hi)}, "test"));
   const double inf = std::numeric_limits<double>::infinity();
-  const Eigen::Index m = s.garment.garment_triangles.rows();
+  const Eigen::Index m = s.garment.topology->garment_triangles.rows();
   VecX min_p = VecX::Constant(m, -inf), max_p = VecX::Constant(m, inf);
   int inside = 0;
   for (Eigen::Index e = 0; e < m; ++e) {

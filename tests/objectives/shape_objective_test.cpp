@@ -138,22 +138,23 @@ TEST(ShapeObjective, ValueAndGradientOnASleeve) {
       test::fibonacci_sphere(Vec3(0, 0, 0.05), 0.06, 2000);  // spacing about 5 mm
   const Points3& pts = sphere.points;
   const Points3& nrm = sphere.normals;
-  const ShapeObjective t(ImlsSurface(pts, nrm, 0.008), s.garment.num_garment_vertices);
+  const ShapeObjective t(ImlsSurface(pts, nrm, 0.008), s.garment.num_garment_vertices());
   const VecX x = test::perturb(s.x, 0.003, 1);
   const Points2 rest = s.garment.rest_positions();
   const VecX f = t.distances(x);
   EXPECT_NEAR(t.value({x, rest}), f.squaredNorm(), 1e-15);
   int fallback = 0;
-  for (int v = 0; v < s.garment.num_garment_vertices; ++v)
+  for (int v = 0; v < s.garment.num_garment_vertices(); ++v)
     fallback += t.target().evaluate(x.segment<3>(3 * v)).fallback ? 1 : 0;
   EXPECT_GT(fallback, 0);
-  EXPECT_LT(fallback, s.garment.num_garment_vertices);
+  EXPECT_LT(fallback, s.garment.num_garment_vertices());
   const test::GradientErrors e = test::gradient_errors(t, x, rest, 1e-7, 1e-7);
   EXPECT_LT(e.x, 1e-6);
   EXPECT_EQ(e.norm_rest, 0.0);
   EXPECT_TRUE(t.depends_on_positions());
   // A vertex subset.
-  const ShapeObjective sub(ImlsSurface(pts, nrm, 0.008), s.garment.num_garment_vertices, {0, 5, 7});
+  const ShapeObjective sub(ImlsSurface(pts, nrm, 0.008), s.garment.num_garment_vertices(),
+                           {0, 5, 7});
   EXPECT_NEAR(sub.value({x, rest}), f[0] * f[0] + f[5] * f[5] + f[7] * f[7], 1e-15);
   EXPECT_THROW(ShapeObjective(ImlsSurface(pts, nrm, 0.008), 3, {3}), std::invalid_argument);
 }
@@ -162,18 +163,18 @@ TEST(ShapeObjective, UnpinnedVerticesLeaveThePinnedRingsOut) {
   test::GarmentState s = test::sleeve(7, 4, 0.05, 0.3, 0.1, 0.0, 1);
   // Pin the bottom ring (pattern row 0; the seam welds its two ends into one vertex).
   std::vector<int> ring;
-  for (int i = 0; i < 7; ++i) ring.push_back(s.garment.pattern_to_garment[i]);
+  for (int i = 0; i < 7; ++i) ring.push_back(s.garment.topology->pattern_to_garment[i]);
   std::sort(ring.begin(), ring.end());
   ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-  s.garment.pinned = ring;
+  s.garment.set_pinned_vertices(ring);
   const std::vector<int> free = unpinned_vertices(s.garment);
-  EXPECT_EQ(free.size() + ring.size(), static_cast<size_t>(s.garment.num_garment_vertices));
+  EXPECT_EQ(free.size() + ring.size(), static_cast<size_t>(s.garment.num_garment_vertices()));
   for (int v : ring) EXPECT_FALSE(std::binary_search(free.begin(), free.end(), v));
   EXPECT_TRUE(std::is_sorted(free.begin(), free.end()));
   // Moving a pinned vertex changes the full objective but not the unpinned one.
   const ImlsSurface plane = plane_target(0.05);
-  const ShapeObjective all(plane, s.garment.num_garment_vertices);
-  const ShapeObjective unpinned(plane, s.garment.num_garment_vertices, free);
+  const ShapeObjective all(plane, s.garment.num_garment_vertices());
+  const ShapeObjective unpinned(plane, s.garment.num_garment_vertices(), free);
   const Points2 rest = s.garment.rest_positions();
   VecX moved = s.x;
   moved[3 * ring[0] + 2] += 0.01;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <memory>
 
 #include "physics_test_util.hpp"
 #include "test_surfaces.hpp"
@@ -16,18 +17,19 @@ namespace {
 /// that wrapping it on the cylinder stretches it by about (s_hoop, s_axial).
 struct Sleeve {
   CylinderMesh mesh;
+  std::shared_ptr<const Points2> rest;  ///< the rest array the cloth reads
   ClothEnergy cloth;
   VecX x;
 };
 
 Sleeve make_sleeve(double R, double s_hoop, double s_axial, double jitter, bool diagonals, int n) {
   CylinderMesh m = cylinder_mesh(R, 0.1, 2 * M_PI, n, n / 3, jitter, diagonals, 5);
-  Points2 rest(m.param.rows(), 2);
+  auto rest = std::make_shared<Points2>(m.param.rows(), 2);
   for (int p = 0; p < m.param.rows(); ++p)
-    rest.row(p) << R * m.param(p, 0) / s_hoop, m.param(p, 1) / s_axial;
-  ClothEnergy cloth(m.pattern_faces, rest, m.to_garment, static_cast<int>(m.garment.rows()));
+    rest->row(p) << R * m.param(p, 0) / s_hoop, m.param(p, 1) / s_axial;
+  ClothEnergy cloth(m.pattern_faces, *rest, m.to_garment, static_cast<int>(m.garment.rows()));
   const VecX x = flatten(m.garment);
-  return {std::move(m), std::move(cloth), x};
+  return {std::move(m), std::move(rest), std::move(cloth), x};
 }
 
 /// StVK hoop tension (N/m) of a membrane stretched by (s1, s2) along its principal axes.

@@ -45,22 +45,26 @@ struct Case {
   std::shared_ptr<Energy> energy;
   VecX x, other;
   RestDependentEnergy* rest_dependent = nullptr;
+  /// The rest arrays the garment energies read (kept alive with them).
+  std::vector<std::shared_ptr<const Points2>> rests{};
 };
 
 Case cloth_case() {
   const SewnSquares s;
   ClothMaterial m;
   m.regime_smoothing = 1e-2;
-  auto e = std::make_shared<ClothEnergy>(s.triangles, s.rest, s.to_garment, 6, m);
-  return {"cloth", e, s.positions(1.15, 1), s.positions(0.85, 2), e.get()};
+  auto rest = std::make_shared<const Points2>(s.rest);
+  auto e = std::make_shared<ClothEnergy>(s.triangles, *rest, s.to_garment, 6, m);
+  return {"cloth", e, s.positions(1.15, 1), s.positions(0.85, 2), e.get(), {rest}};
 }
 
 Case seam_case() {
   const SewnSquares s;
   const SeamMaterial material{0.005, 2e-4, 5.4e6};
-  auto e = std::make_shared<SeamSpringEnergy>(polyline_edges({{1, 2}, {4, 7}}), s.rest,
-                                              s.to_garment, 6, material);
-  return {"seam springs", e, s.positions(1.1, 3), s.positions(0.9, 4), e.get()};
+  auto rest = std::make_shared<const Points2>(s.rest);
+  auto e = std::make_shared<SeamSpringEnergy>(polyline_edges({{1, 2}, {4, 7}}), *rest, s.to_garment,
+                                              6, material);
+  return {"seam springs", e, s.positions(1.1, 3), s.positions(0.9, 4), e.get(), {rest}};
 }
 
 Case neo_hookean_case() {
@@ -82,12 +86,19 @@ Case pin_case() {
 Case sum_case() {
   const SewnSquares s;
   auto sum = std::make_shared<SumEnergy>();
-  sum->add(cloth_case().energy, 2.0);
-  sum->add(seam_case().energy);
+  const Case cloth = cloth_case();
+  const Case seams = seam_case();
+  sum->add(cloth.energy, 2.0);
+  sum->add(seams.energy);
   Points3 targets(1, 3);
   targets << 0.0, 0.0, 0.0;
   sum->add(std::make_shared<PinEnergy>(std::vector<int>{0}, targets, 50.0));
-  return {"sum", sum, s.positions(1.15, 9), s.positions(0.85, 10)};
+  return {"sum",
+          sum,
+          s.positions(1.15, 9),
+          s.positions(0.85, 10),
+          nullptr,
+          {cloth.rests[0], seams.rests[0]}};
 }
 
 const std::vector<std::pair<std::string, std::function<Case()>>> kCases = {

@@ -133,6 +133,19 @@ TEST(EmbeddedEquilibrium, ChainRuleGradientAndHessianMatchFiniteDifferences) {
   EXPECT_LT(test::check_hessian(gradient_at, MatX(H), zero, 1e-6).relative_error, 1e-6);
 }
 
+TEST(EmbeddedEquilibrium, RefusesAStepWhoseWalkCannotBeCompleted) {
+  const Scene s = make_scene(5);
+  EmbeddedEquilibrium problem = make_problem(s);
+  // Millions of faces in one walk: the walk gives up (LimitSurface::Walk::complete) and
+  // set_step must say so instead of taking the truncated step as asked.
+  VecX dq = VecX::Zero(problem.num_dofs());
+  dq[0] = 3e6;
+  dq[1] = 1.1e6;
+  EXPECT_FALSE(problem.set_step(dq, 1.0));
+  EXPECT_TRUE(problem.set_step(dq, 1e-9));
+  EXPECT_TRUE(problem.set_step(dq, 0.0));
+}
+
 TEST(EmbeddedEquilibrium, HessianOperatorIsTheProductWithTheNewtonHessian) {
   const Scene s = make_scene(3);
   EmbeddedEquilibrium problem = make_problem(s);

@@ -86,8 +86,8 @@ TEST_P(RigidCylinderSleeve, UniformHoopStretchAndPressureTOverR) {
       ne, hoop.mean, hoop_spread, T, T / c.sleeve.radius, 100 * err_mid, 100 * err_limit);
   // Per-vertex-area pressure (paper Fig. 2) at the free vertices, for comparison.
   double err_vertex = 0;
-  const auto& pinned = sim.garment().pinned;
-  for (int i = 0; i < sim.garment().num_garment_vertices; ++i)
+  const auto& pinned = sim.garment().topology->pinned;
+  for (int i = 0; i < sim.garment().num_garment_vertices(); ++i)
     if (!std::binary_search(pinned.begin(), pinned.end(), i))
       err_vertex =
           std::max(err_vertex, std::abs(fit.vertex_pressure[i] / (T / c.sleeve.radius) - 1));
@@ -145,7 +145,7 @@ TEST(RigidSphereCover, UniformStretchAndPressureTwoTOverR) {
   for (int e = 0; e < ne; ++e) {
     bool regular = true;
     for (int c = 0; c < 3; ++c)
-      regular &= !surface.is_irregular(state[sim.garment().garment_triangles(e, c)].face);
+      regular &= !surface.is_irregular(state[sim.garment().topology->garment_triangles(e, c)].face);
     if (regular)
       err_limit_regular =
           std::max(err_limit_regular, std::abs(fit.pressure_limit[e] / expected[e] - 1));
@@ -174,7 +174,7 @@ TEST(RigidCylinderSleeveSliding, SlidesBackFromATwistedStart) {
   Garment twisted = make_sleeve(c.sleeve, *c.surface, c.body.surface.vertices);
   const std::vector<SurfacePoint> start = twisted.embedding;
   // Hold one seam vertex so the rotation about the axis is fixed; the rest slides.
-  twisted.pinned = {0};
+  twisted.set_pinned_vertices({0});
   GarmentSimulation sim(c.body, *c.surface, std::move(twisted), rigid_materials());
   ASSERT_TRUE(sim.solve().converged);
   int moved_faces = 0;
@@ -183,10 +183,10 @@ TEST(RigidCylinderSleeveSliding, SlidesBackFromATwistedStart) {
   // Untwisted: every seam vertex at the same angle about the axis as vertex 0.
   const Points3& x = sim.garment_positions();
   const auto& seam = sim.garment().pattern.seams[0].a.vertices;
-  const int v0 = sim.garment().pattern_to_garment[seam.front()];
+  const int v0 = sim.garment().topology->pattern_to_garment[seam.front()];
   double max_angle = 0;
   for (int v : seam) {
-    const int gv = sim.garment().pattern_to_garment[v];
+    const int gv = sim.garment().topology->pattern_to_garment[v];
     const double a = std::atan2(x(gv, 1), x(gv, 0)) - std::atan2(x(v0, 1), x(v0, 0));
     max_angle = std::max(max_angle, std::abs(std::remainder(a, 2 * M_PI)));
   }

@@ -141,7 +141,7 @@ LaplaceCheck check_laplace_law(CurvedBodyCase c) {
   EXPECT_TRUE(sim.solve().converged);
   const FitAnalysis fit = sim.analyze();
   const Points3& x = sim.garment_positions();
-  const Triangles& tri = sim.garment().garment_triangles;
+  const Triangles& tri = sim.garment().topology->garment_triangles;
   // Away from the pinned rings: every corner at least 1.5 cm from the sleeve's ends.
   const double margin = 0.015;
   Errors mid, limit;

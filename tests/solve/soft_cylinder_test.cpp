@@ -64,8 +64,8 @@ TEST(SoftCylinderSleeveSlow, RadialCompressionFollowsLame) {
   // Mean pressure and radial displacement in the middle third (z in ±0.04 m).
   const Points3& x = sim.garment_positions();
   double p = 0, n = 0;
-  for (Eigen::Index e = 0; e < sim.garment().garment_triangles.rows(); ++e) {
-    const double z = (x(sim.garment().garment_triangles(e, 0), 2));
+  for (Eigen::Index e = 0; e < sim.garment().topology->garment_triangles.rows(); ++e) {
+    const double z = (x(sim.garment().topology->garment_triangles(e, 0), 2));
     if (std::abs(z) < 0.04) {
       p += fit.pressure_mid_edge[e];
       n += 1;

@@ -82,12 +82,15 @@ inline void expect_energy_contract(const Energy& energy, const VecX& x, const Ve
 inline void expect_rest_dependent_contract(RestDependentEnergy& energy, const VecX& x,
                                            const ContractTolerances& tol = {}) {
   SCOPED_TRACE("rest-dependent energy '" + energy.name() + "'");
-  const Points2 rest0 = energy.rest();
+  const Points2& bound = energy.rest();
+  const Points2 rest0 = bound;
   const VecX xbar = Eigen::Map<const VecX>(rest0.data(), rest0.size());
+  Points2 trial = rest0;
   auto with_rest = [&](const VecX& v, auto evaluate) {
-    energy.set_rest(Eigen::Map<const Points2>(v.data(), rest0.rows(), 2));
+    trial = Eigen::Map<const Points2>(v.data(), rest0.rows(), 2);
+    energy.bind_rest(trial);
     auto r = evaluate();
-    energy.set_rest(rest0);
+    energy.bind_rest(bound);
     return r;
   };
   VecX g_rest = VecX::Zero(xbar.size());

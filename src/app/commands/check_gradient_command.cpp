@@ -72,7 +72,7 @@ void run_check_gradient(const CheckArgs& args) {
   std::printf(
       "tightfit check-gradient: %d garment vertices, initial equilibrium in %d Newton "
       "iterations (residual %.2e N)\n",
-      sim->garment().num_garment_vertices, initial.iterations, initial.final_force_norm);
+      sim->garment().num_garment_vertices(), initial.iterations, initial.final_force_norm);
   const EmbeddedState equilibrium = sim->problem().state();
   const Points2 initial_rest = sim->garment().rest_positions();
   if (at) std::printf("  at %s, iteration %d\n", at_file.c_str(), at->iteration);

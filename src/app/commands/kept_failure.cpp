@@ -50,7 +50,7 @@ std::vector<std::string> keep_failed_state(const std::filesystem::path& dir, boo
   result["compute"] = compute_json();
   std::vector<std::string> files = write_fit_run_outputs(failed.staging(), sim, sim.analyze(),
                                                          scene.spec.pressure_operator, state);
-  TriMesh garment{sim.garment_positions(), sim.garment().garment_triangles};
+  TriMesh garment{sim.garment_positions(), sim.garment().topology->garment_triangles};
   write_ply(failed.file("garment_residual.ply"), garment, force_fields(garment_forces));
   const int surface_vertices = scene.body.surface.num_vertices();
   TriMesh body{sim.body_positions().topRows(surface_vertices), scene.body.surface.faces};

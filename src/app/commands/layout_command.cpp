@@ -28,14 +28,14 @@ void run_layout(const std::string& scene_file, const std::string& out_dir, bool 
   report["scene"] = scene_file;
   report["pieces"] = g.pattern.pieces.size();
   report["seams"] = g.pattern.seams.size();
-  report["garment_vertices"] = g.num_garment_vertices;
-  report["pinned_garment_vertices"] = g.pinned.size();
+  report["garment_vertices"] = g.num_garment_vertices();
+  report["pinned_garment_vertices"] = g.topology->pinned.size();
   if (scene->build) report["build"] = garment_build_report(*scene->build);
   const auto files = write_layout_run_outputs(out.staging(), g, *scene->surface,
                                               scene->body.surface.vertices, state);
   out.commit();
   std::printf("tightfit layout: %zu pieces, %zu seams, %d garment vertices\n",
-              g.pattern.pieces.size(), g.pattern.seams.size(), g.num_garment_vertices);
+              g.pattern.pieces.size(), g.pattern.seams.size(), g.num_garment_vertices());
   for (const auto& f : files) std::printf("  %s/%s\n", out.target().c_str(), f.c_str());
 }
 

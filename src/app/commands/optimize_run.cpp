@@ -72,8 +72,8 @@ void run_optimize(const OptimizeRequest& request) {
   const auto objective = build_objective(spec, *sim);
   const std::vector<std::string> names = term_names(*objective);
   std::printf("tightfit optimize: %d garment vertices, %d triangles, %zu pieces; terms:",
-              sim->garment().num_garment_vertices,
-              static_cast<int>(sim->garment().garment_triangles.rows()),
+              sim->garment().num_garment_vertices(),
+              static_cast<int>(sim->garment().topology->garment_triangles.rows()),
               sim->garment().pattern.pieces.size());
   for (size_t k = 0; k < names.size(); ++k)
     std::printf(" %s (w %g)", names[k].c_str(), objective->entries()[k].weight);
@@ -119,7 +119,8 @@ void run_optimize(const OptimizeRequest& request) {
     const OptimizationResult result = optimizer.run(
         [&](const OptimizationIteration& it) {
           if (it.iteration == 0 && resume_dir.empty())
-            initial_garment = TriMesh{sim->garment_positions(), sim->garment().garment_triangles};
+            initial_garment =
+                TriMesh{sim->garment_positions(), sim->garment().topology->garment_triangles};
           progress.print(it);
           stage = "writing history.json and checkpoint.json after iteration " +
                   std::to_string(it.iteration);
@@ -171,12 +172,13 @@ void run_optimize(const OptimizeRequest& request) {
         {"force_residual_n", sim->problem().force_norm(sim->problem().gradient())},
         {"seconds_optimization", history.back().seconds}};
     result_json["compute"] = compute_json();
-    result_json["counts"] = {{"body_vertices", scene->body.num_vertices()},
-                             {"body_tets", scene->body.volume.num_tets()},
-                             {"garment_vertices", sim->garment().num_garment_vertices},
-                             {"garment_triangles", sim->garment().garment_triangles.rows()},
-                             {"pattern_pieces", sim->garment().pattern.pieces.size()},
-                             {"dofs", sim->problem().num_dofs()}};
+    result_json["counts"] = {
+        {"body_vertices", scene->body.num_vertices()},
+        {"body_tets", scene->body.volume.num_tets()},
+        {"garment_vertices", sim->garment().num_garment_vertices()},
+        {"garment_triangles", sim->garment().topology->garment_triangles.rows()},
+        {"pattern_pieces", sim->garment().pattern.pieces.size()},
+        {"dofs", sim->problem().num_dofs()}};
     nlohmann::json seconds;
     for (const auto& [name, s] : scene->stage_seconds) seconds[name] = s;
     seconds["optimization_this_run"] = result.seconds;

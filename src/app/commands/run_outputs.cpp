@@ -101,7 +101,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   if (const auto n = state.result.find("newton");
       n != state.result.end() && n->is_object() && !n->value("converged", true)) {
     const VecX residual = sim.problem().garment_residual_forces().rowwise().norm();
-    const Triangles& faces = sim.garment().garment_triangles;
+    const Triangles& faces = sim.garment().topology->garment_triangles;
     MatX per_face(faces.rows(), 1);
     for (Eigen::Index f = 0; f < faces.rows(); ++f)
       per_face(f, 0) =
@@ -110,7 +110,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   }
   if (shape) {
     view.garment_fields.push_back(
-        shape_distance_field(sim.garment().garment_triangles, shape->distance));
+        shape_distance_field(sim.garment().topology->garment_triangles, shape->distance));
     view.shape_target = shape->target;
     if (state.initial_garment) view.initial_garment = *state.initial_garment;
   }
@@ -141,14 +141,14 @@ std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& f
                                                   const Garment& garment,
                                                   const LimitSurface& surface,
                                                   const Points3& control, const RunState& state) {
-  Points3 x(garment.num_garment_vertices, 3);
-  for (int i = 0; i < garment.num_garment_vertices; ++i)
+  Points3 x(garment.num_garment_vertices(), 3);
+  for (int i = 0; i < garment.num_garment_vertices(); ++i)
     x.row(i) = surface.position(garment.embedding[i], control).transpose();
   const SceneSpec scene = run_state_scene(state, state.scene_file);
   std::vector<std::string> files =
       write_pattern_files(folder, garment.pattern,
                           scene_pattern_export_options(scene, garment, x, pattern_date(state)));
-  write_ply(folder / "garment_embedded.ply", TriMesh{x, garment.garment_triangles});
+  write_ply(folder / "garment_embedded.ply", TriMesh{x, garment.topology->garment_triangles});
   write_json_atomically(folder / "layout.json", state.result, 2);
   write_run_state(folder / "state.json", state);
   files.insert(files.end(), {"garment_embedded.ply", "layout.json", "state.json"});

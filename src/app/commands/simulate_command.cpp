@@ -37,8 +37,8 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir,
   auto sim = make_simulation(*scene);
   std::printf("tightfit simulate: %d body vertices (%d tets), %d garment vertices, %d triangles\n",
               scene->body.num_vertices(), scene->body.volume.num_tets(),
-              sim->garment().num_garment_vertices,
-              static_cast<int>(sim->garment().garment_triangles.rows()));
+              sim->garment().num_garment_vertices(),
+              static_cast<int>(sim->garment().topology->garment_triangles.rows()));
   auto t0 = SteadyClock::now();
   NewtonReport report;
   try {
@@ -69,8 +69,8 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir,
                       {"body_tets", scene->body.volume.num_tets()},
                       {"body_surface_faces", scene->body.surface.num_faces()},
                       {"body_pinned", scene->body.pinned.size()},
-                      {"garment_vertices", sim->garment().num_garment_vertices},
-                      {"garment_triangles", sim->garment().garment_triangles.rows()},
+                      {"garment_vertices", sim->garment().num_garment_vertices()},
+                      {"garment_triangles", sim->garment().topology->garment_triangles.rows()},
                       {"pattern_pieces", sim->garment().pattern.pieces.size()},
                       {"dofs", sim->problem().num_dofs()}};
   result["energies_j"] = {{"cloth", sim->cloth().value(xf)},

@@ -16,14 +16,14 @@ EmbeddingTransfer::EmbeddingTransfer(const Garment& old_garment, const EmbeddedS
       control_(state.body.topRows(surface.num_control_vertices())) {
   for (const PatternPiece& piece : old_garment.pattern.pieces)
     locators_.emplace_back(piece.triangles, piece.rest);
-  if (static_cast<int>(state.garment.size()) != old_garment.num_garment_vertices ||
-      positions.rows() != old_garment.num_garment_vertices)
+  if (static_cast<int>(state.garment.size()) != old_garment.num_garment_vertices() ||
+      positions.rows() != old_garment.num_garment_vertices())
     throw std::invalid_argument("EmbeddingTransfer: state or positions do not match the garment");
 }
 
 int EmbeddingTransfer::garment_vertex(int piece, int v) const {
-  return old_
-      .pattern_to_garment[static_cast<size_t>(old_.piece_offset[static_cast<size_t>(piece)] + v)];
+  return old_.topology->pattern_to_garment[static_cast<size_t>(
+      old_.topology->piece_offset[static_cast<size_t>(piece)] + v)];
 }
 
 SurfacePoint EmbeddingTransfer::project(const Vec3& point, int hint_garment_vertex) const {

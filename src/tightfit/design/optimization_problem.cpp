@@ -68,7 +68,7 @@ DesignProblem::Reference DesignProblem::make_reference(
       std::move(objective), std::move(coordinates), g.rest_positions(), VecX(), VecX(), 0.0,
       std::move(fresh),     std::move(mesh_rest)};
   ref.initial_parameters = ref.coordinates.parameters(ref.initial_rest);
-  ref.initial_areas = signed_areas(g.pattern_triangles, ref.initial_rest);
+  ref.initial_areas = signed_areas(g.topology->pattern_triangles, ref.initial_rest);
   double sum = 0.0;
   int count = 0;
   for (const PatternPiece& piece : g.pattern.pieces)
@@ -119,7 +119,7 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
   const EmbeddedState old_state = accepted_state_;
   const Points3 positions = sim_.garment_positions();
   out.parameters_before = num_parameters();
-  out.garment_vertices_before = old_garment.num_garment_vertices;
+  out.garment_vertices_before = old_garment.num_garment_vertices();
 
   PatternRemeshResult r;
   try {
@@ -192,8 +192,8 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
   remeshed_ = true;
   out.ok = true;
   out.parameters_after = num_parameters();
-  out.garment_vertices_after = sim_.garment().num_garment_vertices;
-  out.triangles_after = static_cast<int>(sim_.garment().pattern_triangles.rows());
+  out.garment_vertices_after = sim_.garment().num_garment_vertices();
+  out.triangles_after = static_cast<int>(sim_.garment().topology->pattern_triangles.rows());
   out.seconds = seconds_since(t0);
   return out;
 }
@@ -243,18 +243,29 @@ void DesignProblem::restore_remeshed_design(const RemeshedDesign& design,
                                          "rest positions failed: ") +
                                  e.what());
   }
-  if (static_cast<int>(state.garment.size()) != garment.num_garment_vertices ||
+  if (static_cast<int>(state.garment.size()) != garment.num_garment_vertices() ||
       state.body.rows() != sim_.body().volume.vertices.rows())
     throw InputError(source, "/state: " + std::to_string(state.garment.size()) +
                                  " garment surface points and " +
                                  std::to_string(state.body.rows()) +
                                  " body positions, the remeshed garment has " +
-                                 std::to_string(garment.num_garment_vertices) + " and the body " +
+                                 std::to_string(garment.num_garment_vertices()) + " and the body " +
                                  std::to_string(sim_.body().volume.vertices.rows()));
+  // The factory builds the terms from the simulation, so the simulation takes the
+  // remeshed garment first; it gets its own back if the factory throws.
+  const Garment scene_garment = sim_.garment();
+  const EmbeddedState scene_state = sim_.problem().state();
   sim_.replace_garment(std::move(garment), state);
-  auto objective = make_objective_(sim_);
-  if (!objective || objective->entries().size() != ref_.objective->entries().size())
-    throw std::invalid_argument("the objective factory built other terms for the remeshed pattern");
+  std::shared_ptr<const DesignTermSum> objective;
+  try {
+    objective = make_objective_(sim_);
+    if (!objective || objective->entries().size() != ref_.objective->entries().size())
+      throw std::invalid_argument(
+          "the objective factory built other terms for the remeshed pattern");
+  } catch (...) {
+    sim_.replace_garment(scene_garment, scene_state);
+    throw;
+  }
   ref_ = make_reference(std::move(objective), std::move(coordinates), std::move(fresh),
                         design.mesh_rest);
   remeshed_ = true;
@@ -272,7 +283,8 @@ Points2 DesignProblem::rest_positions_at(const Reference& ref, const VecX& p) co
 double DesignProblem::min_area_ratio(const VecX& p) const { return min_area_ratio_at(ref_, p); }
 
 double DesignProblem::min_area_ratio_at(const Reference& ref, const VecX& p) const {
-  const VecX a = signed_areas(sim_.garment().pattern_triangles, rest_positions_at(ref, p));
+  const VecX a =
+      signed_areas(sim_.garment().topology->pattern_triangles, rest_positions_at(ref, p));
   double ratio = std::numeric_limits<double>::infinity();
   for (Eigen::Index t = 0; t < a.size(); ++t) ratio = std::min(ratio, a[t] / ref.initial_areas[t]);
   return ratio;
@@ -419,7 +431,7 @@ void DesignProblem::set_accepted(const VecX& p, const EmbeddedState& state,
     throw InputError("checkpoint", "it has " + std::to_string(p.size()) +
                                        " design parameters, the garment needs " +
                                        std::to_string(num_parameters()));
-  if (static_cast<int>(state.garment.size()) != sim_.garment().num_garment_vertices ||
+  if (static_cast<int>(state.garment.size()) != sim_.garment().num_garment_vertices() ||
       state.body.rows() != sim_.body().volume.vertices.rows())
     throw InputError("checkpoint", "its state does not match the garment and body");
   accepted_p_ = p;

@@ -122,11 +122,11 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
     if (checkpoint.memory.s[k].size() != n || checkpoint.memory.y[k].size() != n)
       throw InputError("checkpoint", "its L-BFGS memory does not match the design parameters");
   if (static_cast<int>(checkpoint.state.garment.size()) !=
-      problem_.simulation().garment().num_garment_vertices)
+      problem_.simulation().garment().num_garment_vertices())
     throw InputError("checkpoint",
                      "its state has " + std::to_string(checkpoint.state.garment.size()) +
                          " garment surface points, the garment has " +
-                         std::to_string(problem_.simulation().garment().num_garment_vertices) +
+                         std::to_string(problem_.simulation().garment().num_garment_vertices()) +
                          " vertices (another garment or mesh?)");
   problem_.set_accepted(checkpoint.parameters, checkpoint.state, checkpoint.held_ordering);
   memory_ = checkpoint.memory;

@@ -120,13 +120,13 @@ std::vector<SurfacePoint> transfer_embedding(const Garment& g,
                                              const std::vector<ResampledPiece>& pieces,
                                              const std::vector<bool>& unchanged,
                                              const EmbeddingTransfer& transfer) {
-  std::vector<bool> done(static_cast<size_t>(g.num_garment_vertices), false);
-  std::vector<SurfacePoint> embedding(static_cast<size_t>(g.num_garment_vertices));
+  std::vector<bool> done(static_cast<size_t>(g.num_garment_vertices()), false);
+  std::vector<SurfacePoint> embedding(static_cast<size_t>(g.num_garment_vertices()));
   for (int p = 0; p < static_cast<int>(pieces.size()); ++p) {
     const int n = static_cast<int>(g.pattern.pieces[static_cast<size_t>(p)].rest.rows());
     for (int v = 0; v < n; ++v) {
-      const int gv =
-          g.pattern_to_garment[static_cast<size_t>(g.piece_offset[static_cast<size_t>(p)] + v)];
+      const int gv = g.topology->pattern_to_garment[static_cast<size_t>(
+          g.topology->piece_offset[static_cast<size_t>(p)] + v)];
       if (done[static_cast<size_t>(gv)]) continue;
       done[static_cast<size_t>(gv)] = true;
       SurfacePoint& sp = embedding[static_cast<size_t>(gv)];

@@ -157,8 +157,8 @@ std::vector<SeamResampling> resample_seams(const Garment& old_garment, const Poi
       const std::vector<int> b(seam.b.vertices.begin() + i0, seam.b.vertices.begin() + i1 + 1);
       std::vector<int> welded;  // side a's garment vertices
       for (int v : a)
-        welded.push_back(old_garment.pattern_to_garment[static_cast<size_t>(
-            old_garment.piece_offset[static_cast<size_t>(pa)] + v)]);
+        welded.push_back(old_garment.topology->pattern_to_garment[static_cast<size_t>(
+            old_garment.topology->piece_offset[static_cast<size_t>(pa)] + v)]);
       const std::vector<double> cum = cumulative_lengths(positions, welded);
       const double la = cumulative_lengths(pattern.pieces[static_cast<size_t>(pa)].rest, a).back();
       const double lb = cumulative_lengths(pattern.pieces[static_cast<size_t>(pb)].rest, b).back();

@@ -30,7 +30,7 @@ double loop_reach(const TriMesh& mesh, const PlaneCut& cut, int loop, const Vec3
 /// The corner of garment triangle `f` at garment vertex `v`.
 int corner_of(const Garment& garment, int f, int v) {
   for (int k = 0; k < 3; ++k)
-    if (garment.garment_triangles(f, k) == v) return k;
+    if (garment.topology->garment_triangles(f, k) == v) return k;
   return -1;  // not reached: a crossed edge of a face has both ends among its corners
 }
 
@@ -38,8 +38,8 @@ int corner_of(const Garment& garment, int f, int v) {
 Vec2 rest_crossing(const Garment& garment, const Points2& rest, const PlaneCut& cut, int f, int i) {
   const auto [a, b] = cut.edges[static_cast<size_t>(i)];
   const double t = cut.t[static_cast<size_t>(i)];
-  const int pa = garment.pattern_triangles(f, corner_of(garment, f, a));
-  const int pb = garment.pattern_triangles(f, corner_of(garment, f, b));
+  const int pa = garment.topology->pattern_triangles(f, corner_of(garment, f, a));
+  const int pb = garment.topology->pattern_triangles(f, corner_of(garment, f, b));
   return (1.0 - t) * rest.row(pa).transpose() + t * rest.row(pb).transpose();
 }
 
@@ -86,7 +86,8 @@ LevelMeasurement measure_level(const MeasurementLevel& level, const TriMesh& bod
     const double length = (rest_crossing(garment, rest, cut, s.face, s.b) -
                            rest_crossing(garment, rest, cut, s.face, s.a))
                               .norm();
-    const auto piece = static_cast<size_t>(garment.triangle_piece[static_cast<size_t>(s.face)]);
+    const auto piece =
+        static_cast<size_t>(garment.topology->triangle_piece[static_cast<size_t>(s.face)]);
     width[piece] += length;
     has[piece] = 1;
     m.pattern_circumference += length;
@@ -129,7 +130,7 @@ double LevelMeasurement::fitted_stretch() const {
 
 EaseTable measure_ease(const std::vector<MeasurementLevel>& levels, const TriMesh& body,
                        const Garment& garment, const Points3& garment_positions) {
-  const TriMesh fitted{garment_positions, garment.garment_triangles};
+  const TriMesh fitted{garment_positions, garment.topology->garment_triangles};
   const Points2 rest = garment.rest_positions();
   EaseTable table;
   for (const MeasurementLevel& level : levels)

@@ -84,21 +84,22 @@ GarmentBuild build_garment(const TriMesh& control, const LimitSurface& limit,
 
   // Embed: one panel point per garment vertex (the first pattern vertex welded to it).
   Garment& g = out.garment;
-  const int ng = g.num_garment_vertices;
+  const int ng = g.num_garment_vertices();
   std::vector<int> representative(ng, -1);
   for (int i = 0; i < g.num_pattern_vertices(); ++i)
-    if (representative[g.pattern_to_garment[i]] < 0) representative[g.pattern_to_garment[i]] = i;
+    if (representative[g.topology->pattern_to_garment[i]] < 0)
+      representative[g.topology->pattern_to_garment[i]] = i;
   g.embedding.resize(ng);
   out.positions.resize(ng, 3);
   out.projection_distance.resize(ng);
   for (int v = 0; v < ng; ++v) {
     const int i = representative[v];
-    const int piece =
-        static_cast<int>(std::upper_bound(g.piece_offset.begin(), g.piece_offset.end(), i) -
-                         g.piece_offset.begin()) -
-        1;
+    const int piece = static_cast<int>(std::upper_bound(g.topology->piece_offset.begin(),
+                                                        g.topology->piece_offset.end(), i) -
+                                       g.topology->piece_offset.begin()) -
+                      1;
     const PieceMap& map = out.maps[piece];
-    const PanelPoint& loc = map.location[i - g.piece_offset[piece]];
+    const PanelPoint& loc = map.location[i - g.topology->piece_offset[piece]];
     const Vec3 p = panel_position(out.layout, map, loc);
     const int surface_face = out.layout.panels[map.panel].surface_face[loc.face];
     g.embedding[v] = project(limit, projector, control, p, out.layout.body_face[surface_face]);

@@ -89,11 +89,11 @@ Garment make_sleeve(const SleeveParams& p, const LimitSurface& surface, const Po
   const Vec3 e1 = axis.unitOrthogonal();
   const Vec3 e2 = axis.cross(e1);
   const LimitProjector projector(surface, control);
-  g.embedding.assign(g.num_garment_vertices, SurfacePoint{});
-  std::vector<char> done(g.num_garment_vertices, 0);
+  g.embedding.assign(g.num_garment_vertices(), SurfacePoint{});
+  std::vector<char> done(g.num_garment_vertices(), 0);
   const Points2& rest = g.pattern.pieces[0].rest;
   for (int v = 0; v < rest.rows(); ++v) {
-    const int gv = g.pattern_to_garment[v];
+    const int gv = g.topology->pattern_to_garment[v];
     if (done[gv]) continue;
     done[gv] = 1;
     const double s = p.axial_begin + rest(v, 1) / p.axial_scale;
@@ -137,15 +137,15 @@ Garment make_cover(const LimitSurface& surface, const Points3& control, double s
     piece.corners = {0, 1, 2};
     pattern.pieces.push_back(std::move(piece));
   }
-  Garment g = weld_pattern(std::move(pattern));
   // Weld by control vertex instead of by seams: garment vertex = control vertex.
-  g.num_garment_vertices = nv;
+  std::vector<int> to_control(static_cast<size_t>(3 * nf));
   for (int f = 0; f < nf; ++f)
-    for (int c = 0; c < 3; ++c) {
-      const int gv = surface.face_vertices(f)[c];
-      g.pattern_to_garment[g.piece_offset[f] + c] = gv;
-      g.garment_triangles(f, c) = gv;
-    }
+    for (int c = 0; c < 3; ++c)
+      to_control[static_cast<size_t>(3 * f + c)] = surface.face_vertices(f)[c];
+  Garment g;
+  g.topology =
+      std::make_shared<const GarmentTopology>(weld_topology(pattern, std::move(to_control), nv));
+  g.pattern = std::move(pattern);
   g.embedding = vertex_point;
   return g;
 }

@@ -20,7 +20,7 @@ EaseTable fit_ease_table(const GarmentSimulation& sim, const SceneSpec& scene) {
       table = drop_uncovered(
           measure_ease(skeleton_levels(*scene.skeleton), rest_body, garment, fitted));
     if (table.levels.empty()) {
-      const auto levels = plane_levels(TriMesh{fitted, garment.garment_triangles},
+      const auto levels = plane_levels(TriMesh{fitted, garment.topology->garment_triangles},
                                        body_up_direction(scene.body), kMeasurementSpacing);
       table = drop_uncovered(measure_ease(levels, rest_body, garment, fitted));
     }

@@ -151,7 +151,7 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
                            "the shape objective has no unpinned garment vertex to act on");
       }
       return std::make_shared<ShapeObjective>(read_shape_target(*spec.shape),
-                                              g.num_garment_vertices, vertices);
+                                              g.num_garment_vertices(), vertices);
     });
   if (spec.pressure)
     add(spec.pressure->weight, [&]() -> std::shared_ptr<const DesignTerm> {

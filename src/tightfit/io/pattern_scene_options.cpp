@@ -10,8 +10,9 @@ namespace tightfit {
 namespace {
 
 Vec3 position_of(const Garment& garment, const Points3& positions, int piece, int vertex) {
-  const int global = garment.piece_offset[static_cast<size_t>(piece)] + vertex;
-  return positions.row(garment.pattern_to_garment[static_cast<size_t>(global)]).transpose();
+  const int global = garment.topology->piece_offset[static_cast<size_t>(piece)] + vertex;
+  return positions.row(garment.topology->pattern_to_garment[static_cast<size_t>(global)])
+      .transpose();
 }
 
 /// Reads "min" (default 1) and "max" of a stretch objective into the label.
@@ -43,7 +44,7 @@ std::map<std::string, NotchStyle> classify_seam_notches(const Garment& garment,
   // orientation whose triangles face away from the centroid on the whole (positive
   // signed volume, as the body's surface is oriented).
   Points3 normals = Points3::Zero(positions.rows(), 3);
-  const Triangles& faces = garment.garment_triangles;
+  const Triangles& faces = garment.topology->garment_triangles;
   double volume = 0.0;
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     const Vec3 a = positions.row(faces(f, 0)).transpose(),
@@ -57,8 +58,9 @@ std::map<std::string, NotchStyle> classify_seam_notches(const Garment& garment,
   for (const Seam& seam : garment.pattern.seams) {
     Vec3 normal = Vec3::Zero();
     for (int v : seam.a.vertices) {
-      const int global = garment.piece_offset[static_cast<size_t>(seam.a.piece)] + v;
-      normal += normals.row(garment.pattern_to_garment[static_cast<size_t>(global)]).transpose();
+      const int global = garment.topology->piece_offset[static_cast<size_t>(seam.a.piece)] + v;
+      normal += normals.row(garment.topology->pattern_to_garment[static_cast<size_t>(global)])
+                    .transpose();
     }
     const double facing = normal.norm() > 0.0 ? normal.normalized().dot(front) : 0.0;
     const bool back = front.norm() > 0.0 && facing < -kBackFacing;

@@ -48,17 +48,17 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
   const SlidingObjective sliding(sim.garment(), sim.materials(), sim.surface(), body.num_vertices(),
                                  motions, friction);
   const SimulationDesignState ds(sim);
-  const Triangles& faces = sim.garment().garment_triangles;
+  const Triangles& faces = sim.garment().topology->garment_triangles;
   out.worst_excess = VecX::Zero(faces.rows());
-  std::vector<char> pinned(static_cast<std::size_t>(sim.garment().num_garment_vertices), 0);
-  for (int v : sim.garment().pinned) pinned[static_cast<std::size_t>(v)] = 1;
+  std::vector<char> pinned(static_cast<std::size_t>(sim.garment().num_garment_vertices()), 0);
+  for (int v : sim.garment().topology->pinned) pinned[static_cast<std::size_t>(v)] = 1;
   for (std::size_t i = 0; i < scene.poses.size(); ++i) {
     const int pose = static_cast<int>(i);
     const SlidingObjective::PoseView pv = sliding.pose_view(ds.view(), pose);
     const SlidingForces& f = pv.forces;
     const PosedGarment& pg = pv.garment;
     const TriMesh mesh{Eigen::Map<const Points3>(pg.x.data(), pg.x.size() / 3, 3),
-                       sim.garment().garment_triangles};
+                       sim.garment().topology->garment_triangles};
     PlyAttributes attributes;
     attributes.vertex_fields = {
         {"sliding_excess_n", f.excess}, {"tangential_n", f.tangential}, {"pressing_n", f.normal}};

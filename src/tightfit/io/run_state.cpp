@@ -267,11 +267,11 @@ Garment run_state_garment(const RunState& s, const Garment& scene_garment, const
     garment = scene_garment;
     garment.set_rest_positions(stacked_rest_positions(s));
   }
-  if (static_cast<int>(s.state.garment.size()) != garment.num_garment_vertices)
+  if (static_cast<int>(s.state.garment.size()) != garment.num_garment_vertices())
     throw InputError(
         source, "/garment: " + std::to_string(s.state.garment.size()) + " surface points, the " +
                     (s.pattern ? "saved pattern's" : "scene's") + " garment has " +
-                    std::to_string(garment.num_garment_vertices) + " vertices" + kChanged);
+                    std::to_string(garment.num_garment_vertices()) + " vertices" + kChanged);
   check_surface_points(s.state.garment, num_surface_faces, source, "/garment");
   if (s.state.body.rows() != body.num_vertices())
     throw InputError(source, "/body: " + std::to_string(s.state.body.rows()) +

@@ -51,17 +51,18 @@ std::vector<SeamStatistics> fit_seam_statistics(const Garment& garment, const Po
   for (size_t k = 0; k < garment.pattern.seams.size(); ++k) {
     const Seam& seam = garment.pattern.seams[k];
     for (const SeamSide* side : {&seam.a, &seam.b}) {
-      const int offset = garment.piece_offset[static_cast<size_t>(side->piece)];
+      const int offset = garment.topology->piece_offset[static_cast<size_t>(side->piece)];
       for (size_t i = 1; i < side->vertices.size(); ++i)
         edge_seam[sorted_edge(offset + side->vertices[i - 1], offset + side->vertices[i])] = k;
     }
     // Side a's edges, mapped to the welded garment vertices, are the sewn seam in 3D.
-    const int offset = garment.piece_offset[static_cast<size_t>(seam.a.piece)];
+    const int offset = garment.topology->piece_offset[static_cast<size_t>(seam.a.piece)];
     double sewn = 0.0, weighted_angle = 0.0;
     for (size_t i = 1; i < seam.a.vertices.size(); ++i) {
-      const int p =
-          garment.pattern_to_garment[static_cast<size_t>(offset + seam.a.vertices[i - 1])];
-      const int q = garment.pattern_to_garment[static_cast<size_t>(offset + seam.a.vertices[i])];
+      const int p = garment.topology
+                        ->pattern_to_garment[static_cast<size_t>(offset + seam.a.vertices[i - 1])];
+      const int q =
+          garment.topology->pattern_to_garment[static_cast<size_t>(offset + seam.a.vertices[i])];
       const Vec3 d = (x.row(q) - x.row(p)).transpose();
       const double l = d.norm();
       sewn += l;

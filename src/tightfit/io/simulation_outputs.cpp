@@ -44,7 +44,7 @@ std::vector<MeshField> garment_face_fields(const GarmentSimulation& sim, const F
     dir.row(e) = el.direction1.transpose();
     regime(e, 0) = static_cast<double>(el.regime);
     tension(e, 0) = el.principal_tension[0];
-    piece(e, 0) = sim.garment().triangle_piece[e];
+    piece(e, 0) = sim.garment().topology->triangle_piece[e];
   }
   const VecX& p = chosen_pressure(fit, op);
   return {{"stretch_max", smax},
@@ -77,7 +77,7 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
   for (int e = 0; e < n; ++e) {
     const auto& el = fit.elements[e];
     all.emplace_back(p[e], el.deformed_area);
-    per_piece[sim.garment().triangle_piece[e]].emplace_back(p[e], el.deformed_area);
+    per_piece[sim.garment().topology->triangle_piece[e]].emplace_back(p[e], el.deformed_area);
     smax.emplace_back(el.stretch[0], el.deformed_area);
     smin.emplace_back(el.stretch[1], el.deformed_area);
     area[static_cast<int>(el.regime)] += el.deformed_area;
@@ -185,11 +185,11 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, Shap
   // garment that lies on it).
   view.body = TriMesh{body_limit_positions(sim.body(), sim.surface(), sim.body_positions()),
                       sim.body().surface.faces};
-  view.garment = TriMesh{sim.garment_positions(), sim.garment().garment_triangles};
+  view.garment = TriMesh{sim.garment_positions(), sim.garment().topology->garment_triangles};
   view.garment_normals.resize(sim.garment_positions().rows(), 3);
   for (Eigen::Index i = 0; i < view.garment_normals.rows(); ++i)
     view.garment_normals.row(i) = sim.problem().garment_normal(static_cast<int>(i)).transpose();
-  view.pinned_vertices = sim.garment().pinned;
+  view.pinned_vertices = sim.garment().topology->pinned;
   const auto n = static_cast<Eigen::Index>(fit.elements.size());
   MatX smax(n, 1), smin(n, 1), dir(n, 3), regime(n, 1), force(n, 1);
   const VecX& p = chosen_pressure(fit, op);
@@ -244,7 +244,7 @@ void write_fit_report(const std::filesystem::path& folder, const FitView& view,
 
 void write_fit_meshes(const std::filesystem::path& folder, const GarmentSimulation& sim,
                       const FitAnalysis& fit, ShapeOperatorKind op) {
-  TriMesh garment{sim.garment_positions(), sim.garment().garment_triangles};
+  TriMesh garment{sim.garment_positions(), sim.garment().topology->garment_triangles};
   PlyAttributes ga;
   ga.face_fields = garment_face_fields(sim, fit, op);
   ga.vertex_fields = garment_vertex_fields(fit);

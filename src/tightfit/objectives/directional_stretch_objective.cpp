@@ -22,9 +22,9 @@ ElementKinematics directional_kinematics(const DesignState& s, const Triangles& 
 DirectionalStretchObjective::DirectionalStretchObjective(const Garment& garment,
                                                          FabricDirection direction,
                                                          StretchBounds bounds)
-    : triangles_(garment.pattern_triangles),
-      pattern_to_garment_(garment.pattern_to_garment),
-      num_garment_(garment.num_garment_vertices),
+    : triangles_(garment.topology->pattern_triangles),
+      pattern_to_garment_(garment.topology->pattern_to_garment),
+      num_garment_(garment.num_garment_vertices()),
       num_pattern_(garment.num_pattern_vertices()) {
   if (!(bounds.min_stretch > 0.0) || !(bounds.max_stretch >= bounds.min_stretch) ||
       !std::isfinite(bounds.min_stretch))
@@ -44,8 +44,8 @@ DirectionalStretchObjective::DirectionalStretchObjective(const Garment& garment,
   }
   directions_.reserve(static_cast<size_t>(triangles_.rows()));
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e)
-    directions_.push_back(
-        piece_direction.at(static_cast<size_t>(garment.triangle_piece.at(static_cast<size_t>(e)))));
+    directions_.push_back(piece_direction.at(
+        static_cast<size_t>(garment.topology->triangle_piece.at(static_cast<size_t>(e)))));
 }
 
 void DirectionalStretchObjective::check(const DesignState& state) const {

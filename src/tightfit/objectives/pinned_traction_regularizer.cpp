@@ -17,22 +17,26 @@ struct PinnedTractionRegularizer::Evaluation {
 PinnedTractionRegularizer::PinnedTractionRegularizer(const Garment& garment,
                                                      const SimulationMaterials& materials,
                                                      const LimitSurface& surface)
-    : surface_(surface), pinned_(garment.pinned) {
+    : surface_(surface),
+      pinned_(garment.topology->pinned),
+      topology_(garment.topology),
+      fabric_(materials.fabric),
+      seam_(materials.seam) {
   if (pinned_.empty()) throw InputError("pinned traction", "the garment has no pinned vertices");
-  energies_.push_back(make_cloth_energy(garment, materials.fabric));
-  if (auto seams = make_seam_energy(garment, materials.seam)) energies_.push_back(std::move(seams));
 }
 
 PinnedTractionRegularizer::~PinnedTractionRegularizer() = default;
+
+GarmentEnergies PinnedTractionRegularizer::energies_at(const Points2& rest) const {
+  return GarmentEnergies(topology_, rest, fabric_, seam_);
+}
 
 PinnedTractionRegularizer::Evaluation PinnedTractionRegularizer::evaluate(
     const DesignState& state) const {
   if (state.embedding == nullptr)
     throw std::logic_error("PinnedTractionRegularizer: the design state carries no embedding");
-  for (const auto& e : energies_)
-    if (e->rest().rows() != state.rest.rows() || e->rest() != state.rest) e->set_rest(state.rest);
   VecX g = VecX::Zero(state.x.size());
-  for (const auto& e : energies_) e->add_gradient(state.x, g);
+  for (const RestDependentEnergy* e : energies_at(state.rest).all()) e->add_gradient(state.x, g);
   Evaluation ev;
   ev.a = VecX::Zero(state.x.size());
   const std::size_t n = pinned_.size();
@@ -69,11 +73,12 @@ double PinnedTractionRegularizer::value(const DesignState& state) const {
 void PinnedTractionRegularizer::add_gradient(const DesignState& state, VecX& d_x,
                                              VecX& d_rest) const {
   const Evaluation ev = evaluate(state);
+  const GarmentEnergies energies = energies_at(state.rest);
   std::vector<Triplet> t;
-  for (const auto& e : energies_) e->add_hessian(state.x, t, false);
+  for (const RestDependentEnergy* e : energies.all()) e->add_hessian(state.x, t, false);
   for (const Triplet& h : t) d_x[h.row()] += h.value() * ev.a[h.col()];
   t.clear();
-  for (const auto& e : energies_) e->add_mixed_rest(state.x, t);
+  for (const RestDependentEnergy* e : energies.all()) e->add_mixed_rest(state.x, t);
   for (const Triplet& m : t) d_rest[m.col()] += m.value() * ev.a[m.row()];
 }
 

@@ -19,7 +19,7 @@
 
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
-#include "tightfit/physics/rest_dependent_energy.hpp"
+#include "tightfit/physics/garment_energies.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
@@ -46,9 +46,15 @@ class PinnedTractionRegularizer : public DesignTerm {
   struct Evaluation;
   Evaluation evaluate(const DesignState& state) const;
 
+  /// The garment's cloth and seam energies reading `rest` (which must outlive them).
+  GarmentEnergies energies_at(const Points2& rest) const;
+
   const LimitSurface& surface_;
   std::vector<int> pinned_;
-  std::vector<std::unique_ptr<RestDependentEnergy>> energies_;  // rest synced lazily
+  // The garment energies' connectivity and materials; energies_at binds them to a state's rest.
+  std::shared_ptr<const GarmentTopology> topology_;
+  ClothMaterial fabric_;
+  SeamMaterial seam_;
 };
 
 }  // namespace tightfit

@@ -139,9 +139,9 @@ bool inside_all(double pressure, double lo, double hi, const PressureRegions& re
 PressureObjective::PressureObjective(const Garment& garment, const ClothMaterial& material,
                                      PressureRegions regions)
     : PressureObjective(garment, material,
-                        VecX::Constant(garment.garment_triangles.rows(),
+                        VecX::Constant(garment.topology->garment_triangles.rows(),
                                        -std::numeric_limits<double>::infinity()),
-                        VecX::Constant(garment.garment_triangles.rows(),
+                        VecX::Constant(garment.topology->garment_triangles.rows(),
                                        std::numeric_limits<double>::infinity())) {
   regions_ = std::move(regions);
 }
@@ -149,14 +149,14 @@ PressureObjective::PressureObjective(const Garment& garment, const ClothMaterial
 PressureObjective::PressureObjective(const Garment& garment, const ClothMaterial& material,
                                      double min_pressure, double max_pressure)
     : PressureObjective(garment, material,
-                        VecX::Constant(garment.garment_triangles.rows(), min_pressure),
-                        VecX::Constant(garment.garment_triangles.rows(), max_pressure)) {}
+                        VecX::Constant(garment.topology->garment_triangles.rows(), min_pressure),
+                        VecX::Constant(garment.topology->garment_triangles.rows(), max_pressure)) {}
 
 PressureObjective::PressureObjective(const Garment& garment, const ClothMaterial& material,
                                      VecX min_pressure, VecX max_pressure)
-    : pattern_triangles_(garment.pattern_triangles),
-      garment_triangles_(garment.garment_triangles),
-      num_garment_(garment.num_garment_vertices),
+    : pattern_triangles_(garment.topology->pattern_triangles),
+      garment_triangles_(garment.topology->garment_triangles),
+      num_garment_(garment.num_garment_vertices()),
       num_pattern_(garment.num_pattern_vertices()),
       law_(material),
       min_pressure_(std::move(min_pressure)),

@@ -11,7 +11,7 @@ namespace tightfit {
 
 PressureRegions::PressureRegions(const Garment& garment, std::vector<PressureRegion> regions,
                                  const std::string& source, const SkinWeights* rig, double radius)
-    : regions_(std::move(regions)), triangles_(garment.garment_triangles) {
+    : regions_(std::move(regions)), triangles_(garment.topology->garment_triangles) {
   bone_fields_.resize(regions_.size());
   const std::vector<PatternPiece>& pieces = garment.pattern.pieces;
   std::set<std::string> names;
@@ -59,7 +59,8 @@ PressureRegions::PressureRegions(const Garment& garment, std::vector<PressureReg
   candidates_.resize(static_cast<std::size_t>(triangles_.rows()));
   for (Eigen::Index e = 0; e < triangles_.rows(); ++e)
     for (std::size_t r = 0; r < regions_.size(); ++r)
-      if (selects[r][garment.triangle_piece[e]]) candidates_[e].push_back(static_cast<int>(r));
+      if (selects[r][garment.topology->triangle_piece[e]])
+        candidates_[e].push_back(static_cast<int>(r));
 }
 
 MatX PressureRegions::weights(const VecX& x) const {

@@ -45,7 +45,7 @@ CompactnessRegularizer::CompactnessRegularizer(const Garment& garment, Compactne
   for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k)
     for (const std::vector<int>& piece_loop : garment.pattern.pieces[k].loops()) {
       Loop loop;
-      const int o = garment.piece_offset[k];
+      const int o = garment.topology->piece_offset[k];
       for (int v : piece_loop) loop.vertices.push_back(o + v);
       const int n = static_cast<int>(loop.vertices.size());
       if (n < 4) continue;

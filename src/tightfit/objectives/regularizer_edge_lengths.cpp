@@ -59,8 +59,8 @@ void EdgeLengthDifferenceTerm::add_gradient(const DesignState& state, VecX& /*d_
 EdgeLengthDifferenceTerm seam_length_regularizer(const Garment& garment) {
   std::vector<EdgeLengthDifferenceTerm::EdgePair> pairs;
   for (const Seam& seam : garment.pattern.seams) {
-    const int oa = garment.piece_offset.at(seam.a.piece);
-    const int ob = garment.piece_offset.at(seam.b.piece);
+    const int oa = garment.topology->piece_offset.at(seam.a.piece);
+    const int ob = garment.topology->piece_offset.at(seam.b.piece);
     const std::size_t k = std::min(seam.a.vertices.size(), seam.b.vertices.size());
     for (std::size_t i = 0; i + 1 < k; ++i)
       pairs.push_back({{oa + seam.a.vertices[i], oa + seam.a.vertices[i + 1]},
@@ -72,7 +72,7 @@ EdgeLengthDifferenceTerm seam_length_regularizer(const Garment& garment) {
 EdgeLengthDifferenceTerm even_spacing_regularizer(const Garment& garment) {
   std::vector<EdgeLengthDifferenceTerm::EdgePair> pairs;
   for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k) {
-    const int o = garment.piece_offset[k];
+    const int o = garment.topology->piece_offset[k];
     for (const std::vector<int>& loop : garment.pattern.pieces[k].loops()) {
       const std::size_t n = loop.size();
       if (n < 3) continue;

@@ -21,7 +21,7 @@ std::vector<std::array<int, 3>> boundary_triples(const Garment& garment, Boundar
   std::vector<std::array<int, 3>> triples;
   for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k) {
     const PatternPiece& piece = garment.pattern.pieces[k];
-    const int o = garment.piece_offset[k];
+    const int o = garment.topology->piece_offset[k];
     for (const std::vector<int>& loop : piece.loops()) {
       const std::size_t n = loop.size();
       if (n < 3) continue;

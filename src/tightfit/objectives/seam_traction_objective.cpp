@@ -40,9 +40,9 @@ S seam_term(const RelaxedStVK& law, const std::array<Vec3T<S>, 3>& x,
 }  // namespace
 
 SeamTractionObjective::SeamTractionObjective(const Garment& garment, const ClothMaterial& material)
-    : pattern_triangles_(garment.pattern_triangles),
-      pattern_to_garment_(garment.pattern_to_garment),
-      num_garment_(garment.num_garment_vertices),
+    : pattern_triangles_(garment.topology->pattern_triangles),
+      pattern_to_garment_(garment.topology->pattern_to_garment),
+      num_garment_(garment.num_garment_vertices()),
       num_pattern_(garment.num_pattern_vertices()),
       law_(material) {
   std::map<std::pair<int, int>, std::vector<int>> edge_triangles;
@@ -51,7 +51,7 @@ SeamTractionObjective::SeamTractionObjective(const Garment& garment, const Cloth
       const int a = pattern_triangles_(e, k), b = pattern_triangles_(e, (k + 1) % 3);
       edge_triangles[{std::min(a, b), std::max(a, b)}].push_back(e);
     }
-  for (const auto& [a, b] : garment.seam_edges()) {
+  for (const auto& [a, b] : garment.topology->seam_edges) {
     const auto it = edge_triangles.find({std::min(a, b), std::max(a, b)});
     if (it == edge_triangles.end())
       throw InputError("seam traction objective", "seam edge (" + std::to_string(a) + ", " +

@@ -53,8 +53,9 @@ void ShapeObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& /*d
 
 std::vector<int> unpinned_vertices(const Garment& garment) {
   std::vector<int> out;
-  for (int v = 0; v < garment.num_garment_vertices; ++v)
-    if (!std::binary_search(garment.pinned.begin(), garment.pinned.end(), v)) out.push_back(v);
+  for (int v = 0; v < garment.num_garment_vertices(); ++v)
+    if (!std::binary_search(garment.topology->pinned.begin(), garment.topology->pinned.end(), v))
+      out.push_back(v);
   return out;
 }
 

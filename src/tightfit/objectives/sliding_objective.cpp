@@ -21,11 +21,14 @@ SlidingObjective::SlidingObjective(const Garment& garment, const SimulationMater
                                    const LimitSurface& surface, int num_body_vertices,
                                    std::vector<PoseMotions> poses, double friction)
     : surface_(surface),
-      num_garment_(garment.num_garment_vertices),
+      num_garment_(garment.num_garment_vertices()),
       num_body_(num_body_vertices),
-      pinned_(static_cast<std::size_t>(garment.num_garment_vertices), 0),
+      pinned_(static_cast<std::size_t>(garment.num_garment_vertices()), 0),
       poses_(std::move(poses)),
-      friction_(friction) {
+      friction_(friction),
+      topology_(garment.topology),
+      fabric_(materials.fabric),
+      seam_(materials.seam) {
   const std::string source = "sliding objective";
   if (!std::isfinite(friction) || friction < 0.0)
     throw InputError(source, "the friction coefficient must be finite and >= 0");
@@ -37,16 +40,13 @@ SlidingObjective::SlidingObjective(const Garment& garment, const SimulationMater
                       " body vertices, the body has " + std::to_string(num_body_vertices));
   if (num_body_vertices < surface.num_control_vertices())
     throw InputError(source, "the body has fewer vertices than its surface");
-  for (int v : garment.pinned) pinned_[static_cast<std::size_t>(v)] = 1;
-  energies_.push_back(make_cloth_energy(garment, materials.fabric));
-  if (auto seams = make_seam_energy(garment, materials.seam)) energies_.push_back(std::move(seams));
+  for (int v : garment.topology->pinned) pinned_[static_cast<std::size_t>(v)] = 1;
 }
 
 SlidingObjective::~SlidingObjective() = default;
 
-void SlidingObjective::sync_rest(const Points2& rest) const {
-  for (const auto& e : energies_)
-    if (e->rest().rows() != rest.rows() || e->rest() != rest) e->set_rest(rest);
+GarmentEnergies SlidingObjective::energies_at(const Points2& rest) const {
+  return GarmentEnergies(topology_, rest, fabric_, seam_);
 }
 
 SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& state, int pose,
@@ -57,13 +57,12 @@ SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& s
   if (static_cast<int>(emb.garment.size()) != num_garment_ || emb.body.rows() != num_body_)
     throw std::invalid_argument(
         "SlidingObjective: the embedding does not match the garment and body");
-  sync_rest(state.rest);
   PoseEvaluation ev;
   ev.posed = pose_garment(surface_, emb, poses_[static_cast<std::size_t>(pose)].motions);
   const PosedGarment& pg = ev.posed;
   const int n = num_garment_;
   VecX g = VecX::Zero(3 * n);
-  for (const auto& e : energies_) e->add_gradient(pg.x, g);
+  for (const RestDependentEnergy* e : energies_at(state.rest).all()) e->add_gradient(pg.x, g);
   ev.forces.normal = VecX::Zero(n);
   ev.forces.tangential = VecX::Zero(n);
   ev.forces.excess = VecX::Zero(n);
@@ -108,7 +107,8 @@ void SlidingObjective::add_gradient(const DesignState& state, VecX& /*d_x*/, Vec
     const PoseEvaluation ev = evaluate(state, i, true);
     if (ev.value == 0.0) continue;
     mixed.clear();
-    for (const auto& e : energies_) e->add_mixed_rest(ev.posed.x, mixed);
+    for (const RestDependentEnergy* e : energies_at(state.rest).all())
+      e->add_mixed_rest(ev.posed.x, mixed);
     // f = −∂U/∂x, so ∂T/∂Xbar = −(∂²U/∂x∂Xbar)ᵀ a.
     for (const Triplet& t : mixed) d_rest[t.col()] -= t.value() * ev.a[t.row()];
   }
@@ -122,7 +122,8 @@ void SlidingObjective::add_embedding_gradient(const DesignState& state, VecX& d_
     if (ev.value == 0.0) continue;
     hessian.clear();
     const PosedGarment& pg = ev.posed;
-    for (const auto& e : energies_) e->add_hessian(pg.x, hessian, false);
+    for (const RestDependentEnergy* e : energies_at(state.rest).all())
+      e->add_hessian(pg.x, hessian, false);
     VecX gx = VecX::Zero(pg.x.size());  // ∂T/∂x_i = −H a
     for (const Triplet& t : hessian) gx[t.row()] -= t.value() * ev.a[t.col()];
     const std::vector<PointMotion>& motion = poses_[static_cast<std::size_t>(i)].motions;

@@ -31,7 +31,7 @@
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
 #include "tightfit/objectives/posed_garment.hpp"
-#include "tightfit/physics/rest_dependent_energy.hpp"
+#include "tightfit/physics/garment_energies.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
@@ -75,7 +75,9 @@ class SlidingObjective : public DesignTerm {
  private:
   struct PoseEvaluation;
   PoseEvaluation evaluate(const DesignState& state, int pose, bool with_gradient) const;
-  void sync_rest(const Points2& rest) const;
+
+  /// The garment's cloth and seam energies reading `rest` (which must outlive them).
+  GarmentEnergies energies_at(const Points2& rest) const;
 
   const LimitSurface& surface_;
   int num_garment_ = 0;
@@ -83,7 +85,10 @@ class SlidingObjective : public DesignTerm {
   std::vector<char> pinned_;
   std::vector<PoseMotions> poses_;
   double friction_ = 0.3;
-  std::vector<std::unique_ptr<RestDependentEnergy>> energies_;  // rest synced lazily
+  // The garment energies' connectivity and materials; energies_at binds them to a state's rest.
+  std::shared_ptr<const GarmentTopology> topology_;
+  ClothMaterial fabric_;
+  SeamMaterial seam_;
 };
 
 }  // namespace tightfit

@@ -34,9 +34,9 @@ Eigen2 eigen2(const Mat2& c) {
 }  // namespace
 
 StretchObjective::StretchObjective(const Garment& garment, StretchBounds bounds)
-    : triangles_(garment.pattern_triangles),
-      pattern_to_garment_(garment.pattern_to_garment),
-      num_garment_(garment.num_garment_vertices),
+    : triangles_(garment.topology->pattern_triangles),
+      pattern_to_garment_(garment.topology->pattern_to_garment),
+      num_garment_(garment.num_garment_vertices()),
       num_pattern_(garment.num_pattern_vertices()) {
   if (!(bounds.min_stretch > 0.0) || !(bounds.max_stretch >= bounds.min_stretch) ||
       !std::isfinite(bounds.min_stretch))

@@ -123,40 +123,67 @@ Phi element_phi(const Vec3& g, const Vec3& m, const RelaxedStVK& law, int order)
 
 }  // namespace
 
-ClothEnergy::ClothEnergy(Triangles triangles, Points2 rest, std::vector<int> pattern_to_garment,
-                         int num_garment_vertices, ClothMaterial material)
-    : triangles_(std::move(triangles)),
-      rest_(std::move(rest)),
-      pattern_to_garment_(std::move(pattern_to_garment)),
-      num_garment_(num_garment_vertices),
-      law_(material) {
-  const Eigen::Index np = rest_.rows();
-  if (static_cast<Eigen::Index>(pattern_to_garment_.size()) != np)
+namespace {
+
+/// The one-piece topology of raw cloth arrays, after checking their indices.
+std::shared_ptr<const GarmentTopology> raw_cloth_topology(Triangles triangles,
+                                                          Eigen::Index num_pattern,
+                                                          std::vector<int> pattern_to_garment,
+                                                          int num_garment) {
+  if (static_cast<Eigen::Index>(pattern_to_garment.size()) != num_pattern)
     throw InputError(kClothSource, "pattern-to-garment map has " +
-                                       std::to_string(pattern_to_garment_.size()) +
-                                       " entries for " + std::to_string(np) + " pattern vertices");
-  for (std::size_t p = 0; p < pattern_to_garment_.size(); ++p)
-    if (pattern_to_garment_[p] < 0 || pattern_to_garment_[p] >= num_garment_)
+                                       std::to_string(pattern_to_garment.size()) + " entries for " +
+                                       std::to_string(num_pattern) + " pattern vertices");
+  for (std::size_t p = 0; p < pattern_to_garment.size(); ++p)
+    if (pattern_to_garment[p] < 0 || pattern_to_garment[p] >= num_garment)
       throw InputError(kClothSource, "pattern vertex " + std::to_string(p) +
                                          " maps to garment vertex " +
-                                         std::to_string(pattern_to_garment_[p]) + " outside [0, " +
-                                         std::to_string(num_garment_) + ")");
-  for (Eigen::Index e = 0; e < triangles_.rows(); ++e)
+                                         std::to_string(pattern_to_garment[p]) + " outside [0, " +
+                                         std::to_string(num_garment) + ")");
+  for (Eigen::Index e = 0; e < triangles.rows(); ++e)
     for (int k = 0; k < 3; ++k)
-      if (triangles_(e, k) < 0 || triangles_(e, k) >= np)
+      if (triangles(e, k) < 0 || triangles(e, k) >= num_pattern)
         throw InputError(kClothSource, "triangle " + std::to_string(e) + " has pattern vertex " +
-                                           std::to_string(triangles_(e, k)) + " outside [0, " +
-                                           std::to_string(np) + ")");
-  validate_rest(rest_);
+                                           std::to_string(triangles(e, k)) + " outside [0, " +
+                                           std::to_string(num_pattern) + ")");
+  auto topology = std::make_shared<GarmentTopology>();
+  topology->piece_offset = {0, static_cast<int>(num_pattern)};
+  topology->garment_triangles.resize(triangles.rows(), 3);
+  for (Eigen::Index e = 0; e < triangles.rows(); ++e)
+    for (int k = 0; k < 3; ++k)
+      topology->garment_triangles(e, k) = pattern_to_garment[static_cast<size_t>(triangles(e, k))];
+  topology->triangle_piece.assign(static_cast<size_t>(triangles.rows()), 0);
+  topology->pattern_triangles = std::move(triangles);
+  topology->pattern_to_garment = std::move(pattern_to_garment);
+  topology->num_garment_vertices = num_garment;
+  return topology;
 }
 
-void ClothEnergy::validate_rest(const Points2& rest) const {
-  if (rest.rows() != rest_.rows())
+}  // namespace
+
+ClothEnergy::ClothEnergy(std::shared_ptr<const GarmentTopology> topology, const Points2& rest,
+                         ClothMaterial material)
+    : RestDependentEnergy(rest), topology_(std::move(topology)), law_(material) {
+  if (!topology_) throw std::invalid_argument("ClothEnergy: null topology");
+  check_rest(rest);
+}
+
+ClothEnergy::ClothEnergy(Triangles triangles, const Points2& rest,
+                         std::vector<int> pattern_to_garment, int num_garment_vertices,
+                         ClothMaterial material)
+    : ClothEnergy(raw_cloth_topology(std::move(triangles), rest.rows(),
+                                     std::move(pattern_to_garment), num_garment_vertices),
+                  rest, material) {}
+
+void ClothEnergy::check_rest(const Points2& rest) const {
+  const Triangles& triangles = topology_->pattern_triangles;
+  if (rest.rows() != topology_->num_pattern_vertices())
     throw InputError(kClothSource, "rest positions have " + std::to_string(rest.rows()) +
-                                       " rows, expected " + std::to_string(rest_.rows()));
-  for (Eigen::Index e = 0; e < triangles_.rows(); ++e) {
-    const Vec2 e1 = (rest.row(triangles_(e, 1)) - rest.row(triangles_(e, 0))).transpose();
-    const Vec2 e2 = (rest.row(triangles_(e, 2)) - rest.row(triangles_(e, 0))).transpose();
+                                       " rows, expected " +
+                                       std::to_string(topology_->num_pattern_vertices()));
+  for (Eigen::Index e = 0; e < triangles.rows(); ++e) {
+    const Vec2 e1 = (rest.row(triangles(e, 1)) - rest.row(triangles(e, 0))).transpose();
+    const Vec2 e2 = (rest.row(triangles(e, 2)) - rest.row(triangles(e, 0))).transpose();
     const double cross = e1.x() * e2.y() - e1.y() * e2.x();
     if (!(std::abs(cross) > 1e-14 * (e1.squaredNorm() + e2.squaredNorm())))
       throw InputError(kClothSource,
@@ -164,27 +191,15 @@ void ClothEnergy::validate_rest(const Points2& rest) const {
   }
 }
 
-void ClothEnergy::set_rest(const Points2& rest) {
-  validate_rest(rest);
-  rest_ = rest;
-}
-
 void ClothEnergy::check_x(const VecX& x) const {
-  if (x.size() != 3 * static_cast<Eigen::Index>(num_garment_))
+  if (x.size() != 3 * static_cast<Eigen::Index>(num_garment_vertices()))
     throw std::invalid_argument("ClothEnergy: position vector has " + std::to_string(x.size()) +
-                                " entries, expected 3 x " + std::to_string(num_garment_));
-}
-
-Triangles ClothEnergy::garment_triangles() const {
-  Triangles t(triangles_.rows(), 3);
-  for (Eigen::Index e = 0; e < triangles_.rows(); ++e)
-    for (int k = 0; k < 3; ++k) t(e, k) = pattern_to_garment_[triangles_(e, k)];
-  return t;
+                                " entries, expected 3 x " + std::to_string(num_garment_vertices()));
 }
 
 double ClothEnergy::rest_area(int e) const {
-  const Vec2 e1 = (rest_.row(triangles_(e, 1)) - rest_.row(triangles_(e, 0))).transpose();
-  const Vec2 e2 = (rest_.row(triangles_(e, 2)) - rest_.row(triangles_(e, 0))).transpose();
+  const Vec2 e1 = (rest().row(triangles()(e, 1)) - rest().row(triangles()(e, 0))).transpose();
+  const Vec2 e2 = (rest().row(triangles()(e, 2)) - rest().row(triangles()(e, 0))).transpose();
   return 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
 }
 
@@ -192,9 +207,9 @@ Mat32 ClothEnergy::deformation_gradient(const VecX& x, int e) const {
   Mat2 dm;
   Mat32 ds;
   for (int k = 0; k < 2; ++k) {
-    dm.col(k) = (rest_.row(triangles_(e, k + 1)) - rest_.row(triangles_(e, 0))).transpose();
-    ds.col(k) = x.segment<3>(3 * pattern_to_garment_[triangles_(e, k + 1)]) -
-                x.segment<3>(3 * pattern_to_garment_[triangles_(e, 0)]);
+    dm.col(k) = (rest().row(triangles()(e, k + 1)) - rest().row(triangles()(e, 0))).transpose();
+    ds.col(k) = x.segment<3>(3 * pattern_to_garment()[triangles()(e, k + 1)]) -
+                x.segment<3>(3 * pattern_to_garment()[triangles()(e, 0)]);
   }
   return ds * dm.inverse();
 }
@@ -251,8 +266,8 @@ void assemble_gradient(const Triangles& triangles, const Points2& rest,
 
 double ClothEnergy::value(const VecX& x) const {
   check_x(x);
-  VecX values(triangles_.rows());
-  for_each_element(triangles_, rest_, pattern_to_garment_, x,
+  VecX values(triangles().rows());
+  for_each_element(triangles(), rest(), pattern_to_garment(), x,
                    [&](std::int64_t e, const ClothElement& el) {
                      values[e] = element_phi(el.deformed.value, el.rest.value, law_, 0).value;
                    });
@@ -263,7 +278,7 @@ void ClothEnergy::add_gradient(const VecX& x, VecX& g) const {
   check_x(x);
   check_x(g);
   const double t = material().thickness;
-  assemble_gradient<3>(triangles_, rest_, pattern_to_garment_, x, g,
+  assemble_gradient<3>(triangles(), rest(), pattern_to_garment(), x, g,
                        [&](const ClothElement& el, Vec9& local, std::array<int, 3>& ids) {
                          const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
                          local = t * el.deformed.jacobian.transpose() * phi.gradient.head<3>();
@@ -275,9 +290,9 @@ void ClothEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool proje
   check_x(x);
   constexpr size_t kPerElement = 81;
   const size_t first = H.size();
-  H.resize(first + kPerElement * static_cast<size_t>(triangles_.rows()));
+  H.resize(first + kPerElement * static_cast<size_t>(triangles().rows()));
   const double t = material().thickness;
-  for_each_element(triangles_, rest_, pattern_to_garment_, x,
+  for_each_element(triangles(), rest(), pattern_to_garment(), x,
                    [&](std::int64_t e, const ClothElement& el) {
                      const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
                      const Mat3x9& j = el.deformed.jacobian;
@@ -291,10 +306,10 @@ void ClothEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool proje
 
 void ClothEnergy::add_gradient_rest(const VecX& x, VecX& g_rest) const {
   check_x(x);
-  if (g_rest.size() != 2 * rest_.rows())
+  if (g_rest.size() != 2 * rest().rows())
     throw std::invalid_argument("ClothEnergy::add_gradient_rest: wrong vector size");
   const double t = material().thickness;
-  assemble_gradient<2>(triangles_, rest_, pattern_to_garment_, x, g_rest,
+  assemble_gradient<2>(triangles(), rest(), pattern_to_garment(), x, g_rest,
                        [&](const ClothElement& el, Vec6& local, std::array<int, 3>& ids) {
                          const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
                          local = t * el.rest.jacobian.transpose() * phi.gradient.tail<3>();
@@ -306,10 +321,10 @@ void ClothEnergy::add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const {
   check_x(x);
   constexpr size_t kPerElement = 54;
   const size_t first = H.size();
-  H.resize(first + kPerElement * static_cast<size_t>(triangles_.rows()));
+  H.resize(first + kPerElement * static_cast<size_t>(triangles().rows()));
   const double t = material().thickness;
   for_each_element(
-      triangles_, rest_, pattern_to_garment_, x, [&](std::int64_t e, const ClothElement& el) {
+      triangles(), rest(), pattern_to_garment(), x, [&](std::int64_t e, const ClothElement& el) {
         const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
         const Eigen::Matrix<double, 9, 6> local = t * el.deformed.jacobian.transpose() *
                                                   phi.hessian.topRightCorner<3, 3>() *

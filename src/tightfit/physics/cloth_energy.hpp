@@ -13,8 +13,10 @@
 /// through G and M only (quadratic in positions), which gives the x-Hessian and the
 /// mixed ∂²U/∂x∂Xbar from one 6×6 Hessian of Φ. The energy does not depend on the rest
 /// triangle's orientation in the plane.
+#include <memory>
 #include <vector>
 
+#include "tightfit/garment/garment_topology.hpp"
 #include "tightfit/physics/relaxed_stvk.hpp"
 #include "tightfit/physics/rest_dependent_energy.hpp"
 
@@ -22,31 +24,38 @@ namespace tightfit {
 
 class ClothEnergy : public RestDependentEnergy {
  public:
-  /// `triangles` m×3 over pattern vertices; `rest` n_p×2 rest positions (m);
-  /// `pattern_to_garment` n_p garment vertex ids in [0, num_garment_vertices).
-  /// Throws InputError on an index out of range or a zero-area rest triangle, and for
-  /// invalid material constants.
-  ClothEnergy(Triangles triangles, Points2 rest, std::vector<int> pattern_to_garment,
+  /// The cloth of a welded garment: its pattern triangles and vertex map (shared, not
+  /// copied), reading the rest positions `rest` (n_p×2, m; bound, not copied:
+  /// rest_dependent_energy.hpp). Throws InputError when `rest` does not have one row per
+  /// pattern vertex or has a zero-area triangle, and for invalid material constants.
+  ClothEnergy(std::shared_ptr<const GarmentTopology> topology, const Points2& rest,
+              ClothMaterial material = {});
+  ClothEnergy(std::shared_ptr<const GarmentTopology>, const Points2&&, ClothMaterial = {}) = delete;
+  /// Cloth over raw arrays (a single element, a test mesh): `triangles` m×3 over pattern
+  /// vertices; `rest` n_p×2 (bound); `pattern_to_garment` n_p garment vertex ids in
+  /// [0, num_garment_vertices). Throws InputError on an index out of range, and as above.
+  ClothEnergy(Triangles triangles, const Points2& rest, std::vector<int> pattern_to_garment,
               int num_garment_vertices, ClothMaterial material = {});
+  ClothEnergy(Triangles, const Points2&&, std::vector<int>, int, ClothMaterial = {}) = delete;
 
   std::string name() const override { return "cloth"; }
   double value(const VecX& x) const override;
   void add_gradient(const VecX& x, VecX& g) const override;
   void add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd = false) const override;
 
-  int num_pattern_vertices() const override { return static_cast<int>(rest_.rows()); }
-  const Points2& rest() const override { return rest_; }
-  void set_rest(const Points2& rest) override;
+  void check_rest(const Points2& rest) const override;
   void add_gradient_rest(const VecX& x, VecX& g_rest) const override;
   void add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const override;
 
-  int num_garment_vertices() const { return num_garment_; }
-  int num_triangles() const { return static_cast<int>(triangles_.rows()); }
+  int num_garment_vertices() const { return topology_->num_garment_vertices; }
+  int num_triangles() const { return topology_->num_triangles(); }
+  /// The connectivity the energy runs over.
+  const GarmentTopology& topology() const { return *topology_; }
   /// Triangles over pattern vertices (m×3).
-  const Triangles& triangles() const { return triangles_; }
+  const Triangles& triangles() const { return topology_->pattern_triangles; }
   /// The same triangles over garment vertices (for the 3D garment mesh).
-  Triangles garment_triangles() const;
-  const std::vector<int>& pattern_to_garment() const { return pattern_to_garment_; }
+  const Triangles& garment_triangles() const { return topology_->garment_triangles; }
+  const std::vector<int>& pattern_to_garment() const { return topology_->pattern_to_garment; }
   const ClothMaterial& material() const { return law_.material(); }
   const RelaxedStVK& law() const { return law_; }
   /// Rest area of triangle e (m²).
@@ -57,12 +66,8 @@ class ClothEnergy : public RestDependentEnergy {
 
  private:
   void check_x(const VecX& x) const;
-  void validate_rest(const Points2& rest) const;
 
-  Triangles triangles_;
-  Points2 rest_;
-  std::vector<int> pattern_to_garment_;
-  int num_garment_ = 0;
+  std::shared_ptr<const GarmentTopology> topology_;
   RelaxedStVK law_;
 };
 

@@ -31,54 +31,70 @@ std::vector<std::array<int, 2>> polyline_edges(const std::vector<std::vector<int
   return edges;
 }
 
-SeamSpringEnergy::SeamSpringEnergy(std::vector<std::array<int, 2>> edges, Points2 rest,
-                                   std::vector<int> pattern_to_garment, int num_garment_vertices,
-                                   SeamMaterial material)
-    : edges_(std::move(edges)),
-      rest_(std::move(rest)),
-      pattern_to_garment_(std::move(pattern_to_garment)),
-      num_garment_(num_garment_vertices),
-      material_(material) {
-  if (!(material.width > 0.0) || !(material.depth > 0.0) || !(material.youngs_modulus >= 0.0))
-    throw InputError(kSeamSource, "seam width and depth must be > 0 and Young's modulus >= 0");
-  const Eigen::Index np = rest_.rows();
-  if (static_cast<Eigen::Index>(pattern_to_garment_.size()) != np)
+namespace {
+
+/// The one-piece topology of raw seam arrays, after checking their indices.
+std::shared_ptr<const GarmentTopology> raw_seam_topology(std::vector<std::array<int, 2>> edges,
+                                                         Eigen::Index num_pattern,
+                                                         std::vector<int> pattern_to_garment,
+                                                         int num_garment) {
+  if (static_cast<Eigen::Index>(pattern_to_garment.size()) != num_pattern)
     throw InputError(kSeamSource,
                      "pattern-to-garment map size differs from the pattern vertex count");
-  for (std::size_t p = 0; p < pattern_to_garment_.size(); ++p)
-    if (pattern_to_garment_[p] < 0 || pattern_to_garment_[p] >= num_garment_)
+  for (std::size_t p = 0; p < pattern_to_garment.size(); ++p)
+    if (pattern_to_garment[p] < 0 || pattern_to_garment[p] >= num_garment)
       throw InputError(kSeamSource, "pattern vertex " + std::to_string(p) +
                                         " maps to garment vertex " +
-                                        std::to_string(pattern_to_garment_[p]) + " outside [0, " +
-                                        std::to_string(num_garment_) + ")");
-  for (std::size_t s = 0; s < edges_.size(); ++s)
-    for (int v : edges_[s])
-      if (v < 0 || v >= np)
+                                        std::to_string(pattern_to_garment[p]) + " outside [0, " +
+                                        std::to_string(num_garment) + ")");
+  for (std::size_t s = 0; s < edges.size(); ++s)
+    for (int v : edges[s])
+      if (v < 0 || v >= num_pattern)
         throw InputError(kSeamSource, "seam edge " + std::to_string(s) + " has pattern vertex " +
-                                          std::to_string(v) + " outside [0, " + std::to_string(np) +
-                                          ")");
-  validate_rest(rest_);
+                                          std::to_string(v) + " outside [0, " +
+                                          std::to_string(num_pattern) + ")");
+  auto topology = std::make_shared<GarmentTopology>();
+  topology->piece_offset = {0, static_cast<int>(num_pattern)};
+  topology->seam_edges = std::move(edges);
+  topology->pattern_to_garment = std::move(pattern_to_garment);
+  topology->num_garment_vertices = num_garment;
+  return topology;
 }
 
-void SeamSpringEnergy::validate_rest(const Points2& rest) const {
-  if (rest.rows() != rest_.rows())
+}  // namespace
+
+SeamSpringEnergy::SeamSpringEnergy(std::shared_ptr<const GarmentTopology> topology,
+                                   const Points2& rest, SeamMaterial material)
+    : RestDependentEnergy(rest), topology_(std::move(topology)), material_(material) {
+  if (!topology_) throw std::invalid_argument("SeamSpringEnergy: null topology");
+  if (!(material.width > 0.0) || !(material.depth > 0.0) || !(material.youngs_modulus >= 0.0))
+    throw InputError(kSeamSource, "seam width and depth must be > 0 and Young's modulus >= 0");
+  check_rest(rest);
+}
+
+SeamSpringEnergy::SeamSpringEnergy(std::vector<std::array<int, 2>> edges, const Points2& rest,
+                                   std::vector<int> pattern_to_garment, int num_garment_vertices,
+                                   SeamMaterial material)
+    : SeamSpringEnergy(raw_seam_topology(std::move(edges), rest.rows(),
+                                         std::move(pattern_to_garment), num_garment_vertices),
+                       rest, material) {}
+
+void SeamSpringEnergy::check_rest(const Points2& rest) const {
+  const auto& edges = topology_->seam_edges;
+  if (rest.rows() != topology_->num_pattern_vertices())
     throw InputError(kSeamSource, "rest positions have " + std::to_string(rest.rows()) +
-                                      " rows, expected " + std::to_string(rest_.rows()));
-  for (std::size_t s = 0; s < edges_.size(); ++s)
-    if (!((rest.row(edges_[s][1]) - rest.row(edges_[s][0])).norm() > 0.0))
+                                      " rows, expected " +
+                                      std::to_string(topology_->num_pattern_vertices()));
+  for (std::size_t s = 0; s < edges.size(); ++s)
+    if (!((rest.row(edges[s][1]) - rest.row(edges[s][0])).norm() > 0.0))
       throw InputError(kSeamSource, "seam edge " + std::to_string(s) + " has zero rest length");
 }
 
-void SeamSpringEnergy::set_rest(const Points2& rest) {
-  validate_rest(rest);
-  rest_ = rest;
-}
-
 void SeamSpringEnergy::check_x(const VecX& x) const {
-  if (x.size() != 3 * static_cast<Eigen::Index>(num_garment_))
+  if (x.size() != 3 * static_cast<Eigen::Index>(topology_->num_garment_vertices))
     throw std::invalid_argument("SeamSpringEnergy: position vector has " +
                                 std::to_string(x.size()) + " entries, expected 3 x " +
-                                std::to_string(num_garment_));
+                                std::to_string(topology_->num_garment_vertices));
 }
 
 namespace {
@@ -105,7 +121,7 @@ void for_each_spring(const std::vector<std::array<int, 2>>& edges, const Points2
 double SeamSpringEnergy::value(const VecX& x) const {
   check_x(x);
   double total = 0.0;
-  for_each_spring(edges_, rest_, pattern_to_garment_, x,
+  for_each_spring(edges(), rest(), topology_->pattern_to_garment, x,
                   [&](const Spring& s) { total += (s.l - s.l0) * (s.l - s.l0) / s.l0; });
   return 0.5 * axial_stiffness() * total;
 }
@@ -114,7 +130,7 @@ void SeamSpringEnergy::add_gradient(const VecX& x, VecX& g) const {
   check_x(x);
   check_x(g);
   const double ka = axial_stiffness();
-  for_each_spring(edges_, rest_, pattern_to_garment_, x, [&](const Spring& s) {
+  for_each_spring(edges(), rest(), topology_->pattern_to_garment, x, [&](const Spring& s) {
     const Vec3 f = ka * (s.l - s.l0) / s.l0 * s.n;  // dU/dx_B
     g.segment<3>(3 * s.garment[1]) += f;
     g.segment<3>(3 * s.garment[0]) -= f;
@@ -123,9 +139,9 @@ void SeamSpringEnergy::add_gradient(const VecX& x, VecX& g) const {
 
 void SeamSpringEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd) const {
   check_x(x);
-  H.reserve(H.size() + 36 * edges_.size());
+  H.reserve(H.size() + 36 * edges().size());
   const double ka = axial_stiffness();
-  for_each_spring(edges_, rest_, pattern_to_garment_, x, [&](const Spring& s) {
+  for_each_spring(edges(), rest(), topology_->pattern_to_garment, x, [&](const Spring& s) {
     Mat3 k = Mat3::Zero();
     if (s.l > 0.0) {
       const Mat3 nn = s.n * s.n.transpose();
@@ -140,10 +156,10 @@ void SeamSpringEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool 
 
 void SeamSpringEnergy::add_gradient_rest(const VecX& x, VecX& g_rest) const {
   check_x(x);
-  if (g_rest.size() != 2 * rest_.rows())
+  if (g_rest.size() != 2 * rest().rows())
     throw std::invalid_argument("SeamSpringEnergy::add_gradient_rest: wrong vector size");
   const double ka = axial_stiffness();
-  for_each_spring(edges_, rest_, pattern_to_garment_, x, [&](const Spring& s) {
+  for_each_spring(edges(), rest(), topology_->pattern_to_garment, x, [&](const Spring& s) {
     const double ratio = s.l / s.l0;
     const Vec2 f = 0.5 * ka * (1.0 - ratio * ratio) * s.u;  // dU/dXbar_b
     g_rest.segment<2>(2 * s.pattern[1]) += f;
@@ -153,9 +169,9 @@ void SeamSpringEnergy::add_gradient_rest(const VecX& x, VecX& g_rest) const {
 
 void SeamSpringEnergy::add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const {
   check_x(x);
-  H.reserve(H.size() + 24 * edges_.size());
+  H.reserve(H.size() + 24 * edges().size());
   const double ka = axial_stiffness();
-  for_each_spring(edges_, rest_, pattern_to_garment_, x, [&](const Spring& s) {
+  for_each_spring(edges(), rest(), topology_->pattern_to_garment, x, [&](const Spring& s) {
     // d²U/dl dl0 = -k_a l / l0², dl/dx_B = n, dl0/dXbar_b = u.
     const Eigen::Matrix<double, 3, 2> b = -ka * s.l / (s.l0 * s.l0) * s.n * s.u.transpose();
     Eigen::Matrix<double, 6, 4> local;

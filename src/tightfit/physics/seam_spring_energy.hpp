@@ -7,8 +7,10 @@
 /// A spring whose two ends coincide in 3D (l = 0) has no direction; it then contributes
 /// zero gradient and zero Hessian (its energy is still ½ k l0²).
 #include <array>
+#include <memory>
 #include <vector>
 
+#include "tightfit/garment/garment_topology.hpp"
 #include "tightfit/physics/rest_dependent_energy.hpp"
 
 namespace tightfit {
@@ -26,26 +28,33 @@ std::vector<std::array<int, 2>> polyline_edges(const std::vector<std::vector<int
 
 class SeamSpringEnergy : public RestDependentEnergy {
  public:
-  /// `edges` pairs of pattern vertices (one per seam edge per side); `rest` n_p×2 (m);
-  /// `pattern_to_garment` n_p garment ids in [0, num_garment_vertices). Throws InputError
-  /// for indices out of range, a zero rest length, or w, t <= 0 or E_seam < 0.
-  SeamSpringEnergy(std::vector<std::array<int, 2>> edges, Points2 rest,
+  /// The seam springs of a welded garment: its seam edges and vertex map (shared, not
+  /// copied), reading the rest positions `rest` (n_p×2, m; bound, not copied:
+  /// rest_dependent_energy.hpp). Throws InputError when `rest` does not have one row per
+  /// pattern vertex or gives a seam edge zero length, or w, t <= 0 or E_seam < 0.
+  SeamSpringEnergy(std::shared_ptr<const GarmentTopology> topology, const Points2& rest,
+                   SeamMaterial material);
+  SeamSpringEnergy(std::shared_ptr<const GarmentTopology>, const Points2&&, SeamMaterial) = delete;
+  /// Springs over raw arrays: `edges` pairs of pattern vertices (one per seam edge per
+  /// side); `rest` n_p×2 (bound); `pattern_to_garment` n_p garment ids in
+  /// [0, num_garment_vertices). Throws InputError for indices out of range, and as above.
+  SeamSpringEnergy(std::vector<std::array<int, 2>> edges, const Points2& rest,
                    std::vector<int> pattern_to_garment, int num_garment_vertices,
                    SeamMaterial material);
+  SeamSpringEnergy(std::vector<std::array<int, 2>>, const Points2&&, std::vector<int>, int,
+                   SeamMaterial) = delete;
 
   std::string name() const override { return "seam springs"; }
   double value(const VecX& x) const override;
   void add_gradient(const VecX& x, VecX& g) const override;
   void add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd = false) const override;
 
-  int num_pattern_vertices() const override { return static_cast<int>(rest_.rows()); }
-  const Points2& rest() const override { return rest_; }
-  void set_rest(const Points2& rest) override;
+  void check_rest(const Points2& rest) const override;
   void add_gradient_rest(const VecX& x, VecX& g_rest) const override;
   void add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const override;
 
-  int num_springs() const { return static_cast<int>(edges_.size()); }
-  const std::vector<std::array<int, 2>>& edges() const { return edges_; }
+  int num_springs() const { return static_cast<int>(edges().size()); }
+  const std::vector<std::array<int, 2>>& edges() const { return topology_->seam_edges; }
   const SeamMaterial& material() const { return material_; }
   /// w t E_seam (N): the spring constant of an edge is this over its rest length.
   double axial_stiffness() const {
@@ -54,12 +63,8 @@ class SeamSpringEnergy : public RestDependentEnergy {
 
  private:
   void check_x(const VecX& x) const;
-  void validate_rest(const Points2& rest) const;
 
-  std::vector<std::array<int, 2>> edges_;
-  Points2 rest_;
-  std::vector<int> pattern_to_garment_;
-  int num_garment_ = 0;
+  std::shared_ptr<const GarmentTopology> topology_;
   SeamMaterial material_;
 };
 

@@ -1,6 +1,7 @@
 #include "tightfit/solve/embedded_equilibrium.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -193,6 +194,9 @@ EmbeddedEquilibrium::HessianParts EmbeddedEquilibrium::hessian_parts(HessianKind
 }
 
 bool EmbeddedEquilibrium::set_step(const VecX& dq, double alpha) {
+  // Per garment vertex: 1 when its walk stopped at a surface vertex before the end of
+  // its displacement. Such a state is not (committed state) ⊕ alpha·dq: refused.
+  std::vector<char> blocked(static_cast<std::size_t>(num_garment_vertices()), 0);
   parallel_for(num_garment_vertices(), [&](std::int64_t i) {
     const int d = garment_dof_[i];
     if (d < 0) {
@@ -200,7 +204,9 @@ bool EmbeddedEquilibrium::set_step(const VecX& dq, double alpha) {
       return;
     }
     const Vec2 delta = alpha * dq.segment<2>(d);
-    state_.garment[i] = setup_.surface->walk(base_.garment[i], delta).end;
+    const LimitSurface::Walk walk = setup_.surface->walk(base_.garment[i], delta);
+    state_.garment[i] = walk.end;
+    blocked[static_cast<std::size_t>(i)] = walk.complete ? 0 : 1;
   });
   for (int k = 0; k < static_cast<int>(body_dof_.size()); ++k) {
     const int d = body_dof_[k];
@@ -208,7 +214,7 @@ bool EmbeddedEquilibrium::set_step(const VecX& dq, double alpha) {
     if (d >= 0) state_.body.row(k) += alpha * dq.segment<3>(d).transpose();
   }
   evaluate_garment();
-  return true;
+  return std::find(blocked.begin(), blocked.end(), 1) == blocked.end();
 }
 
 void EmbeddedEquilibrium::commit() { base_ = state_; }

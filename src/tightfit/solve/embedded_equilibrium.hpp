@@ -61,6 +61,9 @@ class EmbeddedEquilibrium : public NewtonProblem {
   SparseMatrix hessian(HessianKind kind);
   /// True when kNewton projects element Hessians (so kNewton and kExact may differ).
   bool projects_hessians() const { return setup_.project_garment_hessians; }
+  /// Walks every free garment vertex by alpha·dq on the surface and moves the body
+  /// vertices. Returns false when a walk ran into a surface vertex it could not pass
+  /// (the state then holds the walk's end there; Newton's line search shortens the step).
   bool set_step(const VecX& dq, double alpha) override;
   void commit() override;
   double force_norm(const VecX& gradient) override;

@@ -23,16 +23,12 @@ double mean_rest_edge_length(const Triangles& triangles, const Points2& rest) {
 
 GarmentSimulation::GarmentSimulation(const Body& body, const LimitSurface& surface, Garment garment,
                                      SimulationMaterials materials, NewtonOptions newton)
-    : body_(body),
-      surface_(surface),
-      garment_(std::move(garment)),
-      materials_(materials),
-      newton_(newton) {
-  if (static_cast<int>(garment_.embedding.size()) != garment_.num_garment_vertices)
+    : body_(body), surface_(surface), materials_(materials), newton_(newton) {
+  if (static_cast<int>(garment.embedding.size()) != garment.num_garment_vertices())
     throw InputError("garment", "the garment is not embedded on the body");
   if (surface_.num_control_vertices() != body_.num_surface_vertices())
     throw InputError("body", "the limit surface does not belong to the body surface");
-  build_garment_energies();
+  adopt_garment(std::move(garment));
   body_energy_ =
       std::make_unique<NeoHookeanEnergy>(body_.volume.vertices, body_.volume.tets, materials_.body);
   EmbeddedState state;
@@ -43,53 +39,31 @@ GarmentSimulation::GarmentSimulation(const Body& body, const LimitSurface& surfa
 
 GarmentSimulation::~GarmentSimulation() = default;
 
-std::unique_ptr<ClothEnergy> make_cloth_energy(const Garment& garment,
-                                               const ClothMaterial& fabric) {
-  return std::make_unique<ClothEnergy>(garment.pattern_triangles, garment.rest_positions(),
-                                       garment.pattern_to_garment, garment.num_garment_vertices,
-                                       fabric);
-}
-
-std::unique_ptr<SeamSpringEnergy> make_seam_energy(const Garment& garment,
-                                                   const SeamMaterial& seam) {
-  const auto seam_edges = garment.seam_edges();
-  if (!(seam.youngs_modulus > 0.0) || seam_edges.empty()) return nullptr;
-  return std::make_unique<SeamSpringEnergy>(seam_edges, garment.rest_positions(),
-                                            garment.pattern_to_garment,
-                                            garment.num_garment_vertices, seam);
-}
-
-void GarmentSimulation::build_garment_energies() {
-  const Points2 rest = garment_.rest_positions();
-  cloth_ = make_cloth_energy(garment_, materials_.fabric);
-  seams_ = make_seam_energy(garment_, materials_.seam);
+void GarmentSimulation::adopt_garment(Garment garment) {
+  auto rest = std::make_unique<Points2>(garment.rest_positions());
+  auto energies = std::make_unique<GarmentEnergies>(garment.topology, *rest, materials_.fabric,
+                                                    materials_.seam);
   force_scale_ = materials_.fabric.youngs_modulus * materials_.fabric.thickness *
-                 mean_rest_edge_length(garment_.pattern_triangles, rest);
+                 mean_rest_edge_length(garment.topology->pattern_triangles, *rest);
+  garment_ = std::move(garment);
+  rest_ = std::move(rest);
+  energies_ = std::move(energies);
 }
 
 void GarmentSimulation::replace_garment(Garment garment, const EmbeddedState& state) {
-  if (static_cast<int>(state.garment.size()) != garment.num_garment_vertices ||
+  if (static_cast<int>(state.garment.size()) != garment.num_garment_vertices() ||
       state.body.rows() != body_.volume.vertices.rows())
     throw InputError("garment", "the replacement state does not match the garment and body");
-  garment_ = std::move(garment);
-  garment_.embedding = state.garment;
-  build_garment_energies();
+  garment.embedding = state.garment;
+  adopt_garment(std::move(garment));
   rebuild_problem(state);
-}
-
-std::vector<const RestDependentEnergy*> GarmentSimulation::rest_dependent_energies() const {
-  std::vector<const RestDependentEnergy*> out{cloth_.get()};
-  if (seams_) out.push_back(seams_.get());
-  return out;
 }
 
 std::string GarmentSimulation::garment_vertex_piece(int vertex) const {
   std::vector<std::string> names;
   for (int p = 0; p < garment_.num_pattern_vertices(); ++p) {
-    if (garment_.pattern_to_garment[static_cast<size_t>(p)] != vertex) continue;
-    const auto piece =
-        std::upper_bound(garment_.piece_offset.begin(), garment_.piece_offset.end(), p) -
-        garment_.piece_offset.begin() - 1;
+    if (garment_.topology->pattern_to_garment[static_cast<size_t>(p)] != vertex) continue;
+    const int piece = garment_.topology->piece_of(p);
     const std::string& name = garment_.pattern.pieces[static_cast<size_t>(piece)].name;
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   }
@@ -111,7 +85,7 @@ void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
   } else {
     setup.pinned_body = body_.pinned;
   }
-  setup.pinned_garment = garment_.pinned;
+  setup.pinned_garment = garment_.topology->pinned;
   setup.force_scale = force_scale_;
   setup.garment_vertex_label = [this](int vertex) { return garment_vertex_piece(vertex); };
   problem_ = std::make_unique<EmbeddedEquilibrium>(std::move(setup), state);
@@ -124,9 +98,9 @@ NewtonReport GarmentSimulation::solve(ChordSteps chords) {
 }
 
 void GarmentSimulation::set_rest_positions(const Points2& rest) {
-  cloth_->set_rest(rest);
-  if (seams_) seams_->set_rest(rest);
-  garment_.set_rest_positions(rest);
+  energies_->check_rest(rest);
+  *rest_ = rest;
+  garment_.set_rest_positions(*rest_);
   rebuild_problem(problem_->state());
 }
 
@@ -139,16 +113,16 @@ FitAnalysis GarmentSimulation::analyze() const {
   FitAnalysis fit;
   const Points3& x = problem_->garment_positions();
   const VecX xf = Eigen::Map<const VecX>(x.data(), x.size());
-  fit.elements = analyze_cloth(*cloth_, xf);
-  const Triangles faces = garment_.garment_triangles;
+  fit.elements = analyze_cloth(energies_->cloth(), xf);
+  const Triangles faces = garment_.topology->garment_triangles;
 
-  MidEdgeShapeOperator mid_edge(faces, garment_.num_garment_vertices);
+  MidEdgeShapeOperator mid_edge(faces, garment_.num_garment_vertices());
   fit.pressure_mid_edge = young_laplace_pressure(fit.elements, mid_edge.compute(x));
 
   // Exact curvature of the limit surface at the point closest to each element's
   // centroid, where its tangent plane is parallel to the element (a chord). The limit
   // surface reports S = −dn; the pressure uses Λ = dn (positive on convex bodies).
-  const int ng = garment_.num_garment_vertices;
+  const int ng = garment_.num_garment_vertices();
   const Points3 control = body_positions().topRows(surface_.num_control_vertices());
   const auto& embedding = problem_->state().garment;
   std::vector<Mat3> element_lambda(faces.rows());

@@ -9,9 +9,8 @@
 #include "tightfit/body/body.hpp"
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/physics/cloth_analysis.hpp"
-#include "tightfit/physics/cloth_energy.hpp"
+#include "tightfit/physics/garment_energies.hpp"
 #include "tightfit/physics/neo_hookean_energy.hpp"
-#include "tightfit/physics/seam_spring_energy.hpp"
 #include "tightfit/solve/embedded_equilibrium.hpp"
 #include "tightfit/solve/newton_solver.hpp"
 
@@ -40,14 +39,6 @@ struct FitAnalysis {
   Points3 vertex_normal;     ///< unit outward limit-surface normal per garment vertex
 };
 
-/// The garment's cloth energy over its pattern triangles at the pattern's rest positions,
-/// as every simulation builds it (design terms that evaluate the garment's forces build
-/// theirs with it too).
-std::unique_ptr<ClothEnergy> make_cloth_energy(const Garment& garment, const ClothMaterial& fabric);
-/// The garment's seam springs; null when it has no seams or the seam modulus is 0.
-std::unique_ptr<SeamSpringEnergy> make_seam_energy(const Garment& garment,
-                                                   const SeamMaterial& seam);
-
 class GarmentSimulation {
  public:
   /// `surface` must be the limit surface of `body.surface` and outlive this object.
@@ -67,21 +58,26 @@ class GarmentSimulation {
   EmbeddedEquilibrium& problem() { return *problem_; }
   const EmbeddedEquilibrium& problem() const { return *problem_; }
   NewtonSolver& newton() { return newton_; }
-  ClothEnergy& cloth() { return *cloth_; }
-  const ClothEnergy& cloth() const { return *cloth_; }
+  const ClothEnergy& cloth() const { return energies_->cloth(); }
   /// Seam springs, or null when the seam material is off or the garment has no seams.
-  const SeamSpringEnergy* seams() const { return seams_.get(); }
-  SeamSpringEnergy* seams() { return seams_.get(); }
+  const SeamSpringEnergy* seams() const { return energies_->seams(); }
   const NeoHookeanEnergy& body_energy() const { return *body_energy_; }
   /// The energies of the equilibrium problem that depend on the pattern rest positions
   /// (cloth, and the seam springs when present): exactly its garment energies.
-  std::vector<const RestDependentEnergy*> rest_dependent_energies() const;
+  std::vector<const RestDependentEnergy*> rest_dependent_energies() const {
+    return energies_->all();
+  }
+  /// The pattern rest positions Xbar (num_pattern_vertices×2, m): the ONE array the
+  /// garment energies read. The garment's pattern pieces carry the same values piece by
+  /// piece for the outputs (both written by set_rest_positions only).
+  const Points2& rest_positions() const { return *rest_; }
 
   /// Current garment positions (n_g×3, m) and deformed body (n_b×3, m).
   const Points3& garment_positions() const { return problem_->garment_positions(); }
   const Points3& body_positions() const { return problem_->state().body; }
-  /// Replaces the pattern rest positions (stacked, num_pattern_vertices×2, m) in the
-  /// garment and the rest-dependent energies; the state is kept (warm start).
+  /// Replaces the pattern rest positions (stacked, num_pattern_vertices×2, m): the rest
+  /// array the energies read and the garment's pieces; the state is kept (warm start).
+  /// Throws InputError, changing nothing, when an element would be degenerate.
   void set_rest_positions(const Points2& rest);
   /// Replaces the state (e.g. to restore a checkpoint).
   void set_state(const EmbeddedState& state);
@@ -100,7 +96,8 @@ class GarmentSimulation {
 
  private:
   void rebuild_problem(const EmbeddedState& state);
-  void build_garment_energies();
+  /// Takes `garment` with its rest array and energies; changes nothing if they throw.
+  void adopt_garment(Garment garment);
   /// "piece 'NAME'" (or "pieces 'A', 'B'" on a seam) of a garment vertex, for messages.
   std::string garment_vertex_piece(int vertex) const;
 
@@ -109,8 +106,8 @@ class GarmentSimulation {
   Garment garment_;
   SimulationMaterials materials_;
   NewtonSolver newton_;
-  std::unique_ptr<ClothEnergy> cloth_;
-  std::unique_ptr<SeamSpringEnergy> seams_;
+  std::unique_ptr<Points2> rest_;  // the one rest array (its own allocation: energies bind to it)
+  std::unique_ptr<GarmentEnergies> energies_;
   std::unique_ptr<NeoHookeanEnergy> body_energy_;
   std::unique_ptr<EmbeddedEquilibrium> problem_;
   double force_scale_ = 1.0;

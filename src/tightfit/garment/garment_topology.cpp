@@ -1,0 +1,159 @@
+#include "tightfit/garment/garment_topology.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <string>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit {
+namespace {
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+void check_side(const Pattern& p, const SeamSide& side, const std::string& seam) {
+  if (side.piece < 0 || side.piece >= static_cast<int>(p.pieces.size()))
+    throw InputError("pattern", "seam \"" + seam + "\" names piece " + std::to_string(side.piece) +
+                                    ", which does not exist");
+  const auto n = p.pieces[side.piece].rest.rows();
+  for (int v : side.vertices)
+    if (v < 0 || v >= n)
+      throw InputError("pattern", "seam \"" + seam + "\" names vertex " + std::to_string(v) +
+                                      " of piece \"" + p.pieces[side.piece].name +
+                                      "\", which has " + std::to_string(n) + " vertices");
+}
+
+std::vector<int> piece_offsets(const Pattern& pattern) {
+  std::vector<int> offset{0};
+  for (const auto& piece : pattern.pieces)
+    offset.push_back(offset.back() + static_cast<int>(piece.rest.rows()));
+  return offset;
+}
+
+void check_seams(const Pattern& pattern) {
+  for (const Seam& seam : pattern.seams) {
+    check_side(pattern, seam.a, seam.name);
+    check_side(pattern, seam.b, seam.name);
+    if (seam.a.vertices.size() != seam.b.vertices.size())
+      throw InputError("pattern", "seam \"" + seam.name + "\" has " +
+                                      std::to_string(seam.a.vertices.size()) +
+                                      " vertices on one side and " +
+                                      std::to_string(seam.b.vertices.size()) + " on the other");
+  }
+}
+
+/// Union-find over the seam vertex pairs: garment vertex ids in order of first appearance.
+std::vector<int> weld_by_seams(const Pattern& pattern, const std::vector<int>& offset,
+                               int& num_garment_vertices) {
+  const int n = offset.back();
+  std::vector<int> parent(static_cast<size_t>(n));
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Seam& seam : pattern.seams)
+    for (size_t i = 0; i < seam.a.vertices.size(); ++i) {
+      const int a = find_root(parent, offset[seam.a.piece] + seam.a.vertices[i]);
+      const int b = find_root(parent, offset[seam.b.piece] + seam.b.vertices[i]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<int> to_garment(static_cast<size_t>(n), -1);
+  std::vector<int> id_of_root(static_cast<size_t>(n), -1);
+  num_garment_vertices = 0;
+  for (int i = 0; i < n; ++i) {
+    const int r = find_root(parent, i);
+    if (id_of_root[r] < 0) id_of_root[r] = num_garment_vertices++;
+    to_garment[i] = id_of_root[r];
+  }
+  return to_garment;
+}
+
+void collect_triangles(const Pattern& pattern, GarmentTopology& g) {
+  int num_triangles = 0;
+  for (const auto& piece : pattern.pieces)
+    num_triangles += static_cast<int>(piece.triangles.rows());
+  g.pattern_triangles.resize(num_triangles, 3);
+  g.garment_triangles.resize(num_triangles, 3);
+  int t = 0;
+  for (size_t k = 0; k < pattern.pieces.size(); ++k) {
+    const auto& piece = pattern.pieces[k];
+    for (Eigen::Index f = 0; f < piece.triangles.rows(); ++f, ++t) {
+      for (int c = 0; c < 3; ++c) {
+        const int local = piece.triangles(f, c);
+        if (local < 0 || local >= piece.rest.rows())
+          throw InputError("pattern", "piece \"" + piece.name + "\" has a triangle with vertex " +
+                                          std::to_string(local) + " out of range");
+        g.pattern_triangles(t, c) = g.piece_offset[k] + local;
+        g.garment_triangles(t, c) = g.pattern_to_garment[g.piece_offset[k] + local];
+      }
+      g.triangle_piece.push_back(static_cast<int>(k));
+    }
+  }
+}
+
+void collect_seam_edges(const Pattern& pattern, GarmentTopology& g) {
+  for (const Seam& seam : pattern.seams)
+    for (const SeamSide* side : {&seam.a, &seam.b}) {
+      const int off = g.piece_offset[side->piece];
+      for (size_t i = 0; i + 1 < side->vertices.size(); ++i)
+        g.seam_edges.push_back({off + side->vertices[i], off + side->vertices[i + 1]});
+    }
+}
+
+void collect_pinned(const Pattern& pattern, GarmentTopology& g) {
+  for (const PinnedBoundary& pin : pattern.pinned) {
+    if (pin.piece < 0 || pin.piece >= static_cast<int>(pattern.pieces.size()))
+      throw InputError("pattern",
+                       "pinned boundary \"" + pin.name + "\" names a piece that does not exist");
+    for (int v : pin.vertices) {
+      if (v < 0 || v >= pattern.pieces[pin.piece].rest.rows())
+        throw InputError("pattern",
+                         "pinned boundary \"" + pin.name + "\" names a vertex out of range");
+      g.pinned.push_back(g.pattern_to_garment[g.piece_offset[pin.piece] + v]);
+    }
+  }
+  std::sort(g.pinned.begin(), g.pinned.end());
+  g.pinned.erase(std::unique(g.pinned.begin(), g.pinned.end()), g.pinned.end());
+}
+
+}  // namespace
+
+int GarmentTopology::piece_of(int pattern_vertex) const {
+  return static_cast<int>(
+      std::upper_bound(piece_offset.begin(), piece_offset.end(), pattern_vertex) -
+      piece_offset.begin() - 1);
+}
+
+GarmentTopology weld_topology(const Pattern& pattern, std::vector<int> pattern_to_garment,
+                              int num_garment_vertices) {
+  GarmentTopology g;
+  g.piece_offset = piece_offsets(pattern);
+  check_seams(pattern);
+  if (static_cast<int>(pattern_to_garment.size()) != g.num_pattern_vertices())
+    throw InputError("pattern", "the vertex map has " + std::to_string(pattern_to_garment.size()) +
+                                    " entries for " + std::to_string(g.num_pattern_vertices()) +
+                                    " pattern vertices");
+  for (int v : pattern_to_garment)
+    if (v < 0 || v >= num_garment_vertices)
+      throw InputError("pattern", "the vertex map names garment vertex " + std::to_string(v) +
+                                      " of " + std::to_string(num_garment_vertices));
+  g.pattern_to_garment = std::move(pattern_to_garment);
+  g.num_garment_vertices = num_garment_vertices;
+  collect_triangles(pattern, g);
+  collect_seam_edges(pattern, g);
+  collect_pinned(pattern, g);
+  return g;
+}
+
+GarmentTopology weld_topology(const Pattern& pattern) {
+  const std::vector<int> offset = piece_offsets(pattern);
+  check_seams(pattern);
+  int num_garment_vertices = 0;
+  std::vector<int> to_garment = weld_by_seams(pattern, offset, num_garment_vertices);
+  return weld_topology(pattern, std::move(to_garment), num_garment_vertices);
+}
+
+}  // namespace tightfit
