@@ -26,8 +26,8 @@
 #include "tightfit/common/types.hpp"
 #include "tightfit/design/pressure_region.hpp"
 #include "tightfit/garment/garment.hpp"
-#include "tightfit/objectives/autodiff.hpp"
 #include "tightfit/objectives/point_field.hpp"
+#include "tightfit/physics/autodiff.hpp"
 
 namespace tightfit {
 
