@@ -62,25 +62,22 @@ Mat2T<S> inverse2(const Mat2T<S>& m) {
 }
 
 /// Second Piola-Kirchhoff stress S = 2 ∂W/∂C = 2 (W_1 I + W_2 adj C) (2×2, Pa) of the
-/// relaxed StVK law at the symmetric 2×2 C, differentiable in C. With S = double it is
-/// RelaxedStVK::second_piola itself.
+/// relaxed StVK law at the symmetric 2×2 C (same formula as RelaxedStVK::second_piola),
+/// differentiable in C. With S = double only the law's gradient is evaluated.
 template <typename S>
 Mat2T<S> second_piola(const RelaxedStVK& law, const Mat2T<S>& c) {
-  if constexpr (std::is_same_v<S, double>) {
-    return law.second_piola(c);
-  } else {
-    const S i1 = c(0, 0) + c(1, 1);
-    const S i2 = c(0, 0) * c(1, 1) - c(0, 1) * c(1, 0);
-    const RelaxedStVK::Derivatives d = law.evaluate(value_of(i1), value_of(i2), 2);
-    const S w1 = chain(d.gradient[0], d.hessian(0, 0), d.hessian(0, 1), i1, i2);
-    const S w2 = chain(d.gradient[1], d.hessian(1, 0), d.hessian(1, 1), i1, i2);
-    Mat2T<S> s;
-    s(0, 0) = 2.0 * (w1 + w2 * c(1, 1));
-    s(1, 1) = 2.0 * (w1 + w2 * c(0, 0));
-    s(0, 1) = -2.0 * w2 * c(1, 0);
-    s(1, 0) = -2.0 * w2 * c(0, 1);
-    return s;
-  }
+  const S i1 = c(0, 0) + c(1, 1);
+  const S i2 = c(0, 0) * c(1, 1) - c(0, 1) * c(1, 0);
+  const RelaxedStVK::Derivatives d =
+      law.evaluate(value_of(i1), value_of(i2), std::is_same_v<S, double> ? 1 : 2);
+  const S w1 = chain(d.gradient[0], d.hessian(0, 0), d.hessian(0, 1), i1, i2);
+  const S w2 = chain(d.gradient[1], d.hessian(1, 0), d.hessian(1, 1), i1, i2);
+  Mat2T<S> s;
+  s(0, 0) = 2.0 * (w1 + w2 * c(1, 1));
+  s(1, 1) = 2.0 * (w1 + w2 * c(0, 0));
+  s(0, 1) = -2.0 * w2 * c(1, 0);
+  s(1, 0) = -2.0 * w2 * c(0, 1);
+  return s;
 }
 
 }  // namespace tightfit::autodiff

@@ -10,6 +10,7 @@
 /// e.g. mid_edge_kernel.hpp). p is positive when the fabric presses onto a convex body
 /// (outward normals).
 #include <optional>
+#include <utility>
 
 #include "tightfit/physics/autodiff.hpp"
 #include "tightfit/physics/relaxed_stvk.hpp"
@@ -31,11 +32,13 @@ std::optional<autodiff::Mat3T<S>> cauchy_stress(const RelaxedStVK& law,
   const S det_c = c(0, 0) * c(1, 1) - c(0, 1) * c(1, 0);
   if (!(value_of(det_c) > kMinElementAreaRatio * kMinElementAreaRatio)) return std::nullopt;
   const S J = sqrt(det_c);
-  return autodiff::Mat3T<S>(F * autodiff::second_piola<S>(law, c) * F.transpose() / J);
+  return std::optional<autodiff::Mat3T<S>>(
+      std::in_place, F * autodiff::second_piola<S>(law, c) * F.transpose() / J);
 }
 
 /// Young-Laplace pressure p = tr(T Λ) (Pa) of an element with membrane tension `tension`
 /// (T = t σ, 3×3 symmetric, N/m) on a surface with shape operator `lambda` (3×3, 1/m).
+/// Linear in T: t · young_laplace_pressure(σ, Λ) is the same pressure.
 template <typename S>
 S young_laplace_pressure(const autodiff::Mat3T<S>& tension, const autodiff::Mat3T<S>& lambda) {
   return tension.cwiseProduct(lambda).sum();
@@ -49,7 +52,7 @@ std::optional<S> element_pressure(const RelaxedStVK& law, const autodiff::Mat32T
                                   const autodiff::Mat3T<S>& lambda) {
   const std::optional<autodiff::Mat3T<S>> sigma = cauchy_stress<S>(law, F);
   if (!sigma) return std::nullopt;
-  return young_laplace_pressure<S>(law.material().thickness * *sigma, lambda);
+  return law.material().thickness * young_laplace_pressure<S>(*sigma, lambda);  // t tr(σ Λ)
 }
 
 }  // namespace tightfit

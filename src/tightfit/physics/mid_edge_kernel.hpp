@@ -74,15 +74,20 @@ struct FaceOperator {
   std::array<S, 3> theta;     ///< θ_i (rad), 0 on a boundary edge
 };
 
+/// Sets `op`'s area and B_i from a face frame (θ untouched).
+template <typename S>
+void set_bending_matrices(const FaceFrame<S>& frame, FaceOperator<S>& op) {
+  op.area = frame.area;
+  for (int i = 0; i < 3; ++i)
+    op.b[i] = (frame.length[i] / frame.area) * frame.out[i] * frame.out[i].transpose();
+}
+
 /// The pieces of a face from its frame and the dihedral angles of its three edges.
 template <typename S>
 FaceOperator<S> face_operator(const FaceFrame<S>& frame, const std::array<S, 3>& theta) {
   FaceOperator<S> op;
-  op.area = frame.area;
-  for (int i = 0; i < 3; ++i) {
-    op.b[i] = (frame.length[i] / frame.area) * frame.out[i] * frame.out[i].transpose();
-    op.theta[i] = theta[i];
-  }
+  set_bending_matrices(frame, op);
+  op.theta = theta;
   return op;
 }
 
@@ -97,10 +102,13 @@ FaceOperator<S> face_operator(const std::array<Vec3T<S>, 6>& p,
   using autodiff::value_of;
   using std::sqrt;
   const FaceFrame<S> fr = face_frame<S>(p[0], p[1], p[2], face);
-  std::array<S, 3> theta;
+  FaceOperator<S> op;
+  set_bending_matrices(fr, op);
   for (int i = 0; i < 3; ++i) {
-    theta[i] = S(0.0);
-    if (!has_across[i]) continue;
+    if (!has_across[i]) {
+      op.theta[i] = S(0.0);
+      continue;
+    }
     // The neighbour has the edge reversed: corners i+1, i, then the vertex across.
     const Vec3T<S>& a = p[(i + 1) % 3];
     const Vec3T<S> ng = (p[i] - a).cross(p[3 + i] - a);
@@ -108,9 +116,9 @@ FaceOperator<S> face_operator(const std::array<Vec3T<S>, 6>& p,
     if (!(value_of(ng_len) > 0.0))
       throw SolverError("mid-edge shape operator: the face across edge " + std::to_string(i) +
                         " of face " + std::to_string(face) + " is degenerate");
-    theta[i] = dihedral_angle<S>(fr.normal, Vec3T<S>(ng / ng_len), fr.edge_dir[i]);
+    op.theta[i] = dihedral_angle<S>(fr.normal, Vec3T<S>(ng / ng_len), fr.edge_dir[i]);
   }
-  return face_operator<S>(fr, theta);
+  return op;
 }
 
 /// Gram matrix ⟨B_i, B_j⟩ (Frobenius inner products, 3×3, 1/m²) of a face: the face's

@@ -31,19 +31,18 @@ MidEdgeTopology::MidEdgeTopology(const Triangles& faces, int num_vertices,
   unknown_.assign(3 * m, -1);
   sign_.assign(3 * m, 1);
   across_.assign(3 * m, -1);
+  edges_.assign(topo.num_edges(), -1);
   for (int f = 0; f < m; ++f)
     for (int i = 0; i < 3; ++i) {
-      if (unknown_[3 * f + i] >= 0) continue;  // already set from the other face
-      const int k = static_cast<int>(edges_.size());
-      edges_.push_back(3 * f + i);
-      unknown_[3 * f + i] = k;
-      if (topo.edge_valence(topo.face_edge(f, i)) != 2) continue;  // boundary edge
+      const int e = topo.face_edge(f, i);
+      unknown_[3 * f + i] = e;
+      if (edges_[e] < 0)
+        edges_[e] = 3 * f + i;  // faces in order: the edge's first face
+      else
+        sign_[3 * f + i] = -1;
+      if (topo.edge_valence(e) != 2) continue;  // boundary edge
       const SurfaceTopology::Across a = topo.across(f, i);
-      const int h = 3 * a.face + a.edge_in_face;
-      unknown_[h] = k;
-      sign_[h] = -1;
-      across_[3 * f + i] = h;
-      across_[h] = 3 * f + i;
+      across_[3 * f + i] = 3 * a.face + a.edge_in_face;
     }
 }
 

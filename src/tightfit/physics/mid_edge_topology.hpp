@@ -16,7 +16,8 @@ namespace tightfit {
 class MidEdgeTopology {
  public:
   /// `faces` m×3 indices in [0, num_vertices), consistently oriented. Edge unknowns are
-  /// numbered in the order their first face edge appears (face by face, i = 0..2).
+  /// numbered as SurfaceTopology numbers the mesh's edges (by vertex pair: a numbering
+  /// that keeps the sparse Cholesky factor of the φ system small).
   /// Throws InputError (with `source` naming the mesh) for out-of-range indices, faces
   /// repeating a vertex, edges with more than two faces and interior edges whose faces
   /// disagree on orientation.
