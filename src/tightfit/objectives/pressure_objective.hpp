@@ -12,9 +12,10 @@
 ///   p_e = t tr(σ_e Λ_e),   σ_e = F S Fᵀ / J,   S = 2 ∂W/∂C (relaxed StVK),  J = √det C,
 /// in Pa, positive when the fabric presses onto a convex body (outward-oriented garment
 /// faces). Λ_e is the mid-edge shape operator of Grinspun et al. 2006 on the welded
-/// garment mesh (Eq. 32-33), with the same conventions as physics/mid_edge_shape_operator
-/// (its values agree with MidEdgeShapeOperator to round-off; tested):
-///   Λ_f = Σ_i (θ_i/2 + s_i φ_i) (l_i/A_f) t_i t_iᵀ,   φ = argmin Σ_f A_f tr(Λ_f²).
+/// garment mesh (Eq. 32-33), computed by physics/mid_edge_shape_operator (its per-face
+/// kernel physics/mid_edge_kernel.hpp, its edge topology physics/mid_edge_topology.hpp):
+///   Λ_f = Σ_i (θ_i/2 + s_i φ_i) (l_i/A_f) t_i t_iᵀ,   φ = argmin Σ_f A_f tr(Λ_f²);
+/// σ_e and p_e come from the kernel physics/element_pressure.hpp, as in the fit analysis.
 ///
 /// Gradient: EXACT, including the dependence of the edge unknowns φ on x (Eq. 35) by one
 /// extra adjoint solve with the same matrix K as the φ system (K μ = ∂T/∂φ):
@@ -22,15 +23,16 @@
 ///   Γ_f = Σ_i s_i μ_i (l_i/A_f) t_i t_iᵀ,
 /// since the φ system is r(φ, x) = Σ_f A_f G_fᵀ vec Λ_f = 0. Per-face partial
 /// derivatives (through face normals, dihedral angles, edge lengths, F and S) come from
-/// forward-mode automatic differentiation (Eigen AutoDiff); S's derivative uses the
-/// law's closed-form Hessian in (I1, I2). ∂T/∂Xbar goes through F, S, J and A_e (Λ does
-/// not depend on Xbar). T is C¹ (the relaxed law is C²).
-#include <array>
+/// forward-mode automatic differentiation (Eigen AutoDiff) of the same kernels; S's
+/// derivative uses the law's closed-form Hessian in (I1, I2). ∂T/∂Xbar goes through F, S, J and A_e
+/// (Λ does not depend on Xbar). T is C¹ (the relaxed law is C²).
+#include <memory>
 #include <vector>
 
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
 #include "tightfit/objectives/pressure_regions.hpp"
+#include "tightfit/physics/mid_edge_topology.hpp"
 #include "tightfit/physics/relaxed_stvk.hpp"
 
 namespace tightfit {
@@ -72,12 +74,8 @@ class PressureObjective : public DesignTerm {
   VecX min_pressure_;
   VecX max_pressure_;
   PressureRegions regions_;
-  // Per face and face edge i: edge id (unknown), sign s_i, vertex across the edge (-1 on
-  // the boundary).
-  std::vector<std::array<int, 3>> face_edge_;
-  std::vector<std::array<int, 3>> face_sign_;
-  std::vector<std::array<int, 3>> face_opposite_;
-  int num_edges_ = 0;
+  // Edge unknowns, signs and vertices across of the mid-edge system (shared by copies).
+  std::shared_ptr<const MidEdgeTopology> topology_;
 };
 
 }  // namespace tightfit

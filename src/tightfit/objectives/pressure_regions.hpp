@@ -25,9 +25,9 @@
 #include "tightfit/body/skin_weights.hpp"
 #include "tightfit/common/types.hpp"
 #include "tightfit/garment/garment.hpp"
-#include "tightfit/objectives/autodiff.hpp"
 #include "tightfit/objectives/point_field.hpp"
 #include "tightfit/objectives/pressure_region.hpp"
+#include "tightfit/physics/autodiff.hpp"
 
 namespace tightfit {
 

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "tightfit/common/error.hpp"
-#include "tightfit/objectives/autodiff.hpp"
+#include "tightfit/physics/autodiff.hpp"
 
 namespace tightfit {
 namespace {

@@ -2,12 +2,14 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include <Eigen/Geometry>
 
 #include "tightfit/geometry/mesh_measures.hpp"
+#include "tightfit/physics/element_pressure.hpp"
 
 namespace tightfit {
 
@@ -34,7 +36,9 @@ std::vector<ClothElementFit> analyze_cloth(const ClothEnergy& cloth, const VecX&
     const Vec3 d1 = F * symmetric_major_eigenvector(C);
     fit.direction1 = d1.normalized();
     fit.direction2 = fit.normal.cross(fit.direction1);
-    fit.cauchy_stress = F * cloth.law().second_piola(C) * F.transpose() / J;
+    const std::optional<Mat3> sigma = cauchy_stress<double>(cloth.law(), F);
+    if (!sigma) continue;
+    fit.cauchy_stress = *sigma;
     fit.tension = t * fit.cauchy_stress;
     Eigen::Matrix<double, 3, 2> frame;
     frame << fit.direction1, fit.direction2;
@@ -51,7 +55,8 @@ VecX young_laplace_pressure(const std::vector<ClothElementFit>& fit,
                                 " shape operators");
   VecX p(static_cast<Eigen::Index>(fit.size()));
   for (std::size_t e = 0; e < fit.size(); ++e)
-    p[static_cast<Eigen::Index>(e)] = fit[e].tension.cwiseProduct(shape_operators[e]).sum();
+    p[static_cast<Eigen::Index>(e)] =
+        young_laplace_pressure<double>(fit[e].tension, shape_operators[e]);
   return p;
 }
 

@@ -27,41 +27,48 @@
 /// tenfold per ring of faces inward (measured: 100 %, 10 %, 1 %, then the interior error).
 /// (A closure that extrapolates the face's own operator onto its boundary edges was tried
 /// and rejected: it pollutes the whole solution by several percent on irregular meshes.)
+#include <memory>
 #include <vector>
 
 #include "tightfit/common/sparse_cholesky.hpp"
 #include "tightfit/common/types.hpp"
+#include "tightfit/physics/mid_edge_kernel.hpp"
+#include "tightfit/physics/mid_edge_topology.hpp"
 
 namespace tightfit {
 
+/// The per-face pieces come from mid_edge_kernel.hpp and the edge numbering and signs
+/// from mid_edge_topology.hpp (both shared with the pressure objective).
 class MidEdgeShapeOperator {
  public:
   /// `faces` m×3 indices in [0, num_vertices), consistently oriented. Throws InputError
   /// for out-of-range indices, edges with more than two faces and interior edges whose
   /// faces disagree on orientation.
   MidEdgeShapeOperator(const Triangles& faces, int num_vertices);
+  /// On a topology built once and shared (not null).
+  explicit MidEdgeShapeOperator(std::shared_ptr<const MidEdgeTopology> topology);
 
   /// Λ per face (3×3 symmetric, world frame, 1/m; Λ n_f = 0) at `vertices` (n×3, m).
   /// Throws SolverError if a face is degenerate (zero area) or the solve fails.
-  std::vector<Mat3> compute(const Points3& vertices);
+  std::vector<Mat3> compute(const Eigen::Ref<const Points3>& vertices);
 
+  /// The per-face pieces (area, B_i, θ_i) of the last compute(), one per face.
+  const std::vector<mid_edge::FaceOperator<double>>& face_operators() const { return ops_; }
   /// The edge unknowns φ (one per edge, rad) of the last compute(), in the order of
   /// edge_face_edges().
   const VecX& edge_variables() const { return phi_; }
+  /// Solves K μ = rhs (one entry per edge unknown) with the symmetric positive definite
+  /// matrix K of the φ system of the last compute() (K φ = r, r from the dihedral
+  /// angles): the adjoint solve for derivatives through φ. Requires a compute().
+  VecX solve_with_system_matrix(const VecX& rhs) const;
   /// Per edge unknown, one face edge (3·face + i) of that edge (its first face).
-  const std::vector<int>& edge_face_edges() const { return edges_; }
-  int num_edges() const { return static_cast<int>(edges_.size()); }
+  const std::vector<int>& edge_face_edges() const { return topology_->edge_face_edges(); }
+  int num_edges() const { return topology_->num_edges(); }
+  const MidEdgeTopology& topology() const { return *topology_; }
 
  private:
-  Triangles faces_;
-  int num_vertices_ = 0;
-  // Per face edge (3·face + i): index of the edge unknown.
-  std::vector<int> unknown_;
-  // Per face edge: +1 in the edge's first face, -1 in the second.
-  std::vector<int> sign_;
-  // Per face edge: the face edge (3·g + j) on the other side, -1 on a boundary edge.
-  std::vector<int> opposite_;
-  std::vector<int> edges_;  // per edge unknown: the face edge in its first face
+  std::shared_ptr<const MidEdgeTopology> topology_;
+  std::vector<mid_edge::FaceOperator<double>> ops_;
   SparseCholesky solver_;
   VecX phi_;
 };

@@ -1,9 +1,12 @@
 #pragma once
-/// Forward-mode automatic differentiation for the per-element objectives (pressure,
-/// seam traction): Eigen's AutoDiffScalar with a fixed number of derivative directions,
-/// plus the chain rule through the cloth law (whose derivatives are known in closed form).
-/// Internal to the objectives layer.
+/// Forward-mode automatic differentiation for per-element kernels templated on the
+/// scalar (the mid-edge shape operator and element pressure kernels of this layer, the
+/// pressure and seam-traction objectives): Eigen's AutoDiffScalar with a fixed number of
+/// derivative directions, plus the chain rule through the cloth law (whose derivatives
+/// are known in closed form). Every helper also takes plain double, so one template
+/// serves both the value (S = double) and its derivatives (S = Scalar<N>).
 #include <cmath>
+#include <type_traits>
 
 #include <unsupported/Eigen/AutoDiff>
 
@@ -58,13 +61,15 @@ Mat2T<S> inverse2(const Mat2T<S>& m) {
   return inv;
 }
 
-/// Second Piola-Kirchhoff stress S = 2 ∂W/∂C = 2 (W_1 I + W_2 adj C) of the relaxed StVK
-/// law (same formula as RelaxedStVK::second_piola), differentiable in C.
+/// Second Piola-Kirchhoff stress S = 2 ∂W/∂C = 2 (W_1 I + W_2 adj C) (2×2, Pa) of the
+/// relaxed StVK law at the symmetric 2×2 C (same formula as RelaxedStVK::second_piola),
+/// differentiable in C. With S = double only the law's gradient is evaluated.
 template <typename S>
 Mat2T<S> second_piola(const RelaxedStVK& law, const Mat2T<S>& c) {
   const S i1 = c(0, 0) + c(1, 1);
   const S i2 = c(0, 0) * c(1, 1) - c(0, 1) * c(1, 0);
-  const RelaxedStVK::Derivatives d = law.evaluate(value_of(i1), value_of(i2), 2);
+  const RelaxedStVK::Derivatives d =
+      law.evaluate(value_of(i1), value_of(i2), std::is_same_v<S, double> ? 1 : 2);
   const S w1 = chain(d.gradient[0], d.hessian(0, 0), d.hessian(0, 1), i1, i2);
   const S w2 = chain(d.gradient[1], d.hessian(1, 0), d.hessian(1, 1), i1, i2);
   Mat2T<S> s;
