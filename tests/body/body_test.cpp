@@ -1,6 +1,7 @@
 // Acceptance tests of the body layer: generated and imported bodies.
 #include <gtest/gtest.h>
 
+#include "support/analytic_shapes.hpp"
 #include "tightfit/body/body_builder.hpp"
 #include "tightfit/body/body_spec.hpp"
 #include "tightfit/body/body_stats.hpp"
@@ -36,7 +37,7 @@ TEST(BodyAcceptance, DefaultCylinderVolumeWithinOnePercent) {
   BuildReport report;
   const Body body = cylinder_body(params, &report);
   expect_valid_body(body);
-  EXPECT_NEAR(total_volume(body.volume) / cylinder_volume(params), 1.0, 0.01);
+  EXPECT_NEAR(total_volume(body.volume) / test::cylinder_volume(params), 1.0, 0.01);
   EXPECT_NEAR(total_volume(body.volume), signed_volume(body.surface), 1e-12);
   EXPECT_TRUE(report.limit_fitted);
   EXPECT_LT(report.limit_fit.max_residual, 1e-9);
@@ -46,7 +47,7 @@ TEST(BodyAcceptance, DefaultSphereVolumeWithinOnePercent) {
   const SphereParams params;  // r = 10 cm
   const Body body = sphere_body(params);
   expect_valid_body(body);
-  EXPECT_NEAR(total_volume(body.volume) / sphere_volume(params), 1.0, 0.01);
+  EXPECT_NEAR(total_volume(body.volume) / test::sphere_volume(params), 1.0, 0.01);
 }
 
 TEST(BodyAcceptance, CylinderWithAnExactCoreForTheLameCheck) {
@@ -76,7 +77,7 @@ TEST(BodyAcceptance, CylinderWithAnExactCoreForTheLameCheck) {
                                   body.volume.vertices.row(body.volume.tets(t, 3)));
   }
   EXPECT_NEAR(pinned_volume, signed_volume(core), 1e-12);
-  EXPECT_NEAR(signed_volume(core) / cylinder_volume(core_params), 1.0, 0.01);
+  EXPECT_NEAR(signed_volume(core) / test::cylinder_volume(core_params), 1.0, 0.01);
   const SurfaceDistance core_distance(core);
   for (int v = n; v < body.num_vertices(); ++v) {
     const bool on_or_in =

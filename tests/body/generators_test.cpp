@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "support/analytic_shapes.hpp"
 #include "tightfit/body/loop_limit.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/mesh_validation.hpp"
@@ -47,7 +48,7 @@ TEST(Generators, RoundCappedCylinderIsClosedWellShapedAndOnTheSurface) {
     const Vec3 x = m.vertices.row(v);
     EXPECT_NEAR((project_to_cylinder(p, x) - x).norm(), 0.0, 1e-12);
   }
-  EXPECT_NEAR(signed_volume(m) / cylinder_volume(p), 1.0, 0.01);
+  EXPECT_NEAR(signed_volume(m) / test::cylinder_volume(p), 1.0, 0.01);
   EXPECT_NEAR(surface_area(m) / cylinder_area(p), 1.0, 0.01);
 }
 
@@ -67,7 +68,7 @@ TEST(Generators, FlatCappedCylinderAlongAnotherAxis) {
     EXPECT_LE(std::abs(q.dot(axis)), 0.5 * p.length + 1e-12);
     EXPECT_LE((q - q.dot(axis) * axis).norm(), p.radius + 1e-12);
   }
-  EXPECT_NEAR(signed_volume(m) / cylinder_volume(p), 1.0, 0.01);
+  EXPECT_NEAR(signed_volume(m) / test::cylinder_volume(p), 1.0, 0.01);
 }
 
 TEST(Generators, LimitFitPutsVertexLimitsOnTheAnalyticSurface) {
@@ -116,10 +117,10 @@ TEST(Generators, DefaultResolutionVolumesWithinOnePercent) {
   for (bool fit : {false, true}) {
     CylinderParams c;
     c.fit_limit = fit;
-    EXPECT_NEAR(signed_volume(cylinder_surface(c)) / cylinder_volume(c), 1.0, 0.01);
+    EXPECT_NEAR(signed_volume(cylinder_surface(c)) / test::cylinder_volume(c), 1.0, 0.01);
     SphereParams s;
     s.fit_limit = fit;
-    EXPECT_NEAR(signed_volume(sphere_surface(s)) / sphere_volume(s), 1.0, 0.01);
+    EXPECT_NEAR(signed_volume(sphere_surface(s)) / test::sphere_volume(s), 1.0, 0.01);
   }
 }
 
@@ -147,7 +148,7 @@ TEST(Generators, ZeroLengthRoundCylinderIsASphere) {
   EXPECT_TRUE(surface_problems(m).empty());
   SphereParams s;
   s.radius = c.radius;
-  EXPECT_NEAR(signed_volume(m) / sphere_volume(s), 1.0, 0.01);
+  EXPECT_NEAR(signed_volume(m) / test::sphere_volume(s), 1.0, 0.01);
 }
 
 }  // namespace

@@ -66,7 +66,7 @@ TEST(AdjointHessian, ExactHessianIsTheDerivativeOfTheForces) {
   GarmentSimulation& sim = *scene->sim;
   sim.solve();
   EmbeddedEquilibrium& problem = sim.problem();
-  const SparseMatrix H = exact_equilibrium_hessian(sim);
+  const SparseMatrix H = problem.hessian(HessianKind::kExact);
   const SparseMatrix H_newton = problem.hessian();
   const VecX d = test::random_vector(problem.num_dofs(), 7);
   const double h = 1e-6;

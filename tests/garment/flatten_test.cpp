@@ -36,7 +36,7 @@ std::vector<int> boundary_of(const TriMesh& m) {
 
 TEST(Flatten, DevelopableHalfCylinderIsIsometric) {
   const TriMesh m = half_cylinder(0.05, 0.3, 16, 20);
-  const Flattening flat = flatten_disc(m, boundary_of(m));
+  const Flattening flat = flatten_panel(m, {boundary_of(m)});
   EXPECT_EQ(flat.report.flipped, 0);
   EXPECT_LT(flat.report.area_error, 1e-6);
   EXPECT_LT(flat.report.max_area_distortion, 1e-5);
@@ -79,8 +79,8 @@ TEST(Flatten, LscmOnlyIsConformalOnACap) {
 
   FlattenOptions lscm_only;
   lscm_only.max_iterations = 0;
-  const Flattening conformal = flatten_disc(cap, boundary_of(cap), lscm_only);
-  const Flattening arap = flatten_disc(cap, boundary_of(cap));
+  const Flattening conformal = flatten_panel(cap, {boundary_of(cap)}, lscm_only);
+  const Flattening arap = flatten_panel(cap, {boundary_of(cap)});
   EXPECT_EQ(conformal.report.flipped, 0);
   EXPECT_EQ(arap.report.flipped, 0);
   EXPECT_LT(conformal.report.mean_angle_error_deg, arap.report.mean_angle_error_deg);
@@ -90,7 +90,7 @@ TEST(Flatten, LscmOnlyIsConformalOnACap) {
 
 TEST(Flatten, FindsFoldedTriangles) {
   const TriMesh m = half_cylinder(0.05, 0.3, 4, 3);
-  Flattening flat = flatten_disc(m, boundary_of(m));
+  Flattening flat = flatten_panel(m, {boundary_of(m)});
   EXPECT_TRUE(find_overlap(m, boundary_of(m), flat.uv).empty());
   flat.uv.row(6) = flat.uv.row(0) - Vec2(1, 1).transpose();  // drag a vertex far outside
   EXPECT_FALSE(find_overlap(m, boundary_of(m), flat.uv).empty());

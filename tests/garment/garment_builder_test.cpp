@@ -7,6 +7,7 @@
 #include <iterator>
 
 #include "garment/garment_test_meshes.hpp"
+#include "garment/panel_mapping.hpp"
 #include "tightfit/body/generators.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
@@ -60,8 +61,8 @@ void check_garment(const GarmentBuild& b, double max_projection) {
     const PatternPiece& piece = g.pattern.pieces[k];
     for (Eigen::Index v = 0; v < piece.rest.rows(); v += 7) {
       const Vec2 q = piece.rest.row(v);
-      const Vec3 p = piece_to_panel(b.layout, b.maps[k], q);
-      worst = std::max(worst, (panel_to_piece(b.layout, b.maps[k], p) - q).norm());
+      const Vec3 p = test::piece_to_panel(b.layout, b.maps[k], q);
+      worst = std::max(worst, (test::panel_to_piece(b.layout, b.maps[k], p) - q).norm());
     }
     // Triangles counter-clockwise.
     for (Eigen::Index f = 0; f < piece.triangles.rows(); ++f) {
@@ -255,6 +256,15 @@ TEST(BuildGarment, RejectsPanelsTooCurvedToFlatten) {
 
 namespace tightfit {
 namespace {
+
+/// Writes the layout's panels as an OBJ with one group per panel over shared vertices.
+void write_layout_obj(const std::string& file, const Layout& layout) {
+  ObjGroups obj;
+  obj.mesh = layout.surface;
+  obj.face_group = layout.face_panel;
+  for (const auto& p : layout.panels) obj.group_names.push_back(p.name);
+  write_obj_with_groups(file, obj);
+}
 
 /// Writes the rules layout as an OBJ the way Blender exports separate objects: every
 /// panel with its own copies of the vertices.

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "garment/panel_mapping.hpp"
 #include "tightfit/body/surface_remeshing.hpp"
 #include "tightfit/garment/garment_builder.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
@@ -83,9 +84,11 @@ class Pants : public ::testing::Test {
     for (size_t k = 0; k < g.pattern.pieces.size(); ++k)
       for (Eigen::Index v = 0; v < g.pattern.pieces[k].rest.rows(); v += 5) {
         const Vec2 q = g.pattern.pieces[k].rest.row(v);
-        worst = std::max(
-            worst, (panel_to_piece(b.layout, b.maps[k], piece_to_panel(b.layout, b.maps[k], q)) - q)
-                       .norm());
+        worst =
+            std::max(worst, (test::panel_to_piece(b.layout, b.maps[k],
+                                                  test::piece_to_panel(b.layout, b.maps[k], q)) -
+                             q)
+                                .norm());
       }
     EXPECT_LT(worst, 1e-6);
   }

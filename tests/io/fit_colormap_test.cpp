@@ -39,11 +39,10 @@ TEST(FitColormap, TurboRunsFromDarkThroughBlueToDarkRed) {
   }
 }
 
-TEST(FitColormap, NamesRoundTrip) {
-  for (const auto map : {ColorMap::kViridis, ColorMap::kTurbo, ColorMap::kRegime}) {
-    EXPECT_EQ(parse_colormap(colormap_name(map), "x"), map);
-  }
-  EXPECT_THROW(parse_colormap("jet", "scene.json"), InputError);
+TEST(FitColormap, NamesAreTheOnesScenesAndReportsUse) {
+  EXPECT_EQ(colormap_name(ColorMap::kViridis), "viridis");
+  EXPECT_EQ(colormap_name(ColorMap::kTurbo), "turbo");
+  EXPECT_EQ(colormap_name(ColorMap::kRegime), "regime");
 }
 
 FaceField scalar(std::vector<double> v) {

@@ -22,9 +22,7 @@ TEST(FitView, DefaultMappingConcatenatesPieces) {
   EXPECT_EQ(map[0].front(), 0);
   EXPECT_EQ(map[1].front(), 8);
   EXPECT_EQ(map[1].back(), 15);
-  const auto piece_of = garment_face_pieces(view);
-  EXPECT_EQ(piece_of[7], 0);
-  EXPECT_EQ(piece_of[8], 1);
+  EXPECT_EQ(map[0].back(), 7);  // face 7 on piece 0, face 8 on piece 1
 }
 
 TEST(FitView, ExplicitMappingIsUsed) {
@@ -33,9 +31,10 @@ TEST(FitView, ExplicitMappingIsUsed) {
   for (int f = 0; f < 16; ++f) (f % 2 == 0 ? front : back).push_back(f);
   view.piece_faces = {front, back};
   EXPECT_NO_THROW(validate_fit_view(view, "test"));
-  const auto piece_of = garment_face_pieces(view);
-  EXPECT_EQ(piece_of[2], 0);
-  EXPECT_EQ(piece_of[3], 1);
+  const auto map = resolved_piece_faces(view);
+  ASSERT_EQ(map.size(), 2u);
+  EXPECT_EQ(map[0], front);
+  EXPECT_EQ(map[1], back);
 }
 
 void expect_input_error(const FitView& view, const std::string& fragment) {

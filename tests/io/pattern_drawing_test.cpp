@@ -37,7 +37,7 @@ TEST(PatternDrawing, SewLineIsTheBoundaryInMillimetres) {
     }
     EXPECT_EQ(pieces[p].quantity, 1);
   }
-  EXPECT_NEAR(perimeter(pieces[0].sew_line), 1400.0, 1e-9);
+  EXPECT_NEAR(test::perimeter(pieces[0].sew_line), 1400.0, 1e-9);
 }
 
 TEST(PatternDrawing, PerSeamAllowanceAppliesToThatSeamsEdges) {

@@ -106,9 +106,9 @@ TEST(PatternDxf, EzdxfReadsBackPiecesOutlinesAndLayers) {
     ASSERT_EQ(block["sew"].size(), 1u);
     EXPECT_TRUE(block["cut"][0]["closed"].get<bool>());
     EXPECT_TRUE(block["sew"][0]["closed"].get<bool>());
-    const double cut = perimeter(pieces[p].cut_line);
+    const double cut = test::perimeter(pieces[p].cut_line);
     // The sew line drawn is the trued one (io/pattern_truing.hpp).
-    const double sew = perimeter(pieces[p].trued_sew_line);
+    const double sew = test::perimeter(pieces[p].trued_sew_line);
     EXPECT_NEAR(block["cut"][0]["length"].get<double>(), cut, 1e-9 * cut);
     EXPECT_NEAR(block["sew"][0]["length"].get<double>(), sew, 1e-9 * sew);
     EXPECT_EQ(block["cut"][0]["vertices"].get<size_t>(), pieces[p].cut_line.size());

@@ -144,7 +144,7 @@ TEST(PatternOffset, ZeroAllowanceReturnsTheSewLine) {
 TEST(PatternOffset, PolygonMeasures) {
   const Polygon2 square = rectangle(2, 2);
   EXPECT_DOUBLE_EQ(signed_area(square), 4.0);
-  EXPECT_DOUBLE_EQ(perimeter(square), 8.0);
+  EXPECT_DOUBLE_EQ(test::perimeter(square), 8.0);
   EXPECT_TRUE(area_centroid(square).isApprox(Vec2(1, 1)));
   const Polygon2 reversed(square.rbegin(), square.rend());
   EXPECT_DOUBLE_EQ(signed_area(reversed), -4.0);

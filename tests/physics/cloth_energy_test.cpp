@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "physics_test_util.hpp"
+#include "support/energy_assembly.hpp"
 #include "support/finite_difference.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/physics/assembly.hpp"
@@ -53,12 +54,13 @@ struct FdErrors {
 FdErrors fd_errors(const ClothEnergy& energy_in, const VecX& x, double h) {
   ClothEnergy energy = energy_in;
   FdErrors r{};
-  const VecX g = energy_gradient(energy, x);
+  const VecX g = test::energy_gradient(energy, x);
   r.gradient =
       check_gradient([&](const VecX& y) { return energy.value(y); }, g, x, h).relative_error;
-  const MatX H = MatX(energy_hessian(energy, x));
-  r.hessian = check_hessian([&](const VecX& y) { return energy_gradient(energy, y); }, H, x, h)
-                  .relative_error;
+  const MatX H = MatX(test::energy_hessian(energy, x));
+  r.hessian =
+      check_hessian([&](const VecX& y) { return test::energy_gradient(energy, y); }, H, x, h)
+          .relative_error;
   const Points2 rest0 = energy.rest();
   const VecX xbar = flatten(rest0);
   Points2 trial = rest0;
@@ -79,11 +81,11 @@ FdErrors fd_errors(const ClothEnergy& energy_in, const VecX& x, double h) {
                         .relative_error;
   std::vector<Triplet> t;
   energy.add_mixed_rest(x, t);
-  const MatX mixed = MatX(sparse_from_triplets(x.size(), xbar.size(), t));
+  const MatX mixed = MatX(test::sparse_from_triplets(x.size(), xbar.size(), t));
   r.mixed = check_jacobian(
                 [&](const VecX& v) {
                   set(v);
-                  const VecX gx = energy_gradient(energy, x);
+                  const VecX gx = test::energy_gradient(energy, x);
                   set(xbar);
                   return gx;
                 },
@@ -129,8 +131,8 @@ TEST(ClothEnergy, SlackClothHasZeroEnergyAndForce) {
     const Triangle t = stretched_triangle(s1, s2, 4);
     const ClothEnergy e = single(t);
     EXPECT_EQ(e.value(t.x), 0.0);
-    EXPECT_EQ(energy_gradient(e, t.x).norm(), 0.0);
-    EXPECT_EQ(MatX(energy_hessian(e, t.x)).norm(), 0.0);
+    EXPECT_EQ(test::energy_gradient(e, t.x).norm(), 0.0);
+    EXPECT_EQ(MatX(test::energy_hessian(e, t.x)).norm(), 0.0);
     Mat2 c = Mat2::Zero();
     c(0, 0) = s1 * s1;
     c(1, 1) = s2 * s2;
@@ -214,8 +216,8 @@ TEST(ClothEnergy, DerivativesMatchFiniteDifferencesInEveryRegime) {
       const ClothEnergy e = single(t, m);
       ASSERT_TRUE(std::isfinite(e.value(t.x))) << c.what;
       if (c.e1 == 0.0 && c.e2 == 0.0) {
-        EXPECT_TRUE(energy_gradient(e, t.x).allFinite());
-        EXPECT_TRUE(MatX(energy_hessian(e, t.x)).allFinite());
+        EXPECT_TRUE(test::energy_gradient(e, t.x).allFinite());
+        EXPECT_TRUE(MatX(test::energy_hessian(e, t.x)).allFinite());
       }
       expect_fd_ok(e, t.x, std::string(c.what) + " delta=" + std::to_string(delta));
     }
@@ -257,8 +259,8 @@ TEST(ClothEnergy, SecondDerivativeIsContinuousAcrossBandEdges) {
     const Triangle b =
         stretched_triangle(stretch_for_strain(e1 + 1e-9), stretch_for_strain(edge.e2), 3);
     const ClothEnergy ea = single(a, m);
-    const MatX ha = MatX(energy_hessian(ea, a.x));
-    const MatX hb = MatX(energy_hessian(single(b, m), b.x));
+    const MatX ha = MatX(test::energy_hessian(ea, a.x));
+    const MatX hb = MatX(test::energy_hessian(single(b, m), b.x));
     // A jump in the second derivative would be of the order of the stiffness E t A.
     const double scale = m.youngs_modulus * m.thickness * ea.rest_area(0);
     EXPECT_LT((ha - hb).norm(), 1e-6 * scale) << edge.which << " " << edge.z;
@@ -308,8 +310,8 @@ TEST(ClothEnergy, WeldedPiecesDerivativesMatchFiniteDifferences) {
 TEST(ClothEnergy, ProjectedHessianIsPositiveSemiDefinite) {
   const Triangle t = stretched_triangle(1.2, 0.8, 17);  // wrinkled: indefinite raw Hessian
   const ClothEnergy e = single(t);
-  Eigen::SelfAdjointEigenSolver<MatX> raw(MatX(energy_hessian(e, t.x)));
-  Eigen::SelfAdjointEigenSolver<MatX> projected(MatX(energy_hessian(e, t.x, true)));
+  Eigen::SelfAdjointEigenSolver<MatX> raw(MatX(test::energy_hessian(e, t.x)));
+  Eigen::SelfAdjointEigenSolver<MatX> projected(MatX(test::energy_hessian(e, t.x, true)));
   EXPECT_LT(raw.eigenvalues().minCoeff(), 0.0);
   EXPECT_GT(projected.eigenvalues().minCoeff(), -1e-9 * projected.eigenvalues().maxCoeff());
 }

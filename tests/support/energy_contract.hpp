@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/energy_assembly.hpp"
 #include "support/finite_difference.hpp"
 #include "tightfit/objectives/design_term.hpp"
 #include "tightfit/physics/assembly.hpp"
@@ -50,15 +51,16 @@ inline void expect_energy_contract(const Energy& energy, const VecX& x, const Ve
                                    const ContractTolerances& tol = {}) {
   SCOPED_TRACE("energy '" + energy.name() + "'");
   ASSERT_EQ(other.size(), x.size());
-  const VecX g = energy_gradient(energy, x);
+  const VecX g = test::energy_gradient(energy, x);
   EXPECT_LT(
       check_gradient([&](const VecX& y) { return energy.value(y); }, g, x, tol.step).relative_error,
       tol.derivative)
       << "gradient";
-  const MatX H = MatX(energy_hessian(energy, x));
-  EXPECT_LT(check_hessian([&](const VecX& y) { return energy_gradient(energy, y); }, H, x, tol.step)
-                .relative_error,
-            tol.derivative)
+  const MatX H = MatX(test::energy_hessian(energy, x));
+  EXPECT_LT(
+      check_hessian([&](const VecX& y) { return test::energy_gradient(energy, y); }, H, x, tol.step)
+          .relative_error,
+      tol.derivative)
       << "Hessian";
   EXPECT_LE((H - H.transpose()).norm(), tol.symmetry * std::max(H.norm(), 1e-300)) << "symmetry";
 
@@ -70,7 +72,7 @@ inline void expect_energy_contract(const Energy& energy, const VecX& x, const Ve
       << "the Hessian's sparsity pattern changes with the state";
   EXPECT_EQ(triplet_pattern(at_x), triplet_pattern(projected))
       << "the projected Hessian has another sparsity pattern";
-  const MatX P = MatX(sparse_from_triplets(x.size(), x.size(), projected));
+  const MatX P = MatX(test::sparse_from_triplets(x.size(), x.size(), projected));
   const Eigen::SelfAdjointEigenSolver<MatX> eigen(0.5 * (P + P.transpose()));
   EXPECT_GE(eigen.eigenvalues().minCoeff(),
             -tol.psd * std::max(eigen.eigenvalues().cwiseAbs().maxCoeff(), 1e-300))
@@ -103,12 +105,13 @@ inline void expect_rest_dependent_contract(RestDependentEnergy& energy, const Ve
       << "∂U/∂Xbar";
   std::vector<Triplet> mixed;
   energy.add_mixed_rest(x, mixed);
-  EXPECT_LT(
-      check_jacobian(
-          [&](const VecX& v) { return with_rest(v, [&] { return energy_gradient(energy, x); }); },
-          MatX(sparse_from_triplets(x.size(), xbar.size(), mixed)), xbar, tol.step)
-          .relative_error,
-      tol.derivative)
+  EXPECT_LT(check_jacobian(
+                [&](const VecX& v) {
+                  return with_rest(v, [&] { return test::energy_gradient(energy, x); });
+                },
+                MatX(test::sparse_from_triplets(x.size(), xbar.size(), mixed)), xbar, tol.step)
+                .relative_error,
+            tol.derivative)
       << "∂²U/∂x∂Xbar";
 }
 

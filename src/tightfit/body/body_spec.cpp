@@ -69,8 +69,7 @@ void parse_cylinder(JsonFields& f, BodySpec& spec) {
   if (c.edge_length > c.radius) f.fail("the edge length must not exceed the radius", "edge_length");
   spec.edge_length = c.edge_length;
   check_body_size(f, c.radius, c.length);
-  const double area =
-      2.0 * std::numbers::pi * c.radius * c.length + 4.0 * std::numbers::pi * c.radius * c.radius;
+  const double area = cylinder_area(c);
   if (const std::string problem = mesh_budget_problem(area, c.edge_length, "cylinder's surface");
       !problem.empty())
     f.fail(problem, "edge_length");

@@ -28,7 +28,7 @@ BodyStats compute_body_stats(const Body& body) {
   s.surface_volume = signed_volume(body.surface);
   s.mean_surface_edge = edge_length_stats(body.surface).mean;
   const VecX volumes = tet_volumes(body.volume);
-  s.tet_volume = volumes.sum();
+  s.tet_volume = total_volume(body.volume);
   s.inverted_tets = static_cast<int>((volumes.array() <= 0.0).count());
   s.min_tet_volume = volumes.size() > 0 ? volumes.minCoeff() : 0.0;
   const AngleRange angles = dihedral_angle_range(body.volume);

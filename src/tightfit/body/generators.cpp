@@ -324,20 +324,11 @@ Vec3 project_to_sphere(const SphereParams& p, const Vec3& x) {
   return p.center + p.radius * (n > 0.0 ? Vec3(d / n) : Vec3::UnitZ());
 }
 
-double cylinder_volume(const CylinderParams& p) {
-  const double r2 = p.radius * p.radius;
-  return std::numbers::pi * r2 * p.length +
-         (p.caps == CapStyle::kRound ? 4.0 / 3.0 * std::numbers::pi * r2 * p.radius : 0.0);
-}
-
 double cylinder_area(const CylinderParams& p) {
   const double side = 2.0 * std::numbers::pi * p.radius * p.length;
   return side + (p.caps == CapStyle::kRound ? 4.0 : 2.0) * std::numbers::pi * p.radius * p.radius;
 }
 
-double sphere_volume(const SphereParams& p) {
-  return 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
-}
 double sphere_area(const SphereParams& p) { return 4.0 * std::numbers::pi * p.radius * p.radius; }
 
 }  // namespace tightfit

@@ -79,11 +79,9 @@ Vec3 project_to_cylinder(const CylinderParams& params, const Vec3& p);
 /// Closest point of the analytic sphere to `p` (m); the centre maps to an arbitrary pole.
 Vec3 project_to_sphere(const SphereParams& params, const Vec3& p);
 
-/// Analytic volume (m³) and area (m²) of the capped cylinder.
-double cylinder_volume(const CylinderParams& params);
+/// Analytic area (m²) of the capped cylinder (round or flat caps), for mesh budgets.
 double cylinder_area(const CylinderParams& params);
-/// Analytic volume (m³) and area (m²) of the sphere.
-double sphere_volume(const SphereParams& params);
+/// Analytic area (m²) of the sphere, for mesh budgets.
 double sphere_area(const SphereParams& params);
 
 }  // namespace tightfit

@@ -57,10 +57,6 @@ const char* adjoint_method_name(AdjointMethod method) {
   return "unknown";
 }
 
-SparseMatrix exact_equilibrium_hessian(GarmentSimulation& sim) {
-  return sim.problem().hessian(HessianKind::kExact);
-}
-
 SparseMatrix mixed_rest_derivative(const GarmentSimulation& sim) {
   const VecX x = flat_positions(sim);
   std::vector<Triplet> t;

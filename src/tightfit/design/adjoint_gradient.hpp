@@ -90,10 +90,6 @@ struct AdjointResult {
   int factorizations = 0;     ///< Cholesky factorizations done for this gradient
 };
 
-/// The exact Hessian ∂g/∂q (n_dofs × n_dofs, N/m) of the simulation's total energy at
-/// its current state (see the header comment on the projection).
-SparseMatrix exact_equilibrium_hessian(GarmentSimulation& sim);
-
 /// The solve of the adjoint system H λ = rhs at the simulation's current state.
 struct AdjointSolve {
   VecX lambda;

@@ -196,11 +196,6 @@ std::vector<std::pair<int, int>> loop_edges(const std::vector<std::vector<int>>&
 
 }  // namespace
 
-Flattening flatten_disc(const TriMesh& mesh, const std::vector<int>& boundary,
-                        const FlattenOptions& options) {
-  return flatten_panel(mesh, {boundary}, options);
-}
-
 Flattening flatten_panel(const TriMesh& mesh, const std::vector<std::vector<int>>& loops,
                          const FlattenOptions& options) {
   const int n = mesh.num_vertices();

@@ -53,16 +53,12 @@ struct Flattening {
   int iterations = 0;  ///< ARAP iterations done
 };
 
-/// Flattens a disc (one boundary loop `boundary`, interior on its left as seen from the
-/// front of the faces). Throws SolverError if a linear solve fails (degenerate mesh).
-/// The result is not checked for overlaps: see find_overlap.
-Flattening flatten_disc(const TriMesh& mesh, const std::vector<int>& boundary,
-                        const FlattenOptions& options = {});
-
 /// Flattens a disc with holes (openings): `loops[0]` is the outer boundary loop, the
 /// others the holes' loops, each with the interior on its left as seen from the front
 /// of the faces. The LSCM area term and the ARAP boundary-length term run over every
-/// loop. `flatten_disc(mesh, b)` is `flatten_panel(mesh, {b})`.
+/// loop; a disc without holes is `flatten_panel(mesh, {boundary})`. Throws SolverError
+/// if a linear solve fails (degenerate mesh). The result is not checked for overlaps:
+/// see find_overlap.
 Flattening flatten_panel(const TriMesh& mesh, const std::vector<std::vector<int>>& loops,
                          const FlattenOptions& options = {});
 

@@ -95,12 +95,13 @@ void collect_triangles(const Pattern& pattern, GarmentTopology& g) {
 }
 
 void collect_seam_edges(const Pattern& pattern, GarmentTopology& g) {
+  std::vector<std::vector<int>> sides;  // in global pattern-vertex indices
   for (const Seam& seam : pattern.seams)
     for (const SeamSide* side : {&seam.a, &seam.b}) {
-      const int off = g.piece_offset[side->piece];
-      for (size_t i = 0; i + 1 < side->vertices.size(); ++i)
-        g.seam_edges.push_back({off + side->vertices[i], off + side->vertices[i + 1]});
+      std::vector<int>& line = sides.emplace_back();
+      for (int v : side->vertices) line.push_back(g.piece_offset[side->piece] + v);
     }
+  g.seam_edges = polyline_edges(sides);
 }
 
 void collect_pinned(const Pattern& pattern, GarmentTopology& g) {
@@ -120,6 +121,13 @@ void collect_pinned(const Pattern& pattern, GarmentTopology& g) {
 }
 
 }  // namespace
+
+std::vector<std::array<int, 2>> polyline_edges(const std::vector<std::vector<int>>& polylines) {
+  std::vector<std::array<int, 2>> edges;
+  for (const auto& line : polylines)
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) edges.push_back({line[i], line[i + 1]});
+  return edges;
+}
 
 int GarmentTopology::piece_of(int pattern_vertex) const {
   return static_cast<int>(

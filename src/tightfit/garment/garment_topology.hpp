@@ -43,6 +43,10 @@ struct GarmentTopology {
   int piece_of(int pattern_vertex) const;
 };
 
+/// Consecutive vertex pairs of each polyline: the seam edges of seam sides given as
+/// pattern-vertex polylines.
+std::vector<std::array<int, 2>> polyline_edges(const std::vector<std::vector<int>>& polylines);
+
 /// Numbers the pattern vertices, welds seam vertex pairs into garment vertices
 /// (transitively, so seams meeting at a corner share one vertex) and collects the seam
 /// edges and pinned vertices. Throws InputError (source "pattern") when a seam's sides

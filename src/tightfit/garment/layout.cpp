@@ -824,12 +824,4 @@ Layout layout_from_obj(const LayoutSpec& spec) {
   return layout_from_groups(obj.mesh, groups, obj.group_names, spec, spec.mesh_file);
 }
 
-void write_layout_obj(const std::string& file, const Layout& layout) {
-  ObjGroups obj;
-  obj.mesh = layout.surface;
-  obj.face_group = layout.face_panel;
-  for (const auto& p : layout.panels) obj.group_names.push_back(p.name);
-  write_obj_with_groups(file, obj);
-}
-
 }  // namespace tightfit

@@ -95,8 +95,4 @@ Layout layout_from_groups(const TriMesh& mesh, const std::vector<int>& face_grou
 /// Reads spec.mesh_file (OBJ with one group per panel) and calls layout_from_groups.
 Layout layout_from_obj(const LayoutSpec& spec);
 
-/// Writes the layout's panels as an OBJ with one group per panel (loads in Blender and
-/// reads back with layout_from_obj).
-void write_layout_obj(const std::string& file, const Layout& layout);
-
 }  // namespace tightfit

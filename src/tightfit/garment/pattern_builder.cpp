@@ -5,7 +5,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -341,10 +340,8 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     piece.grain = Vec2::UnitY();
     map.location = boundary_location;
     const TriangleLocator locator(panel.mesh.faces, map.flat);
-    const Mat2 inverse = map.linear.inverse();
     for (Eigen::Index v = nb; v < piece.rest.rows(); ++v)
-      map.location.push_back(
-          locate_flat(locator, inverse * (piece.rest.row(v).transpose() - map.offset)));
+      map.location.push_back(locate_in_panel(locator, map, piece.rest.row(v).transpose()));
     out.pattern.pieces.push_back(std::move(piece));
   }
 
@@ -393,36 +390,9 @@ Vec3 panel_position(const Layout& layout, const PieceMap& map, const PanelPoint&
   return x;
 }
 
-PanelPoint locate_in_panel(const Layout& layout, const PieceMap& map, const Vec2& piece_point) {
-  const TriangleLocator locator(layout.panels[map.panel].mesh.faces, map.flat);
+PanelPoint locate_in_panel(const TriangleLocator& locator, const PieceMap& map,
+                           const Vec2& piece_point) {
   return locate_flat(locator, map.linear.inverse() * (piece_point - map.offset));
-}
-
-Vec3 piece_to_panel(const Layout& layout, const PieceMap& map, const Vec2& piece_point) {
-  return panel_position(layout, map, locate_in_panel(layout, map, piece_point));
-}
-
-Vec2 panel_to_piece(const Layout& layout, const PieceMap& map, const Vec3& p) {
-  const TriMesh& m = layout.panels[map.panel].mesh;
-  double best = std::numeric_limits<double>::infinity();
-  Vec2 result = Vec2::Zero();
-  for (int f = 0; f < m.num_faces(); ++f) {
-    const Vec3 w =
-        closest_point_weights(p, m.vertices.row(m.faces(f, 0)), m.vertices.row(m.faces(f, 1)),
-                              m.vertices.row(m.faces(f, 2)));
-    Vec3 x = Vec3::Zero();
-    Vec2 q = Vec2::Zero();
-    for (int c = 0; c < 3; ++c) {
-      x += w[c] * m.vertices.row(m.faces(f, c)).transpose();
-      q += w[c] * map.flat.row(m.faces(f, c)).transpose();
-    }
-    const double d = (x - p).squaredNorm();
-    if (d < best) {
-      best = d;
-      result = map.linear * q + map.offset;
-    }
-  }
-  return result;
 }
 
 }  // namespace tightfit

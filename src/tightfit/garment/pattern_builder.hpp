@@ -11,6 +11,7 @@
 #include "tightfit/garment/layout.hpp"
 #include "tightfit/garment/pattern.hpp"
 #include "tightfit/garment/pattern_options.hpp"
+#include "tightfit/garment/triangle_locator.hpp"
 
 namespace tightfit {
 
@@ -56,12 +57,10 @@ struct PatternBuild {
 /// a resampled piece boundary crosses itself (edge length too long for the piece).
 PatternBuild build_pattern(const Layout& layout, const PatternOptions& options);
 
-/// 3D point on the panel of a point in piece coordinates (m).
-Vec3 piece_to_panel(const Layout& layout, const PieceMap& map, const Vec2& piece_point);
-/// The same point by its panel location.
-PanelPoint locate_in_panel(const Layout& layout, const PieceMap& map, const Vec2& piece_point);
-/// Piece coordinates of the point of the 3D panel closest to `p` (m).
-Vec2 panel_to_piece(const Layout& layout, const PieceMap& map, const Vec3& p);
+/// The point of the panel (its face and barycentric weights) of a point in piece
+/// coordinates (m); `locator` over the panel's faces at map.flat (one for many points).
+PanelPoint locate_in_panel(const TriangleLocator& locator, const PieceMap& map,
+                           const Vec2& piece_point);
 /// 3D position of a panel point.
 Vec3 panel_position(const Layout& layout, const PieceMap& map, const PanelPoint& point);
 

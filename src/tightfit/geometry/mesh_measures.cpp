@@ -105,15 +105,6 @@ Points3 vertex_normals(const TriMesh& mesh) {
   return normals;
 }
 
-BoundingBox bounding_box(const Points3& points) {
-  BoundingBox box{Vec3::Constant(std::numeric_limits<double>::infinity()),
-                  Vec3::Constant(-std::numeric_limits<double>::infinity())};
-  if (points.rows() == 0) return box;
-  box.min = points.colwise().minCoeff().transpose();
-  box.max = points.colwise().maxCoeff().transpose();
-  return box;
-}
-
 EdgeLengthStats edge_length_stats(const TriMesh& mesh) {
   std::vector<std::array<int, 2>> pairs;
   pairs.reserve(3 * static_cast<std::size_t>(mesh.num_faces()));
@@ -213,10 +204,6 @@ VecX radius_edge_ratios(const TetMesh& mesh) {
         corner(mesh.vertices, mesh.tets(t, 0)), corner(mesh.vertices, mesh.tets(t, 1)),
         corner(mesh.vertices, mesh.tets(t, 2)), corner(mesh.vertices, mesh.tets(t, 3)));
   return r;
-}
-
-double max_radius_edge_ratio(const TetMesh& mesh) {
-  return mesh.num_tets() == 0 ? 0.0 : radius_edge_ratios(mesh).maxCoeff();
 }
 
 }  // namespace tightfit

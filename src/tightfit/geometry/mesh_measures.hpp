@@ -27,16 +27,6 @@ Points3 face_normals(const TriMesh& mesh);
 /// Area-weighted vertex normals, normalized (n×3); zero rows for unused vertices.
 Points3 vertex_normals(const TriMesh& mesh);
 
-/// Axis-aligned bounding box of a point set (min = +inf, max = -inf when empty).
-struct BoundingBox {
-  Vec3 min;
-  Vec3 max;
-  Vec3 size() const { return max - min; }
-  Vec3 center() const { return 0.5 * (min + max); }
-  double diagonal() const { return (max - min).norm(); }
-};
-BoundingBox bounding_box(const Points3& points);
-
 /// Statistics of the lengths of the distinct edges of a mesh (count 0 and all values
 /// 0 when there are no edges).
 struct EdgeLengthStats {
@@ -77,7 +67,5 @@ AngleRange dihedral_angle_range(const TetMesh& mesh);
 double tet_radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 /// Radius-edge ratio of each tet (m entries).
 VecX radius_edge_ratios(const TetMesh& mesh);
-/// Largest radius-edge ratio over all tets (0 for no tets).
-double max_radius_edge_ratio(const TetMesh& mesh);
 
 }  // namespace tightfit

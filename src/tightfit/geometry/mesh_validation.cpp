@@ -228,12 +228,6 @@ void validate_surface(const TriMesh& mesh, const std::string& source,
   if (!problems.empty()) throw InputError(source, join(problems));
 }
 
-TriMesh read_valid_surface(const std::filesystem::path& path, const SurfaceRequirements& req) {
-  TriMesh mesh = read_tri_mesh(path);
-  validate_surface(mesh, path.string(), req);
-  return mesh;
-}
-
 std::vector<std::string> tet_mesh_problems(const TetMesh& mesh, const TetRequirements& req) {
   std::vector<std::string> problems;
   const int nv = mesh.num_vertices();

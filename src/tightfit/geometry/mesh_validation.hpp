@@ -36,10 +36,6 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
 void validate_surface(const TriMesh& mesh, const std::string& source,
                       const SurfaceRequirements& req = {});
 
-/// Reads a surface (any format of read_tri_mesh) and validates it, naming the file in
-/// every error.
-TriMesh read_valid_surface(const std::filesystem::path& path, const SurfaceRequirements& req = {});
-
 struct TetRequirements {
   /// A tet is degenerate (zero volume) when 6·|volume| ≤ degenerate_tolerance ·
   /// (longest edge)³; a regular tet has 6·volume ≈ 0.71·edge³.

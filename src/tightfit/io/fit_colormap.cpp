@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/physics/relaxed_stvk.hpp"
 
 namespace tightfit {
 
@@ -66,16 +67,11 @@ std::string colormap_name(ColorMap map) {
   return "viridis";
 }
 
-ColorMap parse_colormap(std::string_view name, const std::string& source) {
-  for (const auto map : {ColorMap::kViridis, ColorMap::kTurbo, ColorMap::kRegime}) {
-    if (colormap_name(map) == name) return map;
-  }
-  throw InputError(
-      source, "unknown colour map '" + std::string(name) + "' (expected viridis, turbo or regime)");
-}
-
 std::vector<ColorCategory> regime_categories() {
-  return {{0, "slack", hex(0x9ecae1)}, {1, "wrinkled", hex(0xf28e2b)}, {2, "taut", hex(0x2a7f62)}};
+  return {{static_cast<int>(ClothRegime::kSlack), regime_name(ClothRegime::kSlack), hex(0x9ecae1)},
+          {static_cast<int>(ClothRegime::kWrinkled), regime_name(ClothRegime::kWrinkled),
+           hex(0xf28e2b)},
+          {static_cast<int>(ClothRegime::kTaut), regime_name(ClothRegime::kTaut), hex(0x2a7f62)}};
 }
 
 Rgb colormap_color(ColorMap map, double t) {

@@ -35,8 +35,6 @@ enum class ColorMap {
 
 /// "viridis", "turbo", "regime".
 std::string colormap_name(ColorMap map);
-/// Inverse of colormap_name; InputError naming `source` for an unknown name.
-ColorMap parse_colormap(std::string_view name, const std::string& source);
 
 /// Colour of a continuous map at t ∈ [0, 1] (clamped); for kRegime t is the category.
 Rgb colormap_color(ColorMap map, double t);

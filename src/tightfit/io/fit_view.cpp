@@ -167,15 +167,6 @@ std::vector<std::vector<int>> resolved_piece_faces(const FitView& view) {
   return map;
 }
 
-std::vector<int> garment_face_pieces(const FitView& view) {
-  std::vector<int> piece_of(static_cast<std::size_t>(view.garment.num_faces()), -1);
-  const auto map = resolved_piece_faces(view);
-  for (std::size_t k = 0; k < map.size(); ++k) {
-    for (const int f : map[k]) piece_of[static_cast<std::size_t>(f)] = static_cast<int>(k);
-  }
-  return piece_of;
-}
-
 FaceField pressure_mmhg_field(const FaceField& pressure_pa) {
   return FaceField{std::string(fit_fields::kPressureMmHg), "mmHg",
                    pressure_pa.values / kPascalPerMmHg};

@@ -1,6 +1,6 @@
 #pragma once
 /// The simulated fit as the exports see it: plain arrays that the simulation fills and
-/// that the PLY, glTF and report writers read (fit_ply.hpp, fit_glb.hpp, report_html.hpp).
+/// that the glTF and report writers read (fit_glb.hpp, report_html.hpp).
 ///
 /// Units: positions in metres, pressures in Pa (mmHg only as a derived field, 1 mmHg =
 /// kPascalPerMmHg Pa), forces in N, stretches dimensionless (1.3 = 30 % stretch).
@@ -142,9 +142,6 @@ const FaceField* find_field(const std::vector<FaceField>& fields, std::string_vi
 /// piece_faces resolved: the explicit mapping, or the piece-order concatenation when
 /// FitView::piece_faces is empty. Assumes a valid view.
 std::vector<std::vector<int>> resolved_piece_faces(const FitView& view);
-
-/// The piece of every garment face (size garment.num_faces()). Assumes a valid view.
-std::vector<int> garment_face_pieces(const FitView& view);
 
 /// A pressure field in mmHg ("pressure_mmhg") from one in Pa.
 FaceField pressure_mmhg_field(const FaceField& pressure_pa);

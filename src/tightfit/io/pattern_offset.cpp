@@ -258,14 +258,6 @@ Vec2 area_centroid(const Polygon2& polygon) {
   return origin + sum / (3.0 * area2);
 }
 
-double perimeter(const Polygon2& polygon) {
-  double length = 0.0;
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    length += (polygon[(i + 1) % polygon.size()] - polygon[i]).norm();
-  }
-  return length;
-}
-
 Polygon2 offset_polygon(const Polygon2& polygon, const std::vector<double>& distance,
                         CornerStyle style, double mitre_limit, double arc_tolerance) {
   if (distance.size() != polygon.size()) {

@@ -15,9 +15,6 @@ using Polygon2 = std::vector<Vec2>;
 /// Area centroid of a closed polygon with non-zero area.
 Vec2 area_centroid(const Polygon2& polygon);
 
-/// Perimeter of a closed polygon.
-double perimeter(const Polygon2& polygon);
-
 /// Outward offset of the simple counter-clockwise polygon `polygon`: every edge i
 /// (from point i to point i+1, cyclically) moves outward by `distance[i]` ≥ 0.
 /// Convex corners are mitred (the two offset edge lines meet) unless the mitre point is

@@ -105,9 +105,8 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
   j["stretch_max"] = range_json(smax);
   j["stretch_min"] = range_json(smin);
   j["garment_area_m2"] = total;
-  j["area_share"] = {{"slack", total > 0 ? area[0] / total : 0.0},
-                     {"wrinkled", total > 0 ? area[1] / total : 0.0},
-                     {"taut", total > 0 ? area[2] / total : 0.0}};
+  for (const ClothRegime regime : {ClothRegime::kSlack, ClothRegime::kWrinkled, ClothRegime::kTaut})
+    j["area_share"][regime_name(regime)] = total > 0 ? area[static_cast<int>(regime)] / total : 0.0;
   j["lift_off_area_m2"] = lift_off;
   j["lift_off_share"] = total > 0 ? lift_off / total : 0.0;
   // Per piece only for garments with real pieces (the cover has one piece per triangle).
@@ -201,12 +200,13 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, Shap
     regime(e, 0) = static_cast<double>(el.regime);
     force(e, 0) = p[e] * el.deformed_area;
   }
+  const FaceField pressure{std::string(fit_fields::kPressurePa), "Pa", p};
   view.garment_fields = {{std::string(fit_fields::kStretchMax), "", smax},
                          {std::string(fit_fields::kStretchMin), "", smin},
                          {std::string(fit_fields::kStretchDirection), "", dir},
                          {std::string(fit_fields::kRegime), "", regime},
-                         {std::string(fit_fields::kPressurePa), "Pa", p},
-                         {std::string(fit_fields::kPressureMmHg), "mmHg", p / kPascalPerMmHg},
+                         pressure,
+                         pressure_mmhg_field(pressure),
                          {std::string(fit_fields::kNormalForce), "N", force}};
   view.pattern = sim.garment().pattern;
   if (view.pattern.pieces.size() <= kMaxReportedPieces)
@@ -248,7 +248,8 @@ void write_fit_meshes(const std::filesystem::path& folder, const GarmentSimulati
   PlyAttributes ga;
   ga.face_fields = garment_face_fields(sim, fit, op);
   ga.vertex_fields = garment_vertex_fields(fit);
-  // ASCII: Debian's meshio 5 misreads per-face properties of binary PLY (fit_ply.hpp).
+  // ASCII: Debian's meshio 5 misreads per-face properties of binary PLY (the files are
+  // read with it in tests/io/simulate_ply_test.cpp).
   write_ply(folder / "garment.ply", garment, ga, PlyEncoding::ascii);
 
   const int ns = sim.body().num_surface_vertices();

@@ -70,14 +70,4 @@ void scatter_hessian(const std::array<int, NV>& ids, const Eigen::MatrixBase<Der
   scatter_block<Dim, NV, Dim, NV>(ids, ids, local, out);
 }
 
-/// Compressed rows×cols matrix from triplets (duplicates summed).
-SparseMatrix sparse_from_triplets(Eigen::Index rows, Eigen::Index cols,
-                                  const std::vector<Triplet>& triplets);
-
-/// dU/dx of one energy at x (same length as x).
-VecX energy_gradient(const Energy& energy, const VecX& x);
-
-/// d²U/dx² of one energy at x as a compressed n×n matrix (n = x.size()).
-SparseMatrix energy_hessian(const Energy& energy, const VecX& x, bool project_psd = false);
-
 }  // namespace tightfit

@@ -60,13 +60,6 @@ VecX young_laplace_pressure(const std::vector<ClothElementFit>& fit,
   return p;
 }
 
-VecX mid_edge_pressure(const ClothEnergy& cloth, const VecX& x) {
-  const auto fit = analyze_cloth(cloth, x);
-  const Eigen::Map<const Points3> positions(x.data(), cloth.num_garment_vertices(), 3);
-  return young_laplace_pressure(fit,
-                                mid_edge_shape_operators(positions, cloth.garment_triangles()));
-}
-
 VecX mixed_voronoi_areas(const Points3& vertices, const Triangles& faces) {
   VecX area = VecX::Zero(vertices.rows());
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {

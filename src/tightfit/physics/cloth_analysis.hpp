@@ -46,12 +46,6 @@ std::vector<ClothElementFit> analyze_cloth(const ClothEnergy& cloth, const VecX&
 VecX young_laplace_pressure(const std::vector<ClothElementFit>& fit,
                             const std::vector<Mat3>& shape_operators);
 
-/// Young-Laplace pressure per cloth element (Pa) with the mid-edge shape operator of the
-/// garment mesh (cloth.garment_triangles() at x). Builds the operator on each call; to
-/// reuse its symbolic factorization over many states, keep a MidEdgeShapeOperator and
-/// call young_laplace_pressure directly.
-VecX mid_edge_pressure(const ClothEnergy& cloth, const VecX& x);
-
 /// Mixed Voronoi area per vertex (Meyer et al. 2003; m²): Voronoi regions in
 /// non-obtuse triangles, A/2 to the obtuse corner and A/4 to the others otherwise.
 VecX mixed_voronoi_areas(const Points3& vertices, const Triangles& faces);

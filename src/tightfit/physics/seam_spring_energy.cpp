@@ -24,13 +24,6 @@ struct Spring {
 
 }  // namespace
 
-std::vector<std::array<int, 2>> polyline_edges(const std::vector<std::vector<int>>& polylines) {
-  std::vector<std::array<int, 2>> edges;
-  for (const auto& line : polylines)
-    for (std::size_t i = 0; i + 1 < line.size(); ++i) edges.push_back({line[i], line[i + 1]});
-  return edges;
-}
-
 namespace {
 
 /// The one-piece topology of raw seam arrays, after checking their indices.

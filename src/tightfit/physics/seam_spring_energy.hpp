@@ -22,10 +22,6 @@ struct SeamMaterial {
   double youngs_modulus = 0.0;  ///< E_seam, Pa
 };
 
-/// Consecutive vertex pairs of each polyline: the seam edges of seam sides given as
-/// pattern-vertex polylines.
-std::vector<std::array<int, 2>> polyline_edges(const std::vector<std::vector<int>>& polylines);
-
 class SeamSpringEnergy : public RestDependentEnergy {
  public:
   /// The seam springs of a welded garment: its seam edges and vertex map (shared, not

@@ -116,8 +116,7 @@ FitAnalysis GarmentSimulation::analyze() const {
   fit.elements = analyze_cloth(energies_->cloth(), xf);
   const Triangles faces = garment_.topology->garment_triangles;
 
-  MidEdgeShapeOperator mid_edge(faces, garment_.num_garment_vertices());
-  fit.pressure_mid_edge = young_laplace_pressure(fit.elements, mid_edge.compute(x));
+  fit.pressure_mid_edge = young_laplace_pressure(fit.elements, mid_edge_shape_operators(x, faces));
 
   // Exact curvature of the limit surface at the point closest to each element's
   // centroid, where its tangent plane is parallel to the element (a chord). The limit

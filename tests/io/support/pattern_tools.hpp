@@ -147,6 +147,14 @@ inline double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
   return (q - (a + d * t)).norm();
 }
 
+/// Perimeter of the closed polygon (points in order, the last not repeated).
+inline double perimeter(const std::vector<Vec2>& polygon) {
+  double length = 0.0;
+  for (size_t i = 0; i < polygon.size(); ++i)
+    length += (polygon[(i + 1) % polygon.size()] - polygon[i]).norm();
+  return length;
+}
+
 /// Distance from `q` to the closed polyline `polygon`.
 inline double polygon_distance(const Vec2& q, const std::vector<Vec2>& polygon) {
   double best = 1e300;

@@ -1,5 +1,4 @@
-#include "tightfit/io/fit_ply.hpp"
-
+/// The PLY files of a simulate run (garment.ply, body.ply) as Debian's meshio reads them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -56,25 +55,6 @@ void expect_mesh_and_fields(const nlohmann::json& read, const TriMesh& mesh,
   EXPECT_EQ(data.size(), columns);
 }
 
-TEST(FitPly, MeshioReadsGarmentAndBodyFieldsExactly) {
-  test::TempDir dir("ply");
-  FitView view = test::band_on_sphere(12, 3);
-  FaceField body_pressure{"pressure_pa", "Pa", MatX(view.body.num_faces(), 1)};
-  for (int f = 0; f < view.body.num_faces(); ++f) body_pressure.values(f, 0) = 10.0 * f - 3.25;
-  view.body_fields = {body_pressure};
-  write_fit_ply(view, dir / "garment.ply", dir / "body.ply");
-
-  const auto garment = read_with_meshio(dir / "garment.ply", dir);
-  expect_mesh_and_fields(garment, view.garment, view.garment_fields);
-  for (const char* name :
-       {"stretch_max", "stretch_min", "stretch_dir_0", "stretch_dir_1", "stretch_dir_2", "regime",
-        "pressure_pa", "pressure_mmhg", "normal_force_n"}) {
-    EXPECT_TRUE(garment["cell_data"].contains(name)) << name;
-  }
-  const auto body = read_with_meshio(dir / "body.ply", dir);
-  expect_mesh_and_fields(body, view.body, view.body_fields);
-}
-
 TEST(FitPly, MeshioReadsTheFieldsOfASimulateRun) {
   // The files `tightfit simulate` writes (garment.ply, body.ply), read by meshio: every
   // face property equals what our own PLY reader finds (both read the same numbers).
@@ -102,31 +82,6 @@ TEST(FitPly, MeshioReadsTheFieldsOfASimulateRun) {
         EXPECT_TRUE(read["cell_data"].contains(name)) << name;
     }
   }
-}
-
-TEST(FitPly, GeometryReaderReadsTheFieldsBackInBothEncodings) {
-  test::TempDir dir("ply_geometry");
-  const FitView view = test::band_on_sphere(6, 2);
-  for (const auto encoding : {PlyEncoding::ascii, PlyEncoding::binary_little_endian}) {
-    write_face_field_ply(dir / "garment.ply", view.garment, view.garment_fields, encoding);
-    const PlyData data = read_ply(dir / "garment.ply");
-    EXPECT_EQ(data.mesh.faces, view.garment.faces);
-    EXPECT_EQ(data.mesh.vertices, view.garment.vertices);
-    const auto& fields = data.attributes.face_fields;
-    const auto it = std::find_if(fields.begin(), fields.end(),
-                                 [](const MeshField& f) { return f.name == "pressure_mmhg"; });
-    ASSERT_NE(it, fields.end());
-    EXPECT_EQ(it->values, find_field(view.garment_fields, "pressure_mmhg")->values);
-    EXPECT_EQ(fields.size(), 9u);  // 6 scalars, stretch_dir_0..2
-  }
-}
-
-TEST(FitPly, RejectsFieldsOfTheWrongSize) {
-  test::TempDir dir("ply_bad");
-  const FitView view = test::band_on_sphere(6, 2);
-  FaceField wrong{"x", "", MatX::Zero(3, 1)};
-  EXPECT_THROW(write_face_field_ply(dir / "g.ply", view.garment, {wrong}), InputError);
-  EXPECT_FALSE(std::filesystem::exists(dir / "g.ply"));
 }
 
 }  // namespace
