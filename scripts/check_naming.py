@@ -9,7 +9,8 @@ usage: scripts/check_naming.py [BUILD_DIR] [--jobs N] [--group N] [FILE...]
 
 Parsing the headers (Eigen, CGAL, JSON) is most of clang-tidy's time, so sources compiled
 with the same flags are checked N at a time through a generated file that includes them
-(headers and included sources are checked alike: HeaderFilterRegex). A group whose
+(headers and included sources are checked alike: HeaderFilterRegex). A unity build's
+batch files (the library layers compile that way) count as the sources they include. A group whose
 sources do not compile together (two files' internal helpers of the same name) is
 checked again source by source, so every source is checked in full either way. The
 build's compile commands are GCC's: their precompiled-header flags are removed, as are
@@ -45,6 +46,17 @@ def flags_of(command):
         else:
             out.append(a)
     return " ".join(shlex.quote(a) for a in out)
+
+
+UNITY_INCLUDE = re.compile(r'^#include "(/[^"]+)"$', re.M)
+
+
+def unity_members(path):
+    """The sources a CMake unity-build file (Unity/unity_N_cxx.cxx) includes, else []."""
+    if os.sep + "Unity" + os.sep not in path or not path.endswith(".cxx"):
+        return []
+    with open(path) as f:
+        return [os.path.abspath(m) for m in UNITY_INCLUDE.findall(f.read())]
 
 
 def run_tidy(db_dir, source):
@@ -84,12 +96,13 @@ def main(argv):
     by_flags, key_of = {}, {}
     for e in db:
         path = os.path.abspath(os.path.join(e["directory"], e["file"]))
-        if not path.startswith(src) or (files and path not in files):
-            continue
         command = GCC_ONLY.sub(" ", e["command"] + " ")
         key = (e["directory"], flags_of(command))
-        by_flags.setdefault(key, []).append(path)
-        key_of[path] = key
+        for member in unity_members(path) or [path]:
+            if not member.startswith(src) or (files and member not in files):
+                continue
+            by_flags.setdefault(key, []).append(member)
+            key_of[member] = key
     if not by_flags:
         sys.exit("check_naming: no source of src/ in " + db_file)
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tightfit/common/error.hpp"
-#include "tightfit/objectives/point_cloud_index.hpp"
+#include "tightfit/geometry/point_cloud_index.hpp"
 
 namespace tightfit {
 namespace {

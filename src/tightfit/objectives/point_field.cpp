@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "tightfit/objectives/point_cloud_index.hpp"
+#include "tightfit/geometry/point_cloud_index.hpp"
 
 namespace tightfit {
 

@@ -11,7 +11,7 @@
 #include <memory>
 
 #include "tightfit/common/types.hpp"
-#include "tightfit/objectives/point_cloud_index.hpp"
+#include "tightfit/geometry/point_cloud_index.hpp"
 
 namespace tightfit {
 

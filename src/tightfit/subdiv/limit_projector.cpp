@@ -2,40 +2,14 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <nanoflann.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace tightfit {
-
-namespace {
-
-struct SampleCloud {
-  Points3 points;
-  std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points.rows()); }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const {
-    return points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-using KdTree =
-    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, SampleCloud>,
-                                        SampleCloud, 3, std::uint32_t>;
-
-}  // namespace
-
-struct LimitProjector::Index {
-  SampleCloud cloud;
-  std::vector<SurfacePoint> samples;
-  std::unique_ptr<KdTree> tree;
-};
 
 SurfacePoint refine_closest_point(const LimitSurface& surface, const Points3& control,
                                   const Vec3& p, SurfacePoint start) {
@@ -97,7 +71,7 @@ SurfacePoint refine_closest_point(const LimitSurface& surface, const Points3& co
 
 LimitProjector::LimitProjector(const LimitSurface& surface, const Points3& control,
                                int samples_per_edge)
-    : surface_(surface), control_(control), index_(std::make_unique<Index>()) {
+    : surface_(surface), control_(control) {
   if (control.rows() != surface.num_control_vertices()) {
     throw std::invalid_argument("LimitProjector: control has " + std::to_string(control.rows()) +
                                 " rows, expected " +
@@ -110,28 +84,23 @@ LimitProjector::LimitProjector(const LimitSurface& surface, const Points3& contr
   for (int f = 0; f < surface.num_faces(); ++f) {
     for (int i = 0; i < n; ++i) {
       for (int j = 0; i + j < n; ++j) {
-        index_->samples.push_back({f, (i + 1.0 / 3.0) * inv, (j + 1.0 / 3.0) * inv});
-        if (i + j + 1 < n)
-          index_->samples.push_back({f, (i + 2.0 / 3.0) * inv, (j + 2.0 / 3.0) * inv});
+        samples_.push_back({f, (i + 1.0 / 3.0) * inv, (j + 1.0 / 3.0) * inv});
+        if (i + j + 1 < n) samples_.push_back({f, (i + 2.0 / 3.0) * inv, (j + 2.0 / 3.0) * inv});
       }
     }
   }
-  index_->cloud.points.resize(static_cast<Eigen::Index>(index_->samples.size()), 3);
-  for (std::size_t k = 0; k < index_->samples.size(); ++k) {
-    index_->cloud.points.row(static_cast<Eigen::Index>(k)) =
-        surface.position(index_->samples[k], control_).transpose();
+  Points3 sample_positions(static_cast<Eigen::Index>(samples_.size()), 3);
+  for (std::size_t k = 0; k < samples_.size(); ++k) {
+    sample_positions.row(static_cast<Eigen::Index>(k)) =
+        surface.position(samples_[k], control_).transpose();
   }
-  index_->tree =
-      std::make_unique<KdTree>(3, index_->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  sample_index_ = std::make_unique<PointCloudIndex>(std::move(sample_positions));
 }
 
 LimitProjector::~LimitProjector() = default;
 
 SurfacePoint LimitProjector::nearest_sample(const Vec3& p) const {
-  std::uint32_t index = 0;
-  double distance2 = 0.0;
-  index_->tree->knnSearch(p.data(), 1, &index, &distance2);
-  return index_->samples[index];
+  return samples_[static_cast<std::size_t>(sample_index_->nearest(p))];
 }
 
 SurfacePoint LimitProjector::project(const Vec3& p) const {

@@ -11,8 +11,10 @@
 /// the parametrization is singular and Gregory-patch derivatives do not exactly match
 /// positions.
 #include <memory>
+#include <vector>
 
 #include "tightfit/common/types.hpp"
+#include "tightfit/geometry/point_cloud_index.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
 namespace tightfit {
@@ -39,10 +41,10 @@ class LimitProjector {
   SurfacePoint project(const Vec3& p) const;
 
  private:
-  struct Index;
   const LimitSurface& surface_;
   Points3 control_;
-  std::unique_ptr<Index> index_;
+  std::vector<SurfacePoint> samples_;  ///< the limit samples, in the order they are indexed
+  std::unique_ptr<PointCloudIndex> sample_index_;  ///< their positions (m)
 };
 
 }  // namespace tightfit

@@ -1,8 +1,8 @@
 #pragma once
-/// Neighbour queries on a fixed point set for the compact-kernel fields of the
-/// objectives layer (the IMLS surface, the point field): the points within a radius with
-/// their kernel argument u = 1 − r²/h², and the nearest point. A kd-tree (nanoflann).
-/// Internal to the objectives layer.
+/// Neighbour queries on a fixed point set: the points within a radius with their kernel
+/// argument u = 1 − r²/h² (the compact-kernel fields of the objectives: the IMLS surface,
+/// the point field), and the nearest point (the limit-surface projector's start points).
+/// A kd-tree (nanoflann).
 #include <memory>
 #include <vector>
 
@@ -12,8 +12,8 @@ namespace tightfit {
 
 class PointCloudIndex {
  public:
-  /// A copy of `points` (k×3, m) is indexed.
-  explicit PointCloudIndex(const Points3& points);
+  /// `points` (k×3, m) are kept and indexed.
+  explicit PointCloudIndex(Points3 points);
   ~PointCloudIndex();
   PointCloudIndex(const PointCloudIndex&) = delete;
   PointCloudIndex& operator=(const PointCloudIndex&) = delete;

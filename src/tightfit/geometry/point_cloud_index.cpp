@@ -1,4 +1,4 @@
-#include "tightfit/objectives/point_cloud_index.hpp"
+#include "tightfit/geometry/point_cloud_index.hpp"
 
 #include <nanoflann.hpp>
 
@@ -6,38 +6,35 @@
 #include <utility>
 
 namespace tightfit {
-namespace {
-
-/// nanoflann dataset adaptor over the rows of a Points3.
-struct Cloud {
-  const Points3* points = nullptr;
-  std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points->rows()); }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const {
-    return (*points)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box& /*box*/) const {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
-                                                   Cloud, 3, std::size_t>;
-
-}  // namespace
-
+/// The kd-tree with its nanoflann dataset adaptor over the rows of its own copy of the
+/// points (nested types, not an anonymous namespace: the layer compiles as a unity build).
 struct PointCloudIndex::Tree {
-  Points3 points;  // own copy: the tree refers to it
+  struct Cloud {
+    const Points3* points = nullptr;
+    std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points->rows()); }
+    double kdtree_get_pt(std::size_t i, std::size_t d) const {
+      return (*points)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
+    }
+    template <class Box>
+    bool kdtree_get_bbox(Box& /*box*/) const {
+      return false;
+    }
+  };
+  using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
+                                                     Cloud, 3, std::size_t>;
+
+  Points3 points;  // the tree refers to it
   Cloud cloud;
   std::unique_ptr<KdTree> tree;
 
-  explicit Tree(const Points3& p) : points(p) {
+  explicit Tree(Points3 p) : points(std::move(p)) {
     cloud.points = &points;
     tree = std::make_unique<KdTree>(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   }
 };
 
-PointCloudIndex::PointCloudIndex(const Points3& points) : tree_(std::make_unique<Tree>(points)) {}
+PointCloudIndex::PointCloudIndex(Points3 points)
+    : tree_(std::make_unique<Tree>(std::move(points))) {}
 PointCloudIndex::~PointCloudIndex() = default;
 
 std::vector<PointCloudIndex::Neighbour> PointCloudIndex::within(const Vec3& x,
