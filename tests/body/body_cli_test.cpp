@@ -13,8 +13,7 @@
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::body_cli_test {
 
 namespace fs = std::filesystem;
 
@@ -108,5 +107,4 @@ TEST_F(BodyCli, BadSpecExitsWithTwoNamingTheFileAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::body_cli_test

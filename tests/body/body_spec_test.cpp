@@ -7,8 +7,7 @@
 #include "tightfit/body/skeleton.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::body_spec_test {
 
 using nlohmann::json;
 
@@ -194,5 +193,4 @@ TEST(BodySpec, BuildErrorsNameTheSpecOrTheMeshFile) {
   EXPECT_EQ(thick.rfind("scene.json: /body/core: no vertex is pinned", 0), 0u) << thick;
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::body_spec_test

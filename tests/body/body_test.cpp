@@ -10,8 +10,7 @@
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/mesh_validation.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::body_test {
 
 /// Body invariant, no inverted tets, and a non-empty pinned core strictly inside.
 void expect_valid_body(const Body& body) {
@@ -130,5 +129,4 @@ TEST(BodyAcceptance, CroppedThighsPinnedAtTheBones) {
   EXPECT_GE(static_cast<int>(body.pinned.size()), report.bone_points);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::body_test

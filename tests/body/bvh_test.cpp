@@ -12,8 +12,7 @@
 
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::bvh_test {
 
 const std::filesystem::path kBvhData = std::filesystem::path(TIGHTFIT_DATA_DIR) / "rig";
 
@@ -309,5 +308,4 @@ TEST(Bvh, ReadBvhNamesAMissingFile) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::bvh_test

@@ -12,8 +12,7 @@
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/mesh_validation.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::generators_test {
 
 double min_triangle_angle_deg(const TriMesh& m) {
   double min_angle = 180.0;
@@ -151,5 +150,4 @@ TEST(Generators, ZeroLengthRoundCylinderIsASphere) {
   EXPECT_NEAR(signed_volume(m) / test::sphere_volume(s), 1.0, 0.01);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::generators_test

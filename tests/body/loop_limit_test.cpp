@@ -7,8 +7,7 @@
 
 #include "tightfit/body/generators.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::loop_limit_test {
 
 TriMesh octahedron(double r) {
   TriMesh m;
@@ -59,5 +58,4 @@ TEST(LoopLimit, FitOfAPlaneIsIdentity) {
   EXPECT_EQ((m.vertices - before).norm(), 0.0);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::loop_limit_test

@@ -7,8 +7,7 @@
 #include "tightfit/body/tetrahedralize.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pinned_core_test {
 
 struct Cylinder {
   CylinderParams params;
@@ -137,5 +136,4 @@ TEST(Skeleton, DistanceToBoneSegment) {
   EXPECT_NEAR(distance_to_bone(b, Vec3(0, -0.5, 0.5)), std::sqrt(0.5), 1e-15);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pinned_core_test

@@ -14,8 +14,7 @@
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::scan_import_test {
 
 /// `parts` stacked into one mesh.
 TriMesh join(const std::vector<TriMesh>& parts) {
@@ -134,5 +133,4 @@ TEST(ScanImport, BodyCommandReadsABodyInMillimetres) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::scan_import_test

@@ -13,8 +13,7 @@
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/mesh_validation.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::scan_repair_test {
 
 TriMesh legs_body() {
   return read_tri_mesh(std::filesystem::path(TIGHTFIT_DATA_DIR) / "bodies/mh_legs_male.obj");
@@ -262,5 +261,4 @@ TEST(ScanRepair, BodyCommandRepairsAScan) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::scan_repair_test

@@ -7,8 +7,7 @@
 
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::skin_weights_test {
 
 const std::filesystem::path kData = TIGHTFIT_DATA_DIR;
 
@@ -67,5 +66,4 @@ TEST(SkinWeights, MalformedFilesAreInputErrorsNamingThePath) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::skin_weights_test

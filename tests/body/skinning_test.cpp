@@ -13,8 +13,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::skinning_test {
 
 const std::string kRigMesh = TIGHTFIT_DATA_DIR "/bodies/mh_male_regular.obj";
 const std::string kRigWeights = TIGHTFIT_DATA_DIR "/rig/default_weights.mhw";
@@ -215,5 +214,4 @@ TEST(BvhPose, AFileOfAnotherSkeletonIsRefused) {
   EXPECT_THROW(fit_bvh_frame(bench, stretched), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::skinning_test

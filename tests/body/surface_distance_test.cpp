@@ -4,8 +4,7 @@
 
 #include "tightfit/body/generators.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::surface_distance_test {
 
 TEST(SurfaceDistance, SphereDistancesAndInside) {
   SphereParams p;
@@ -26,5 +25,4 @@ TEST(SurfaceDistance, SphereDistancesAndInside) {
   EXPECT_FALSE(d.contains(Vec3(0.11, 0, 0)));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::surface_distance_test

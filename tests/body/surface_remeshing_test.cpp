@@ -11,8 +11,7 @@
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/mesh_validation.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::surface_remeshing_test {
 
 TriMesh sphere(double radius, double edge) {
   SphereParams p;
@@ -132,5 +131,4 @@ TEST(RemeshIsotropic, RejectsBadOptions) {
   EXPECT_THROW(remesh_isotropic(sphere(0.1, 0.03), o), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::surface_remeshing_test

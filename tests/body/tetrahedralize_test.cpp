@@ -12,8 +12,7 @@
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/geometry/mesh_validation.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::tetrahedralize_test {
 
 TriMesh small_sphere() {
   SphereParams p;
@@ -136,5 +135,4 @@ TEST(Tetrahedralize, ConstraintsOutsideTheSurfaceAreInputErrors) {
   EXPECT_THROW(tetrahedralize_surface(surface, TetQuality(), Points3(0, 3), shifted), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::tetrahedralize_test

@@ -8,8 +8,7 @@
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit::test {
-namespace {
+namespace tightfit::test::finite_difference_test {
 
 TEST(FiniteDifference, AcceptsExactDerivativesOfAQuartic) {
   const Eigen::VectorXd x = random_vector(4, 1);
@@ -55,5 +54,4 @@ TEST(AtomicFile, LeavesNoPartialFileOnFailure) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
-}  // namespace tightfit::test
+}  // namespace tightfit::test::finite_difference_test

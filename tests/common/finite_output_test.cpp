@@ -16,8 +16,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/types.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::finite_output_test {
 
 namespace fs = std::filesystem;
 
@@ -133,5 +132,4 @@ TEST_F(FiniteOutput, ArrayChecksInsideAnyWriterNameRowAndColumn) {
   EXPECT_NO_THROW(require_finite_values(values, 2, "colours"));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::finite_output_test

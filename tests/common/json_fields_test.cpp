@@ -6,8 +6,7 @@
 
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::json_fields_test {
 
 TEST(JsonFields, ReadsTypedFieldsWithDefaults) {
   const auto j =
@@ -80,5 +79,4 @@ TEST(JsonText, DeepNestingIsAnInputErrorBeforeParsing) {
   EXPECT_THROW(parse_json_text("{\"a\": ", "x"), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::json_fields_test

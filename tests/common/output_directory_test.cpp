@@ -11,8 +11,7 @@
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit::test {
-namespace {
+namespace tightfit::test::output_directory_test {
 
 TEST(OutputDirectory, RemovesOnlyWhatKilledRunsLeftUnfinished) {
   namespace fs = std::filesystem;
@@ -109,5 +108,4 @@ TEST(OutputDirectory, RefusesFoldersTightfitDidNotMakeUnlessForced) {
   std::filesystem::remove_all(old_run);
 }
 
-}  // namespace
-}  // namespace tightfit::test
+}  // namespace tightfit::test::output_directory_test

@@ -7,8 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace tightfit {
-namespace {
+namespace tightfit::parallel_test {
 
 /// Restores the thread count a test changed.
 class ThreadCountGuard {
@@ -90,5 +89,4 @@ TEST(BlasInfo, NamesTheLoadedLibrary) {
   EXPECT_GE(info.threads, 1);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::parallel_test

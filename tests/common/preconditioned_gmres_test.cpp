@@ -7,8 +7,7 @@
 #include "support/laplacian_1d.hpp"
 #include "tightfit/common/sparse_cholesky.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::preconditioned_gmres_test {
 
 using test::laplacian_1d;
 
@@ -126,5 +125,4 @@ TEST(FactorizeShifted, ShiftsEachDofInProportionToItsStiffness) {
               1e-12 * *shift_a / A.diagonal().cwiseAbs().mean());
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::preconditioned_gmres_test

@@ -5,8 +5,7 @@
 #include "support/laplacian_1d.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::sparse_cholesky_test {
 
 using test::laplacian_1d;
 
@@ -116,5 +115,4 @@ TEST(SparseCholesky, ReportsIndefiniteMatrices) {
   EXPECT_TRUE(chol.factorize(laplacian_1d(20, 0.0)));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::sparse_cholesky_test

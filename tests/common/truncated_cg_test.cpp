@@ -5,8 +5,7 @@
 #include "support/laplacian_1d.hpp"
 #include "tightfit/common/sparse_cholesky.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::truncated_cg_test {
 
 using test::laplacian_1d;
 
@@ -78,5 +77,4 @@ TEST(TruncatedCg, RejectsInvalidOptions) {
                std::invalid_argument);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::truncated_cg_test

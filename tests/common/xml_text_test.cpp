@@ -2,8 +2,7 @@
 
 #include <gtest/gtest.h>
 
-namespace tightfit {
-namespace {
+namespace tightfit::xml_text_test {
 
 TEST(XmlText, EscapesTheFiveSpecialCharactersAndControls) {
   EXPECT_EQ(xml_escape("a<b>&\"c'"), "a&lt;b&gt;&amp;&quot;c&#39;");
@@ -17,5 +16,4 @@ TEST(XmlText, UnescapeInvertsEscape) {
   EXPECT_EQ(xml_unescape("&apos;&#39;&unknown;"), "''&unknown;");
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::xml_text_test

@@ -12,8 +12,7 @@
 #include "tightfit/design/optimization_problem.hpp"
 #include "tightfit/objectives/regularizer_corner_angle.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::adjoint_gradient_test {
 
 using test::make_sleeve_scene;
 using test::SleeveScene;
@@ -243,5 +242,4 @@ TEST(AdjointGradient, RegularizersNeedNoAdjointSolve) {
   EXPECT_LT(t.adjoint_residual, 1e-8);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::adjoint_gradient_test

@@ -10,8 +10,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/garment/piece_mesher.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::biharmonic_coordinates_test {
 
 /// An nx × ny grid over [0,w]×[0,h] with interior vertices jittered by 20 % of the
 /// spacing and random diagonals; boundary loop counter-clockwise from the origin.
@@ -169,5 +168,4 @@ TEST(BiharmonicCoordinates, RejectsInvertedTriangles) {
   EXPECT_THROW(PieceBiharmonicCoordinates{piece}, InputError);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::biharmonic_coordinates_test

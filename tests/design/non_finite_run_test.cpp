@@ -18,8 +18,7 @@
 #include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::non_finite_run_test {
 
 namespace fs = std::filesystem;
 
@@ -139,5 +138,4 @@ TEST(NonFiniteRun, ANonFiniteStateEndsTheRunAndNoOutputHoldsANaN) {
   fs::remove_all(dir);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::non_finite_run_test

@@ -11,8 +11,7 @@
 #include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_optimizer_checkpoint_test {
 
 namespace fs = std::filesystem;
 
@@ -172,5 +171,4 @@ INSTANTIATE_TEST_SUITE_P(Body, PatternOptimizerResume, ::testing::Values(false, 
                            return param_info.param ? "soft" : "rigid";
                          });
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_optimizer_checkpoint_test

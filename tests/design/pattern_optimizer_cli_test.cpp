@@ -21,8 +21,7 @@
 #include "support/cli_run.hpp"
 #include "tightfit/common/version.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_optimizer_cli_test {
 
 namespace fs = std::filesystem;
 
@@ -769,5 +768,4 @@ TEST_F(OptimizeCli, ANonFiniteResumedStateEndsWithExitThreeAndNoOutputHoldsANaN)
   EXPECT_EQ(scan_outputs(out), "");
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_optimizer_cli_test

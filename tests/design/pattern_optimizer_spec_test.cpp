@@ -4,8 +4,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/optimization_spec.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_optimizer_spec_test {
 
 OptimizationSpec parse(const std::string& text) {
   return parse_optimization_spec(nlohmann::json::parse(text), "scene.json", "/optimize", "/scenes");
@@ -144,5 +143,4 @@ TEST(OptimizationSpec, RejectsBadInputNamingThePath) {
             std::string::npos);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_optimizer_spec_test

@@ -12,8 +12,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_optimizer_test {
 
 using test::make_sleeve_scene;
 
@@ -208,5 +207,4 @@ TEST(PatternOptimizer, RecoversTheShapeOfAnotherPattern) {
   expect_equilibrium(sim);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_optimizer_test

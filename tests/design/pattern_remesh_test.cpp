@@ -15,8 +15,7 @@
 #include "tightfit/design/pattern_remesh.hpp"
 #include "tightfit/garment/piece_mesher.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_remesh_test {
 
 using test::make_sleeve_scene;
 using test::SleeveSceneOptions;
@@ -368,5 +367,4 @@ TEST(PatternOptimizerRemesh, ADegradingPieceIsRemeshedAndTheRunGoesOn) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_remesh_test

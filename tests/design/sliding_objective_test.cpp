@@ -17,8 +17,7 @@
 #include "tightfit/design/adjoint_gradient.hpp"
 #include "tightfit/design/optimization_problem.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::sliding_objective_test {
 
 /// A twist-and-bend "pose" of the sleeve's capsule: body vertex p turns rigidly by an
 /// angle that grows smoothly along the axis (twist about z up to `twist` degrees, bend
@@ -241,5 +240,4 @@ TEST(PinnedTractionRegularizer, PartialsAndThePipelineMatchFiniteDifferences) {
   pipeline_checks(sim, term, 7, "pinned traction pipeline");
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::sliding_objective_test

@@ -5,8 +5,7 @@
 #include "garment/garment_test_meshes.hpp"
 #include "tightfit/geometry/surface_topology.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::flatten_test {
 
 /// Half of a developable cylinder (a disc): faces with centroid x > 0... built directly.
 TriMesh half_cylinder(double radius, double length, int segments, int rings) {
@@ -96,5 +95,4 @@ TEST(Flatten, FindsFoldedTriangles) {
   EXPECT_FALSE(find_overlap(m, boundary_of(m), flat.uv).empty());
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::flatten_test

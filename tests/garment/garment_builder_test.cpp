@@ -12,8 +12,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::garment_builder_test {
 
 LayoutSpec spec_from(const std::string& text, const std::string& source = "layout.json") {
   const auto j = nlohmann::json::parse(text);
@@ -109,11 +108,9 @@ TEST(BuildGarment, SleeveOnCylinder) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::garment_builder_test
 
-namespace tightfit {
-namespace {
+namespace tightfit::garment_builder_test {
 
 const char* kSphereCover = R"({
   "region": [{"name": "opening", "point": [0, -0.07, 0], "normal": [0, 1, 0]}],
@@ -251,11 +248,9 @@ TEST(BuildGarment, RejectsPanelsTooCurvedToFlatten) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::garment_builder_test
 
-namespace tightfit {
-namespace {
+namespace tightfit::garment_builder_test {
 
 /// Writes the layout's panels as an OBJ with one group per panel over shared vertices.
 void write_layout_obj(const std::string& file, const Layout& layout) {
@@ -332,11 +327,9 @@ TEST(BuildGarment, ObjGroupLayoutGivesTheSamePiecesAsTheRules) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::garment_builder_test
 
-namespace tightfit {
-namespace {
+namespace tightfit::garment_builder_test {
 
 TEST(BuildGarment, KeepsSharpTurnsOfOpenBoundariesAsCorners) {
   // The sleeve's upper edge is cut by two planes meeting at x = 0: a 45° turn in the
@@ -369,5 +362,4 @@ TEST(BuildGarment, KeepsSharpTurnsOfOpenBoundariesAsCorners) {
   EXPECT_EQ(smooth.garment.pattern.pieces[0].corners.size(), 4u);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::garment_builder_test

@@ -1,10 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "tightfit/common/error.hpp"
 #include "tightfit/garment/garment.hpp"
+#include "tightfit/garment/garment_topology.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::garment_weld_test {
 
 /// A unit square piece: 4 vertices, 2 triangles, boundary 0-1-2-3.
 PatternPiece square(const std::string& name, double x0) {
@@ -45,5 +48,58 @@ TEST(WeldPattern, RejectsSeamsWithUnequalSides) {
   EXPECT_THROW(weld_pattern(pattern), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit
+TEST(WeldTopology, AnExplicitVertexMapMustCoverEveryPatternVertexWithAGarmentVertex) {
+  Pattern pattern;
+  pattern.pieces = {square("left", 0), square("right", 2)};
+  const GarmentTopology welded = weld_topology(pattern, {0, 1, 2, 3, 1, 4, 5, 2}, 6);
+  EXPECT_EQ(welded.num_garment_vertices, 6);
+  EXPECT_EQ(welded.garment_triangles(2, 0), 1);  // right piece's vertex 0 is garment vertex 1
+  EXPECT_THROW(weld_topology(pattern, {0, 1, 2, 3, 1, 4, 5}, 6), InputError);
+  EXPECT_THROW(weld_topology(pattern, {0, 1, 2, 3, 1, 4, 5, 6}, 6), InputError);
+}
+
+TEST(OnePieceTopology, WeldsTheRawArraysAndNamesItsSourceInEveryError) {
+  Triangles triangles(2, 3);
+  triangles << 0, 1, 2, 0, 2, 3;
+  const GarmentTopology g =
+      one_piece_topology("raw cloth", 4, triangles, {{{1, 2}}}, {0, 1, 2, 0}, 3);
+  EXPECT_EQ(g.num_pattern_vertices(), 4);
+  EXPECT_EQ(g.num_garment_vertices, 3);
+  EXPECT_EQ(g.garment_triangles(1, 2), 0);
+  EXPECT_EQ(g.triangle_piece, (std::vector<int>{0, 0}));
+  EXPECT_EQ(g.seam_edges.size(), 1u);
+  EXPECT_TRUE(g.pinned.empty());
+  const auto message_of = [](auto&& build) {
+    try {
+      build();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string short_map = message_of([&] {
+    one_piece_topology("raw cloth", 4, triangles, {}, {0, 1, 2}, 3);
+  });
+  EXPECT_NE(short_map.find("raw cloth"), std::string::npos) << short_map;
+  EXPECT_NE(short_map.find("3 entries for 4 pattern vertices"), std::string::npos) << short_map;
+  const std::string beyond = message_of([&] {
+    one_piece_topology("raw cloth", 4, triangles, {}, {0, 1, 2, 3}, 3);
+  });
+  EXPECT_NE(beyond.find("pattern vertex 3 maps to garment vertex 3 outside [0, 3)"),
+            std::string::npos)
+      << beyond;
+  Triangles bad = triangles;
+  bad(1, 1) = 4;
+  const std::string triangle = message_of([&] {
+    one_piece_topology("raw cloth", 4, bad, {}, {0, 1, 2, 0}, 3);
+  });
+  EXPECT_NE(triangle.find("triangle 1 has pattern vertex 4 outside [0, 4)"), std::string::npos)
+      << triangle;
+  const std::string seam = message_of([&] {
+    one_piece_topology("raw seams", 4, Triangles(0, 3), {{{2, -1}}}, {0, 1, 2, 0}, 3);
+  });
+  EXPECT_NE(seam.find("raw seams"), std::string::npos) << seam;
+  EXPECT_NE(seam.find("seam edge 0 has pattern vertex -1"), std::string::npos) << seam;
+}
+
+}  // namespace tightfit::garment_weld_test

@@ -15,8 +15,7 @@
 #include "tightfit/garment/layout.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::layout_anchors_test {
 
 LayoutSpec anchored_spec(const std::string& text) {
   const auto j = nlohmann::json::parse(text);
@@ -490,5 +489,4 @@ TEST_F(LayoutAnchorTransfer, TheTwelvePieceWetsuitLaysOutOnEveryFullBodyWithLoca
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::layout_anchors_test

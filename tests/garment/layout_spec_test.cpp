@@ -4,8 +4,7 @@
 
 #include "tightfit/garment/pattern_options.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::layout_spec_test {
 
 LayoutSpec parse(const std::string& text) {
   const auto j = nlohmann::json::parse(text);
@@ -97,5 +96,4 @@ TEST(PatternOptions, ParsesScalesAndGrain) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::layout_spec_test

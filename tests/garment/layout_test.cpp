@@ -10,8 +10,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::layout_test {
 
 LayoutSpec spec_from(const std::string& text) {
   const auto j = nlohmann::json::parse(text);
@@ -295,5 +294,4 @@ TEST(Layout, GroupLayoutMatchesRuleLayoutAndReportsGapsAndOverlaps) {
   EXPECT_NE(apart_error.find("a.obj: a gap between panels"), std::string::npos) << apart_error;
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::layout_test

@@ -9,8 +9,7 @@
 #include "tightfit/garment/garment_builder.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pants_test {
 
 /// Pants on the legs body (y up, front +z, left leg +x): waist at 1.0 m, cuffs at 0.15 m,
 /// left/right by the sagittal plane, front/back by a coronal plane; pants8 adds a knee
@@ -140,5 +139,4 @@ TEST_F(Pants, FourPiecesOnTheRemeshedLegsBody) {
   check(b, 0.01);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pants_test

@@ -7,8 +7,7 @@
 
 #include "tightfit/geometry/surface_topology.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::piece_mesher_test {
 
 /// An L-shaped polygon (1 m × 1 m minus a 0.5 m corner) sampled every `h`.
 Points2 l_shape(double h) {
@@ -65,5 +64,4 @@ TEST(PieceMesher, IsDeterministicAndRejectsBadBoundaries) {
   EXPECT_THROW(mesh_piece(boundary.topRows(2), 0.1), std::invalid_argument);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::piece_mesher_test

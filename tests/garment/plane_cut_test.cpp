@@ -6,8 +6,7 @@
 #include "garment/garment_test_meshes.hpp"
 #include "tightfit/geometry/surface_topology.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::plane_cut_test {
 
 double area(const TriMesh& m) {
   double a = 0;
@@ -78,5 +77,4 @@ TEST(PlaneCut, SnapsNearbyVerticesInsteadOfMakingSlivers) {
             cylinder.num_vertices() + 32);  // a vertical and a diagonal edge per column
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::plane_cut_test

@@ -14,8 +14,7 @@
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::finite_mesh_writers_test {
 
 namespace fs = std::filesystem;
 
@@ -97,5 +96,4 @@ TEST(FiniteMeshWriters, VolumeWritersRefuseANonFinitePositionOrField) {
   EXPECT_TRUE(no_file_in(dir.path()));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::finite_mesh_writers_test

@@ -10,8 +10,7 @@
 #include "test_meshes.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::mesh_io_test {
 
 using test::geometry_data;
 using test::ScratchDir;
@@ -213,5 +212,4 @@ TEST(MeshIo, CorruptedFilesGiveOnlyInputErrors) {
   test::expect_only_input_errors(geometry_data("quad_big_endian.ply"), 100, read, ".ply");
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::mesh_io_test

@@ -8,8 +8,7 @@
 #include "test_meshes.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::mesh_measures_test {
 
 TEST(MeshMeasures, TriangleAndFaceAreas) {
   EXPECT_DOUBLE_EQ(triangle_area(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 3, 0)), 3.0);
@@ -103,5 +102,4 @@ TEST(MeshMeasures, LegsBodyIsOutward) {
   EXPECT_GT(edge_length_stats(m).min, 0.0);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::mesh_measures_test

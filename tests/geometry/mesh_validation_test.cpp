@@ -10,8 +10,7 @@
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::mesh_validation_test {
 
 using test::geometry_data;
 
@@ -160,5 +159,4 @@ TEST(TetValidation, InMemoryProblems) {
             std::vector<std::string>{"the tet mesh has no tetrahedra"});
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::mesh_validation_test

@@ -8,8 +8,7 @@
 #include "geometry/test_meshes.hpp"
 #include "tightfit/geometry/mesh_measures.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::surface_sampling_test {
 
 TriMesh right_triangle() {
   TriMesh m;
@@ -134,5 +133,4 @@ TEST(SurfaceSampling, RefusesABadSpacing) {
   EXPECT_THROW(count_surface_samples(right_triangle(), std::nan("")), std::invalid_argument);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::surface_sampling_test

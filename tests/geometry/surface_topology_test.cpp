@@ -7,8 +7,7 @@
 
 #include "test_meshes.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::surface_topology_test {
 
 TEST(SurfaceTopology, IcosahedronIsClosedManifold) {
   const TriMesh m = test::icosahedron();
@@ -143,5 +142,4 @@ TEST(SurfaceTopology, RejectsOutOfRangeIndex) {
   EXPECT_THROW(SurfaceTopology(faces, 3), std::invalid_argument);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::surface_topology_test

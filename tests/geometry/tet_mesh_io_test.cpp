@@ -10,8 +10,7 @@
 #include "scratch_dir.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::tet_mesh_io_test {
 
 using test::geometry_data;
 using test::ScratchDir;
@@ -164,5 +163,4 @@ TEST(TetMeshIo, CorruptedFilesGiveOnlyInputErrors) {
       ".ele");
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::tet_mesh_io_test

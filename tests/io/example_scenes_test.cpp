@@ -9,8 +9,7 @@
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/io/scene_spec.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::example_scenes_test {
 
 namespace fs = std::filesystem;
 
@@ -40,5 +39,4 @@ TEST(ExampleScenes, EveryExampleParsesAndItsFilesRead) {
   EXPECT_GE(optimizing, 1);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::example_scenes_test

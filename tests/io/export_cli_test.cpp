@@ -17,8 +17,7 @@
 
 #include "support/cli_run.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::export_cli_test {
 
 namespace fs = std::filesystem;
 
@@ -364,5 +363,4 @@ TEST_F(ExportCli, StateOfAnotherGarmentIsAnInputError) {
   expect_rejected(j, "/scene: ");
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::export_cli_test

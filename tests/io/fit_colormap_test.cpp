@@ -6,8 +6,7 @@
 
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::fit_colormap_test {
 
 void expect_rgb_near(const Rgb& got, const Rgb& want, double tol) {
   for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(got[k], want[k], tol) << "component " << k;
@@ -154,5 +153,4 @@ TEST(FitColormap, SrgbToLinear) {
   EXPECT_NEAR(srgb_to_linear(0.5), 0.214041, 1e-6);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::fit_colormap_test

@@ -15,8 +15,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/io/body_up.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::fit_glb_test {
 
 std::string read_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -279,5 +278,4 @@ TEST(FitGlb, TheBodysUpIsItsCylinderAxisOrY) {
       Vec3::UnitY());
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::fit_glb_test

@@ -7,8 +7,7 @@
 
 #include "io/fit_test_view.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::fit_stats_test {
 
 /// Four right triangles of areas 1, 1, 2, 4 (m²) in one piece "a" (faces 0, 1) and
 /// one piece "b" (faces 2, 3).
@@ -97,5 +96,4 @@ TEST(FitStats, BandOnSphereLiftOffMatchesTheSyntheticField) {
   EXPECT_LT(s.pieces[0].liftoff_share, s.pieces[1].liftoff_share);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::fit_stats_test

@@ -5,8 +5,7 @@
 #include "io/fit_test_view.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::fit_view_test {
 
 TEST(FitView, BandOnSphereIsValid) {
   const FitView view = test::band_on_sphere(8, 2);
@@ -125,5 +124,4 @@ TEST(FitView, PressureInMmHg) {
   EXPECT_EQ(find_field({pa}, "pressure_mmhg"), nullptr);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::fit_view_test

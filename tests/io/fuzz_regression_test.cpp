@@ -9,8 +9,7 @@
 
 #include "../../fuzz/readers.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::fuzz_regression_test {
 
 TEST(FuzzRegressions, EveryReaderAnswersHostileFilesWithAnInputError) {
   const std::filesystem::path root =
@@ -37,5 +36,4 @@ TEST(FuzzRegressions, EveryReaderAnswersHostileFilesWithAnInputError) {
   EXPECT_GE(files, 5);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::fuzz_regression_test

@@ -10,8 +10,7 @@
 
 #include "tightfit/io/scene_loader.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::layout_scene_simulation_test {
 
 const std::filesystem::path kExamples = std::filesystem::path(TIGHTFIT_SOURCE_DIR) / "examples";
 
@@ -68,5 +67,4 @@ TEST(LayoutSceneSimulationSlow, FourPiecePantsOnTheLegsBodyConverge) {
   expect_converges_scaled_ten_percent("pants_legs.json", 4);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::layout_scene_simulation_test

@@ -15,8 +15,7 @@
 
 #include "support/cli_run.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::output_folder_cli_test {
 
 namespace fs = std::filesystem;
 using test::CliRun;
@@ -173,5 +172,4 @@ TEST_F(OutputFolderCli, AFullDiskIsAnInputErrorAndLeavesTheFolderAsItWas) {
   EXPECT_EQ(read_text(disk / "mine" / "notes.txt"), "my notes\n");
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::output_folder_cli_test

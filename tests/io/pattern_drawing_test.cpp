@@ -10,8 +10,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/io/pattern_layout.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_drawing_test {
 
 using test::inside_polygon;
 using test::polygon_distance;
@@ -296,5 +295,4 @@ TEST(PatternDrawing, InvalidPatternsAreInputErrors) {
   expect_input_error(Pattern{}, "no pieces");
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_drawing_test

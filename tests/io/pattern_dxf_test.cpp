@@ -12,8 +12,7 @@
 #include "tightfit/io/pattern_drawing.hpp"
 #include "tightfit/io/pattern_layout.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_dxf_test {
 
 using test::run_command;
 using test::shell_quote;
@@ -172,5 +171,4 @@ TEST(PatternDxf, InvalidPatternLeavesNoFile) {
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_dxf_test

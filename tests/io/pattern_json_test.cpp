@@ -10,8 +10,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/json_fields.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_json_test {
 
 void expect_same_pattern(const Pattern& a, const Pattern& b) {
   ASSERT_EQ(a.pieces.size(), b.pieces.size());
@@ -129,5 +128,4 @@ TEST(PatternJson, MalformedFilesAreInputErrors) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_json_test

@@ -7,8 +7,7 @@
 
 #include "io/support/pattern_tools.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_offset_test {
 
 using test::inside_polygon;
 using test::polygon_distance;
@@ -150,5 +149,4 @@ TEST(PatternOffset, PolygonMeasures) {
   EXPECT_DOUBLE_EQ(signed_area(reversed), -4.0);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_offset_test

@@ -13,8 +13,7 @@
 #include "tightfit/io/pattern_drawing.hpp"
 #include "tightfit/io/pattern_layout.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_pdf_test {
 
 using test::run_command;
 using test::shell_quote;
@@ -219,5 +218,4 @@ TEST(PatternPdf, InvalidPatternLeavesNoFile) {
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_pdf_test

@@ -12,8 +12,7 @@
 #include "tightfit/io/pattern_drawing.hpp"
 #include "tightfit/io/pattern_layout.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pattern_svg_test {
 
 using test::run_command;
 using test::shell_quote;
@@ -136,5 +135,4 @@ TEST(PatternSvg, InvalidPatternIsAnInputErrorAndLeavesNoFile) {
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pattern_svg_test

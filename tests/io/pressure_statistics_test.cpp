@@ -12,8 +12,7 @@
 #include "tightfit/io/scene_spec.hpp"
 #include "tightfit/io/simulation_outputs.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pressure_statistics_test {
 
 TEST(CompressionClasses, RalGz387BoundariesAreInclusive) {
   EXPECT_EQ(ral_gz_387_class(17.99), "below I");
@@ -219,5 +218,4 @@ TEST(PressureRegionStatistics, RegionsOfACoverOnARigidSphere) {
   EXPECT_THROW(resolve_fit_regions(*c.sim, PressureRegionSet{{unknown}}, "scene.json"), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pressure_statistics_test

@@ -6,8 +6,7 @@
 
 #include "tightfit/common/finite_output.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::report_encoding_test {
 
 TEST(ReportEncoding, Base64Rfc4648Vectors) {
   EXPECT_EQ(base64_encode(""), "");
@@ -39,5 +38,4 @@ TEST(ReportEncoding, JsonForScriptHasNoTagsAndParsesBack) {
   EXPECT_THROW(json_for_script({{"v", std::nan("")}}), NonFiniteOutput);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::report_encoding_test

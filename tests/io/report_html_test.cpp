@@ -13,8 +13,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/io/report_data.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::report_html_test {
 
 /// The JSON embedded in a rendered report.
 nlohmann::json embedded_data(const std::string& html) {
@@ -293,5 +292,4 @@ TEST(ReportHtml, OpensWithoutBodyHistoryParametersOrRegimeSlow) {
   EXPECT_EQ(summary.at("historyCurves").size(), 0u);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::report_html_test

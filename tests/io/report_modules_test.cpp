@@ -7,8 +7,7 @@
 #include "io/fit_test_tools.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::report_modules_test {
 
 void write(const std::filesystem::path& path, const std::string& text) {
   std::filesystem::create_directories(path.parent_path());
@@ -82,5 +81,4 @@ TEST(ReportModules, MissingFilesAreInputErrors) {
   EXPECT_THROW(inline_module_import_map({{"three", dir / "nothing.js"}}), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::report_modules_test

@@ -10,8 +10,7 @@
 
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::run_state_test {
 
 namespace fs = std::filesystem;
 
@@ -302,5 +301,4 @@ TEST(RunState, FileErrorsNameTheFile) {
   fs::remove_all(dir);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::run_state_test

@@ -11,8 +11,7 @@
 #include "tightfit/io/scene_loader.hpp"
 #include "tightfit/io/scene_spec.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::scene_layout_file_test {
 
 namespace fs = std::filesystem;
 
@@ -88,5 +87,4 @@ TEST(SceneLayoutFileLoad, OneAnchoredLayoutOnTheManAndTheChild) {
   EXPECT_EQ(seams[1], seams[0]);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::scene_layout_file_test

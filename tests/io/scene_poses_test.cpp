@@ -12,8 +12,7 @@
 #include "tightfit/io/optimization_setup.hpp"
 #include "tightfit/io/scene_spec.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::scene_poses_test {
 
 namespace fs = std::filesystem;
 
@@ -230,5 +229,4 @@ TEST(PoseCli, SimulateWritesTheGarmentInEveryPoseAndItsSlidingStatisticsSlow) {
   fs::remove_all(dir);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::scene_poses_test

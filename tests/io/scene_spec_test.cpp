@@ -7,8 +7,7 @@
 
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::scene_spec_test {
 
 const std::filesystem::path kExamples = std::filesystem::path(TIGHTFIT_SOURCE_DIR) / "examples";
 
@@ -101,5 +100,4 @@ TEST(SceneSpec, ErrorsNameTheFileAndJsonPath) {
       std::string::npos);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::scene_spec_test

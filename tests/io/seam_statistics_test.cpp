@@ -12,8 +12,7 @@
 #include "support/test_pieces.hpp"
 #include "tightfit/io/pattern_json.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::seam_statistics_test {
 
 Points3 seam_test_positions(const test::GarmentState& s) {
   return Eigen::Map<const Points3>(s.x.data(), s.garment.num_garment_vertices(), 3);
@@ -107,5 +106,4 @@ TEST(SeamStatistics, PiecesJsonCarriesSeamLengthsAndReadsBack) {
                std::invalid_argument);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::seam_statistics_test

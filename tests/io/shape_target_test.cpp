@@ -14,8 +14,7 @@
 #include "tightfit/geometry/mesh_measures.hpp"
 #include "tightfit/io/optimization_setup.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::shape_target_test {
 
 /// A path over the surface of `mesh`: from a point inside face 0, across one of its edges
 /// (not at the edge's midpoint), into the neighbouring face; generic (no symmetry of
@@ -104,5 +103,4 @@ TEST(ShapeTarget, RefusesARadiusThatWouldNeedTooManyPoints) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::shape_target_test

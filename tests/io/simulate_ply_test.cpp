@@ -9,8 +9,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::simulate_ply_test {
 
 /// Reads `ply` with Debian's python3-meshio and returns its JSON dump.
 nlohmann::json read_with_meshio(const std::filesystem::path& ply, const test::TempDir& dir) {
@@ -84,5 +83,4 @@ TEST(FitPly, MeshioReadsTheFieldsOfASimulateRun) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::simulate_ply_test

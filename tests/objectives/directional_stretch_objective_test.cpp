@@ -9,8 +9,7 @@
 #include "objectives/objective_test_garments.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::directional_stretch_objective_test {
 
 /// A flat square grid piece (side 0.1 m) with grain `grain`, mapped to 3D by
 /// x = R diag(s1, s2) X (s1 along the piece's x axis, s2 along its y axis).
@@ -106,5 +105,4 @@ TEST(DirectionalStretchObjective, UnboundedAboveAndBadInput) {
                InputError);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::directional_stretch_objective_test

@@ -11,8 +11,7 @@
 #include "tightfit/physics/cloth_energy.hpp"
 #include "tightfit/physics/mid_edge_shape_operator.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pressure_objective_test {
 
 constexpr double kRadius = 0.05;
 
@@ -119,5 +118,4 @@ TEST(PressureObjective, GradientIncludingTheEdgeUnknownsMatchesFiniteDifferences
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pressure_objective_test

@@ -10,8 +10,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/objectives/pressure_objective.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::pressure_regions_test {
 
 constexpr double kBandSleeveRadius = 0.05;
 
@@ -152,11 +151,9 @@ TEST(PressureRegions, BadRegionsAreInputErrorsNamingThem) {
   EXPECT_EQ(message({band("ok", 0.0, 0.1, 0.005, 1, 2)}), "");
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pressure_regions_test
 
-namespace tightfit {
-namespace {
+namespace tightfit::pressure_regions_test {
 
 TEST(PointField, ConstantsExactlyValuesInRangeGradientByFiniteDifferences) {
   Points3 p(200, 3);
@@ -252,5 +249,4 @@ TEST(PressureRegions, BoneRegionsFollowTheSkinWeightsAndTheirGradientIsExact) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::pressure_regions_test

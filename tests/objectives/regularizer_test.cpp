@@ -6,6 +6,7 @@
 #include <random>
 
 #include "support/finite_difference.hpp"
+#include "support/test_pieces.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
@@ -14,32 +15,15 @@
 #include "tightfit/objectives/regularizer_edge_lengths.hpp"
 #include "tightfit/objectives/regularizer_smoothness.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::regularizer_test {
 
-/// A regular nx × ny grid over [x0, x0+w] × [0, h], boundary counter-clockwise from
-/// the lower left corner, the four corners marked.
+/// A regular nx × ny grid over [x0, x0+w] × [0, h] (test::grid_piece unjittered, moved
+/// by x0), boundary counter-clockwise from the lower left corner, the four corners marked.
 PatternPiece grid_piece(const std::string& name, int nx, int ny, double w, double h,
                         double x0 = 0.0) {
-  PatternPiece piece;
+  PatternPiece piece = test::grid_piece(nx, ny, w, h, 0.0, 1);
   piece.name = name;
-  auto id = [&](int i, int j) { return j * nx + i; };
-  piece.rest.resize(nx * ny, 2);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      piece.rest.row(id(i, j)) << x0 + w * i / (nx - 1), h * j / (ny - 1);
-  piece.triangles.resize(2 * (nx - 1) * (ny - 1), 3);
-  int t = 0;
-  for (int j = 0; j + 1 < ny; ++j)
-    for (int i = 0; i + 1 < nx; ++i) {
-      piece.triangles.row(t++) << id(i, j), id(i + 1, j), id(i + 1, j + 1);
-      piece.triangles.row(t++) << id(i, j), id(i + 1, j + 1), id(i, j + 1);
-    }
-  for (int i = 0; i < nx - 1; ++i) piece.boundary.push_back(id(i, 0));
-  for (int j = 0; j < ny - 1; ++j) piece.boundary.push_back(id(nx - 1, j));
-  for (int i = nx - 1; i > 0; --i) piece.boundary.push_back(id(i, ny - 1));
-  for (int j = ny - 1; j > 0; --j) piece.boundary.push_back(id(0, j));
-  piece.corners = {id(0, 0), id(nx - 1, 0), id(nx - 1, ny - 1), id(0, ny - 1)};
+  piece.rest.col(0).array() += x0;
   return piece;
 }
 
@@ -307,5 +291,4 @@ TEST(DesignTermSum, WeightsValuesAndGradients) {
   expect_rest_gradient(sum, rest);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::regularizer_test

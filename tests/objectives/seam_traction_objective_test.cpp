@@ -7,8 +7,7 @@
 
 #include "objectives/objective_test_garments.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::seam_traction_objective_test {
 
 TEST(SeamTractionObjective, UniformSleeveByHand) {
   // Regular sleeve: every quad is a planar rectangle, hoop stretch s (chord / rest
@@ -44,5 +43,4 @@ TEST(SeamTractionObjective, GradientsOnRandomStates) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::seam_traction_objective_test

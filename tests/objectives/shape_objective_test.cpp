@@ -10,8 +10,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/objectives/imls_surface.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::shape_objective_test {
 
 /// Target points on the plane z = 0 over [−0.5, 0.5]², spacing 0.02, normals +z.
 ImlsSurface plane_target(double radius) {
@@ -182,5 +181,4 @@ TEST(ShapeObjective, UnpinnedVerticesLeaveThePinnedRingsOut) {
   EXPECT_EQ(unpinned.value({moved, rest}), unpinned.value({s.x, rest}));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::shape_objective_test

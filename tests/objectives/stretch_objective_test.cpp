@@ -9,8 +9,7 @@
 #include "objectives/objective_test_garments.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::stretch_objective_test {
 
 /// A flat square grid piece (side 0.1 m) mapped to 3D by x = R diag(s1, s2) X.
 test::GarmentState stretched_square(double s1, double s2, double jitter = 0.0) {
@@ -108,5 +107,4 @@ TEST(StretchObjective, UnboundedAboveAndBadBounds) {
   EXPECT_THROW(StretchObjective(st.garment, {0.0, 1.1}), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::stretch_objective_test

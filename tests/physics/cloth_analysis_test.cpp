@@ -11,8 +11,7 @@
 #include "test_surfaces.hpp"
 #include "tightfit/physics/assembly.hpp"
 
-namespace tightfit::test {
-namespace {
+namespace tightfit::test::cloth_analysis_test {
 
 /// A sleeve: the cylinder mesh's pattern unrolled and shrunk by (s_hoop, s_axial), so
 /// that wrapping it on the cylinder stretches it by about (s_hoop, s_axial).
@@ -180,5 +179,4 @@ TEST(ClothAnalysis, VoronoiAreasTileTheSurface) {
   for (int i = 0; i < v.rows(); ++i) EXPECT_GT(n.row(i).dot(v.row(i)), 0.99);
 }
 
-}  // namespace
-}  // namespace tightfit::test
+}  // namespace tightfit::test::cloth_analysis_test

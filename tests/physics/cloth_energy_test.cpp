@@ -10,8 +10,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/physics/assembly.hpp"
 
-namespace tightfit::test {
-namespace {
+namespace tightfit::test::cloth_energy_test {
 
 /// One pattern triangle (random shape, unit size) deformed with principal stretches
 /// (s1, s2) along a random in-plane direction, then rotated and moved in 3D.
@@ -334,5 +333,4 @@ TEST(ClothEnergy, RejectsBadInput) {
   EXPECT_THROW(ok.bind_rest(flat), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit::test
+}  // namespace tightfit::test::cloth_energy_test

@@ -8,8 +8,7 @@
 #include "test_surfaces.hpp"
 #include "tightfit/common/error.hpp"
 
-namespace tightfit::test {
-namespace {
+namespace tightfit::test::mid_edge_shape_operator_test {
 
 /// Eigenvalues of Λ in the face's tangent plane, and the eigenvalue along `axis`.
 struct Curvatures {
@@ -171,5 +170,4 @@ TEST(MidEdgeShapeOperator, RejectsBadTopology) {
   EXPECT_THROW(MidEdgeShapeOperator(nm, 5), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit::test
+}  // namespace tightfit::test::mid_edge_shape_operator_test

@@ -11,8 +11,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/physics/assembly.hpp"
 
-namespace tightfit::test {
-namespace {
+namespace tightfit::test::neo_hookean_energy_test {
 
 struct Cube {
   Points3 rest;
@@ -121,5 +120,4 @@ TEST(NeoHookeanEnergy, RejectsBadInput) {
   EXPECT_THROW(NeoHookeanEnergy(c.rest, c.tets, NeoHookeanMaterial{1.0, 0.5}), InputError);
 }
 
-}  // namespace
-}  // namespace tightfit::test
+}  // namespace tightfit::test::neo_hookean_energy_test

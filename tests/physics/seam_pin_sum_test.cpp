@@ -13,8 +13,7 @@
 #include "tightfit/physics/seam_spring_energy.hpp"
 #include "tightfit/physics/sum_energy.hpp"
 
-namespace tightfit::test {
-namespace {
+namespace tightfit::test::seam_pin_sum_test {
 
 /// Two seam sides: pattern vertices 0-1-2 (piece A) and 3-4-5 (piece B, longer) are
 /// welded pairwise into garment vertices 0, 1, 2; pattern vertex 6 is garment vertex 3.
@@ -159,5 +158,4 @@ TEST(SumEnergy, WeightedSumOfTerms) {
   EXPECT_THROW(sum.add(nullptr), std::invalid_argument);
 }
 
-}  // namespace
-}  // namespace tightfit::test
+}  // namespace tightfit::test::seam_pin_sum_test

@@ -8,8 +8,7 @@
 #include "support/finite_difference.hpp"
 #include "tightfit/physics/assembly.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::embedded_equilibrium_test {
 
 /// Test-only energy: springs k/2 (|x_a − x_b| − l)² between given vertex pairs.
 class SpringsForTest : public Energy {
@@ -191,5 +190,4 @@ TEST(EmbeddedEquilibrium, ForceNormIsTheTangentialForceInNewtons) {
   EXPECT_NEAR(problem.force_norm(g), std::sqrt(expected), 1e-10 * std::sqrt(expected));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::embedded_equilibrium_test

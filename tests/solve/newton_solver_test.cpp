@@ -7,8 +7,7 @@
 
 #include "tightfit/common/error.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::newton_solver_test {
 
 /// A flat-space problem defined by callbacks over a vector state q.
 class VectorProblem : public NewtonProblem {
@@ -320,5 +319,4 @@ TEST(NewtonSolver, ReportsFailureWithTheResidual) {
   EXPECT_TRUE(std::isfinite(r.final_force_norm));
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::newton_solver_test

@@ -12,8 +12,7 @@
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::rigid_analytic_test {
 
 using test::rigid_body;
 using test::rigid_materials;
@@ -201,5 +200,4 @@ TEST(RigidCylinderSleeveSliding, SlidesBackFromATwistedStart) {
   EXPECT_NEAR(hoop.max, 1.0 / 0.9, 3e-3);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::rigid_analytic_test

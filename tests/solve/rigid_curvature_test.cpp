@@ -19,8 +19,7 @@
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::rigid_curvature_test {
 
 using test::rigid_body;
 using test::rigid_materials;
@@ -208,5 +207,4 @@ TEST(RigidCurvedBody, EllipticCylinderPressureFollowsTheLocalCurvature) {
   EXPECT_LT(at_3mm.mid_edge.rms, 0.6 * at_6mm.mid_edge.rms);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::rigid_curvature_test

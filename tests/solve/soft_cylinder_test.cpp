@@ -14,8 +14,7 @@
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::soft_cylinder_test {
 
 struct SoftCylinder {
   double b = 0.05;     // outer radius
@@ -126,5 +125,4 @@ TEST(SoftCylinderSleeveSlow, NewtonConvergesQuadratically) {
   EXPECT_GE(quadratic, 1);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::soft_cylinder_test

@@ -10,8 +10,7 @@
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::solve_failure_message_test {
 
 TEST(SolveFailureMessage, NamesThePieceAndPlaceOfTheLargestForce) {
   CylinderParams cyl;
@@ -47,5 +46,4 @@ TEST(SolveFailureMessage, NamesThePieceAndPlaceOfTheLargestForce) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::solve_failure_message_test

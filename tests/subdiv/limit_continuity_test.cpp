@@ -6,8 +6,7 @@
 #include "subdiv/test_meshes.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::limit_continuity_test {
 
 using subdiv_test::irregular_meshes;
 
@@ -131,5 +130,4 @@ TEST(LimitSurface, NormalsPointOutwardAndSphereCurvatureIsNegative) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::limit_continuity_test

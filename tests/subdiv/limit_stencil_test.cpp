@@ -8,8 +8,7 @@
 #include "tightfit/subdiv/limit_surface.hpp"
 #include "tightfit/subdiv/patch_tree_rotation.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::limit_stencil_test {
 
 using subdiv_test::irregular_meshes;
 using subdiv_test::random_smooth_point;
@@ -252,5 +251,4 @@ TEST(LimitSurface, RejectsOpenMeshesAndBadOptions) {
   EXPECT_THROW(ok.weights({8, 0.1, 0.1}, w), std::invalid_argument);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::limit_stencil_test

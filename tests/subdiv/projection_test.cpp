@@ -7,8 +7,7 @@
 #include "tightfit/subdiv/limit_projector.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::projection_test {
 
 using subdiv_test::irregular_meshes;
 using subdiv_test::random_point;
@@ -145,5 +144,4 @@ TEST(LimitSurfaceProjection, RealBodyMesh) {
   EXPECT_LE(not_recovered, 4);
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::projection_test

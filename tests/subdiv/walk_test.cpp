@@ -7,8 +7,7 @@
 #include "support/finite_difference.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
-namespace tightfit {
-namespace {
+namespace tightfit::walk_test {
 
 using subdiv_test::irregular_meshes;
 using subdiv_test::random_point;
@@ -130,5 +129,4 @@ TEST(LimitSurfaceWalk, LinesThroughVerticesEndInsideAFace) {
   }
 }
 
-}  // namespace
-}  // namespace tightfit
+}  // namespace tightfit::walk_test

@@ -71,6 +71,21 @@ std::vector<int> weld_by_seams(const Pattern& pattern, const std::vector<int>& o
   return to_garment;
 }
 
+/// Throws InputError(source, …) unless `map` has one garment vertex in [0, num_garment)
+/// for each of the num_pattern pattern vertices.
+void check_vertex_map(const std::string& source, const std::vector<int>& map,
+                      Eigen::Index num_pattern, int num_garment) {
+  if (static_cast<Eigen::Index>(map.size()) != num_pattern)
+    throw InputError(source, "the pattern-to-garment vertex map has " + std::to_string(map.size()) +
+                                 " entries for " + std::to_string(num_pattern) +
+                                 " pattern vertices");
+  for (std::size_t p = 0; p < map.size(); ++p)
+    if (map[p] < 0 || map[p] >= num_garment)
+      throw InputError(source, "pattern vertex " + std::to_string(p) + " maps to garment vertex " +
+                                   std::to_string(map[p]) + " outside [0, " +
+                                   std::to_string(num_garment) + ")");
+}
+
 void collect_triangles(const Pattern& pattern, GarmentTopology& g) {
   int num_triangles = 0;
   for (const auto& piece : pattern.pieces)
@@ -135,19 +150,13 @@ int GarmentTopology::piece_of(int pattern_vertex) const {
       piece_offset.begin() - 1);
 }
 
-GarmentTopology weld_topology(const Pattern& pattern, std::vector<int> pattern_to_garment,
-                              int num_garment_vertices) {
+namespace {
+
+/// The topology of a pattern whose seams were checked and whose vertex map is valid.
+GarmentTopology assemble_topology(const Pattern& pattern, std::vector<int> offset,
+                                  std::vector<int> pattern_to_garment, int num_garment_vertices) {
   GarmentTopology g;
-  g.piece_offset = piece_offsets(pattern);
-  check_seams(pattern);
-  if (static_cast<int>(pattern_to_garment.size()) != g.num_pattern_vertices())
-    throw InputError("pattern", "the vertex map has " + std::to_string(pattern_to_garment.size()) +
-                                    " entries for " + std::to_string(g.num_pattern_vertices()) +
-                                    " pattern vertices");
-  for (int v : pattern_to_garment)
-    if (v < 0 || v >= num_garment_vertices)
-      throw InputError("pattern", "the vertex map names garment vertex " + std::to_string(v) +
-                                      " of " + std::to_string(num_garment_vertices));
+  g.piece_offset = std::move(offset);
   g.pattern_to_garment = std::move(pattern_to_garment);
   g.num_garment_vertices = num_garment_vertices;
   collect_triangles(pattern, g);
@@ -156,12 +165,54 @@ GarmentTopology weld_topology(const Pattern& pattern, std::vector<int> pattern_t
   return g;
 }
 
+}  // namespace
+
+GarmentTopology weld_topology(const Pattern& pattern, std::vector<int> pattern_to_garment,
+                              int num_garment_vertices) {
+  std::vector<int> offset = piece_offsets(pattern);
+  check_seams(pattern);
+  check_vertex_map("pattern", pattern_to_garment, offset.back(), num_garment_vertices);
+  return assemble_topology(pattern, std::move(offset), std::move(pattern_to_garment),
+                           num_garment_vertices);
+}
+
 GarmentTopology weld_topology(const Pattern& pattern) {
-  const std::vector<int> offset = piece_offsets(pattern);
+  std::vector<int> offset = piece_offsets(pattern);
   check_seams(pattern);
   int num_garment_vertices = 0;
   std::vector<int> to_garment = weld_by_seams(pattern, offset, num_garment_vertices);
-  return weld_topology(pattern, std::move(to_garment), num_garment_vertices);
+  return assemble_topology(pattern, std::move(offset), std::move(to_garment), num_garment_vertices);
+}
+
+GarmentTopology one_piece_topology(const std::string& source, Eigen::Index num_pattern_vertices,
+                                   Triangles triangles, std::vector<std::array<int, 2>> seam_edges,
+                                   std::vector<int> pattern_to_garment, int num_garment_vertices) {
+  check_vertex_map(source, pattern_to_garment, num_pattern_vertices, num_garment_vertices);
+  const auto out_of_range = [&](int v) { return v < 0 || v >= num_pattern_vertices; };
+  for (Eigen::Index e = 0; e < triangles.rows(); ++e)
+    for (int k = 0; k < 3; ++k)
+      if (out_of_range(triangles(e, k)))
+        throw InputError(source, "triangle " + std::to_string(e) + " has pattern vertex " +
+                                     std::to_string(triangles(e, k)) + " outside [0, " +
+                                     std::to_string(num_pattern_vertices) + ")");
+  for (std::size_t s = 0; s < seam_edges.size(); ++s)
+    for (int v : seam_edges[s])
+      if (out_of_range(v))
+        throw InputError(source, "seam edge " + std::to_string(s) + " has pattern vertex " +
+                                     std::to_string(v) + " outside [0, " +
+                                     std::to_string(num_pattern_vertices) + ")");
+  GarmentTopology g;
+  g.piece_offset = {0, static_cast<int>(num_pattern_vertices)};
+  g.garment_triangles.resize(triangles.rows(), 3);
+  for (Eigen::Index e = 0; e < triangles.rows(); ++e)
+    for (int k = 0; k < 3; ++k)
+      g.garment_triangles(e, k) = pattern_to_garment[static_cast<std::size_t>(triangles(e, k))];
+  g.triangle_piece.assign(static_cast<std::size_t>(triangles.rows()), 0);
+  g.pattern_triangles = std::move(triangles);
+  g.seam_edges = std::move(seam_edges);
+  g.pattern_to_garment = std::move(pattern_to_garment);
+  g.num_garment_vertices = num_garment_vertices;
+  return g;
 }
 
 }  // namespace tightfit

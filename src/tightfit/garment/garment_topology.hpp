@@ -12,6 +12,7 @@
 /// two sides of a seam share one garment vertex per seam vertex pair, and seam ends
 /// where several pieces meet (a crotch point) are one garment vertex for all of them.
 #include <array>
+#include <string>
 #include <vector>
 
 #include "tightfit/common/types.hpp"
@@ -60,5 +61,15 @@ GarmentTopology weld_topology(const Pattern& pattern);
 /// wrong size or out of range, and for the errors of weld_topology.
 GarmentTopology weld_topology(const Pattern& pattern, std::vector<int> pattern_to_garment,
                               int num_garment_vertices);
+
+/// The topology of one piece given as raw arrays, for energies built without a Pattern
+/// (tests, benchmarks): `num_pattern_vertices` pattern vertices welded by
+/// `pattern_to_garment` (one garment vertex in [0, num_garment_vertices) each), the
+/// piece's `triangles` and `seam_edges` in pattern-vertex indices, nothing pinned.
+/// Throws InputError naming `source` for a map of the wrong size or out of range and for
+/// a triangle or seam edge with a vertex out of range.
+GarmentTopology one_piece_topology(const std::string& source, Eigen::Index num_pattern_vertices,
+                                   Triangles triangles, std::vector<std::array<int, 2>> seam_edges,
+                                   std::vector<int> pattern_to_garment, int num_garment_vertices);
 
 }  // namespace tightfit

@@ -49,8 +49,9 @@ GarmentEnergies SlidingObjective::energies_at(const Points2& rest) const {
   return GarmentEnergies(topology_, rest, fabric_, seam_);
 }
 
-SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& state, int pose,
-                                                            bool with_gradient) const {
+SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& state,
+                                                            const GarmentEnergies& energies,
+                                                            int pose, bool with_gradient) const {
   if (state.embedding == nullptr)
     throw std::logic_error("SlidingObjective: the design state carries no embedding");
   const DesignEmbedding& emb = *state.embedding;
@@ -62,7 +63,7 @@ SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& s
   const PosedGarment& pg = ev.posed;
   const int n = num_garment_;
   VecX g = VecX::Zero(3 * n);
-  for (const RestDependentEnergy* e : energies_at(state.rest).all()) e->add_gradient(pg.x, g);
+  for (const RestDependentEnergy* e : energies.all()) e->add_gradient(pg.x, g);
   ev.forces.normal = VecX::Zero(n);
   ev.forces.tangential = VecX::Zero(n);
   ev.forces.excess = VecX::Zero(n);
@@ -95,20 +96,21 @@ SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& s
 }
 
 double SlidingObjective::value(const DesignState& state) const {
+  const GarmentEnergies energies = energies_at(state.rest);
   double total = 0.0;
   for (int i = 0; i < static_cast<int>(poses_.size()); ++i)
-    total += evaluate(state, i, false).value;
+    total += evaluate(state, energies, i, false).value;
   return total;
 }
 
 void SlidingObjective::add_gradient(const DesignState& state, VecX& /*d_x*/, VecX& d_rest) const {
+  const GarmentEnergies energies = energies_at(state.rest);
   std::vector<Triplet> mixed;
   for (int i = 0; i < static_cast<int>(poses_.size()); ++i) {
-    const PoseEvaluation ev = evaluate(state, i, true);
+    const PoseEvaluation ev = evaluate(state, energies, i, true);
     if (ev.value == 0.0) continue;
     mixed.clear();
-    for (const RestDependentEnergy* e : energies_at(state.rest).all())
-      e->add_mixed_rest(ev.posed.x, mixed);
+    for (const RestDependentEnergy* e : energies.all()) e->add_mixed_rest(ev.posed.x, mixed);
     // f = −∂U/∂x, so ∂T/∂Xbar = −(∂²U/∂x∂Xbar)ᵀ a.
     for (const Triplet& t : mixed) d_rest[t.col()] -= t.value() * ev.a[t.row()];
   }
@@ -116,14 +118,14 @@ void SlidingObjective::add_gradient(const DesignState& state, VecX& /*d_x*/, Vec
 
 void SlidingObjective::add_embedding_gradient(const DesignState& state, VecX& d_s,
                                               VecX& d_y) const {
+  const GarmentEnergies energies = energies_at(state.rest);
   std::vector<Triplet> hessian;
   for (int i = 0; i < static_cast<int>(poses_.size()); ++i) {
-    const PoseEvaluation ev = evaluate(state, i, true);
+    const PoseEvaluation ev = evaluate(state, energies, i, true);
     if (ev.value == 0.0) continue;
     hessian.clear();
     const PosedGarment& pg = ev.posed;
-    for (const RestDependentEnergy* e : energies_at(state.rest).all())
-      e->add_hessian(pg.x, hessian, false);
+    for (const RestDependentEnergy* e : energies.all()) e->add_hessian(pg.x, hessian, false);
     VecX gx = VecX::Zero(pg.x.size());  // ∂T/∂x_i = −H a
     for (const Triplet& t : hessian) gx[t.row()] -= t.value() * ev.a[t.col()];
     const std::vector<PointMotion>& motion = poses_[static_cast<std::size_t>(i)].motions;
@@ -151,7 +153,7 @@ void SlidingObjective::add_embedding_gradient(const DesignState& state, VecX& d_
 }
 
 SlidingObjective::PoseView SlidingObjective::pose_view(const DesignState& state, int pose) const {
-  PoseEvaluation ev = evaluate(state, pose, false);
+  PoseEvaluation ev = evaluate(state, energies_at(state.rest), pose, false);
   return {std::move(ev.forces), std::move(ev.posed)};
 }
 

@@ -74,7 +74,10 @@ class SlidingObjective : public DesignTerm {
 
  private:
   struct PoseEvaluation;
-  PoseEvaluation evaluate(const DesignState& state, int pose, bool with_gradient) const;
+  /// Pose `pose` at `state`, with the garment energies bound to state.rest (built once
+  /// per call of the public methods, shared by all poses).
+  PoseEvaluation evaluate(const DesignState& state, const GarmentEnergies& energies, int pose,
+                          bool with_gradient) const;
 
   /// The garment's cloth and seam energies reading `rest` (which must outlive them).
   GarmentEnergies energies_at(const Points2& rest) const;

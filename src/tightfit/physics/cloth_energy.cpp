@@ -123,44 +123,6 @@ Phi element_phi(const Vec3& g, const Vec3& m, const RelaxedStVK& law, int order)
 
 }  // namespace
 
-namespace {
-
-/// The one-piece topology of raw cloth arrays, after checking their indices.
-std::shared_ptr<const GarmentTopology> raw_cloth_topology(Triangles triangles,
-                                                          Eigen::Index num_pattern,
-                                                          std::vector<int> pattern_to_garment,
-                                                          int num_garment) {
-  if (static_cast<Eigen::Index>(pattern_to_garment.size()) != num_pattern)
-    throw InputError(kClothSource, "pattern-to-garment map has " +
-                                       std::to_string(pattern_to_garment.size()) + " entries for " +
-                                       std::to_string(num_pattern) + " pattern vertices");
-  for (std::size_t p = 0; p < pattern_to_garment.size(); ++p)
-    if (pattern_to_garment[p] < 0 || pattern_to_garment[p] >= num_garment)
-      throw InputError(kClothSource, "pattern vertex " + std::to_string(p) +
-                                         " maps to garment vertex " +
-                                         std::to_string(pattern_to_garment[p]) + " outside [0, " +
-                                         std::to_string(num_garment) + ")");
-  for (Eigen::Index e = 0; e < triangles.rows(); ++e)
-    for (int k = 0; k < 3; ++k)
-      if (triangles(e, k) < 0 || triangles(e, k) >= num_pattern)
-        throw InputError(kClothSource, "triangle " + std::to_string(e) + " has pattern vertex " +
-                                           std::to_string(triangles(e, k)) + " outside [0, " +
-                                           std::to_string(num_pattern) + ")");
-  auto topology = std::make_shared<GarmentTopology>();
-  topology->piece_offset = {0, static_cast<int>(num_pattern)};
-  topology->garment_triangles.resize(triangles.rows(), 3);
-  for (Eigen::Index e = 0; e < triangles.rows(); ++e)
-    for (int k = 0; k < 3; ++k)
-      topology->garment_triangles(e, k) = pattern_to_garment[static_cast<size_t>(triangles(e, k))];
-  topology->triangle_piece.assign(static_cast<size_t>(triangles.rows()), 0);
-  topology->pattern_triangles = std::move(triangles);
-  topology->pattern_to_garment = std::move(pattern_to_garment);
-  topology->num_garment_vertices = num_garment;
-  return topology;
-}
-
-}  // namespace
-
 ClothEnergy::ClothEnergy(std::shared_ptr<const GarmentTopology> topology, const Points2& rest,
                          ClothMaterial material)
     : RestDependentEnergy(rest), topology_(std::move(topology)), law_(material) {
@@ -171,8 +133,9 @@ ClothEnergy::ClothEnergy(std::shared_ptr<const GarmentTopology> topology, const 
 ClothEnergy::ClothEnergy(Triangles triangles, const Points2& rest,
                          std::vector<int> pattern_to_garment, int num_garment_vertices,
                          ClothMaterial material)
-    : ClothEnergy(raw_cloth_topology(std::move(triangles), rest.rows(),
-                                     std::move(pattern_to_garment), num_garment_vertices),
+    : ClothEnergy(std::make_shared<const GarmentTopology>(
+                      one_piece_topology(kClothSource, rest.rows(), std::move(triangles), {},
+                                         std::move(pattern_to_garment), num_garment_vertices)),
                   rest, material) {}
 
 void ClothEnergy::check_rest(const Points2& rest) const {

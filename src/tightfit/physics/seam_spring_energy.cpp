@@ -24,38 +24,6 @@ struct Spring {
 
 }  // namespace
 
-namespace {
-
-/// The one-piece topology of raw seam arrays, after checking their indices.
-std::shared_ptr<const GarmentTopology> raw_seam_topology(std::vector<std::array<int, 2>> edges,
-                                                         Eigen::Index num_pattern,
-                                                         std::vector<int> pattern_to_garment,
-                                                         int num_garment) {
-  if (static_cast<Eigen::Index>(pattern_to_garment.size()) != num_pattern)
-    throw InputError(kSeamSource,
-                     "pattern-to-garment map size differs from the pattern vertex count");
-  for (std::size_t p = 0; p < pattern_to_garment.size(); ++p)
-    if (pattern_to_garment[p] < 0 || pattern_to_garment[p] >= num_garment)
-      throw InputError(kSeamSource, "pattern vertex " + std::to_string(p) +
-                                        " maps to garment vertex " +
-                                        std::to_string(pattern_to_garment[p]) + " outside [0, " +
-                                        std::to_string(num_garment) + ")");
-  for (std::size_t s = 0; s < edges.size(); ++s)
-    for (int v : edges[s])
-      if (v < 0 || v >= num_pattern)
-        throw InputError(kSeamSource, "seam edge " + std::to_string(s) + " has pattern vertex " +
-                                          std::to_string(v) + " outside [0, " +
-                                          std::to_string(num_pattern) + ")");
-  auto topology = std::make_shared<GarmentTopology>();
-  topology->piece_offset = {0, static_cast<int>(num_pattern)};
-  topology->seam_edges = std::move(edges);
-  topology->pattern_to_garment = std::move(pattern_to_garment);
-  topology->num_garment_vertices = num_garment;
-  return topology;
-}
-
-}  // namespace
-
 SeamSpringEnergy::SeamSpringEnergy(std::shared_ptr<const GarmentTopology> topology,
                                    const Points2& rest, SeamMaterial material)
     : RestDependentEnergy(rest), topology_(std::move(topology)), material_(material) {
@@ -68,8 +36,9 @@ SeamSpringEnergy::SeamSpringEnergy(std::shared_ptr<const GarmentTopology> topolo
 SeamSpringEnergy::SeamSpringEnergy(std::vector<std::array<int, 2>> edges, const Points2& rest,
                                    std::vector<int> pattern_to_garment, int num_garment_vertices,
                                    SeamMaterial material)
-    : SeamSpringEnergy(raw_seam_topology(std::move(edges), rest.rows(),
-                                         std::move(pattern_to_garment), num_garment_vertices),
+    : SeamSpringEnergy(std::make_shared<const GarmentTopology>(one_piece_topology(
+                           kSeamSource, rest.rows(), Triangles(0, 3), std::move(edges),
+                           std::move(pattern_to_garment), num_garment_vertices)),
                        rest, material) {}
 
 void SeamSpringEnergy::check_rest(const Points2& rest) const {
