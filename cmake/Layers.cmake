@@ -47,9 +47,10 @@ endfunction()
 
 # Unity build: each library layer and the CLI compile their sources in batches of eight
 # (CMake's UNITY_BUILD), which parses the CGAL, Eigen and JSON templates they share once
-# per batch instead of once per file. Sources therefore keep their internal helpers in
-# named namespaces or nested types (CONTRIBUTING.md). Off with -DTIGHTFIT_UNITY_BUILD=OFF
-# (one object per source: faster incremental rebuilds while editing one file).
+# per batch instead of once per file. Helpers in anonymous namespaces must therefore have
+# names unique within their layer, and a class member may not have an anonymous-namespace
+# type (CONTRIBUTING.md). Off with -DTIGHTFIT_UNITY_BUILD=OFF (one object per source:
+# faster incremental rebuilds while editing one file).
 option(TIGHTFIT_UNITY_BUILD "Compile the library layers and the CLI in batches of 8" ON)
 function(tightfit_unity target)
   if(TIGHTFIT_UNITY_BUILD)

@@ -10,8 +10,8 @@ usage: scripts/check_naming.py [BUILD_DIR] [--jobs N] [--group N] [FILE...]
 Parsing the headers (Eigen, CGAL, JSON) is most of clang-tidy's time, so sources compiled
 with the same flags are checked N at a time through a generated file that includes them
 (headers and included sources are checked alike: HeaderFilterRegex). A unity build's
-batch files (the library layers compile that way) count as the sources they include. A group whose
-sources do not compile together (two files' internal helpers of the same name) is
+batch files (the library layers compile that way) count as the sources they include. A
+group whose sources do not compile together (two files' internal helpers of the same name) is
 checked again source by source, so every source is checked in full either way. The
 build's compile commands are GCC's: their precompiled-header flags are removed, as are
 the flags clang does not know. Each diagnostic is reported once. Exits 1 and lists every
