@@ -288,6 +288,75 @@ TEST(NewtonSolver, ShortensStepsTheProblemRefuses) {
   EXPECT_NEAR(problem.theta_, 1.2, 1e-9);
 }
 
+/// The chain whose energy carries a term its gradient does not: −eps·‖q − q*‖ (q*: the
+/// zero of the gradient). Every step towards q* raises the energy by eps per unit length
+/// more than the gradient predicts, as a garment pressing on the body does where the
+/// limit surface's derivatives are not exactly those of its positions; close to q* that
+/// rise is larger than the decrease the gradient promises.
+class InconsistentChainProblem : public ChainProblem {
+ public:
+  InconsistentChainProblem(int n, double eps, VecX solution)
+      : ChainProblem(n), eps_(eps), solution_(std::move(solution)) {}
+  double energy() override { return ChainProblem::energy() - eps_ * (q_ - solution_).norm(); }
+
+ private:
+  double eps_;
+  VecX solution_;
+};
+
+TEST(NewtonSolver, AcceptsFullStepsByForceWhereTheEnergyCannotTell) {
+  ChainProblem exact(20);
+  ASSERT_TRUE(NewtonSolver().solve(exact).converged);
+  NewtonOptions options;
+  options.max_iterations = 30;
+  options.throw_on_failure = false;
+  InconsistentChainProblem problem(20, 1e-5, exact.q());
+  const NewtonReport r = NewtonSolver(options).solve(problem);
+  ASSERT_TRUE(r.converged) << r.message << ", force " << r.final_force_norm;
+  EXPECT_GT(r.force_accepted_steps, 0);
+  EXPECT_LE(r.iterations, 10);
+  EXPECT_LT((problem.q() - exact.q()).norm(), 1e-8);
+
+  // The energy test alone crawls on the short steps the round-off allowance lets through.
+  options.force_merit_contraction = 0.0;
+  InconsistentChainProblem stalled(20, 1e-5, exact.q());
+  const NewtonReport s = NewtonSolver(options).solve(stalled);
+  EXPECT_EQ(s.force_accepted_steps, 0);
+  EXPECT_GE(s.iterations, 2 * r.iterations);
+}
+
+/// U = ½q² + h·exp(−q²/(2w²)): a narrow bump on a parabola, a maximum at q = 0 and minima
+/// where exp(−q²/(2w²)) = w²/h. From q = 1 (positive curvature, the bump invisible) the
+/// full Newton step lands on the bump's top, where the force is zero but the energy is
+/// higher by far more than round-off: that step must not be accepted by its force.
+class BumpProblem : public VectorProblem {
+ public:
+  BumpProblem() : VectorProblem(VecX::Constant(1, 1.0)) {}
+  double energy() override { return 0.5 * q_[0] * q_[0] + kH * bump(); }
+  VecX gradient() override { return VecX::Constant(1, q_[0] * (1.0 - kH / (kW * kW) * bump())); }
+  SparseMatrix hessian() override {
+    const double q = q_[0], b = bump();
+    SparseMatrix H(1, 1);
+    H.insert(0, 0) = 1.0 - kH / (kW * kW) * b * (1.0 - q * q / (kW * kW));
+    return H;
+  }
+  static constexpr double kH = 1.0, kW = 0.1;
+
+ private:
+  double bump() const { return std::exp(-q_[0] * q_[0] / (2 * kW * kW)); }
+};
+
+TEST(NewtonSolver, DoesNotAcceptAnEnergyRiseByForce) {
+  BumpProblem problem;
+  const NewtonReport r = NewtonSolver().solve(problem);
+  ASSERT_TRUE(r.converged);
+  const double minimum =
+      BumpProblem::kW *
+      std::sqrt(2.0 * std::log(BumpProblem::kH / (BumpProblem::kW * BumpProblem::kW)));
+  EXPECT_NEAR(problem.q()[0], minimum, 1e-9);
+  EXPECT_EQ(r.force_accepted_steps, 0);
+}
+
 /// Unbounded below: U = −q³ − q has no minimum; Newton must fail loudly.
 class UnboundedProblem : public VectorProblem {
  public:

@@ -35,6 +35,13 @@ double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factoriza
                     std::to_string(last));
 }
 
+bool NewtonSolver::accept_by_force(NewtonProblem& problem, double energy, double new_energy,
+                                   double force_norm) const {
+  if (!(options_.force_merit_contraction > 0.0)) return false;
+  if (new_energy - energy > options_.energy_precision * std::abs(energy)) return false;
+  return problem.force_norm(problem.gradient()) <= options_.force_merit_contraction * force_norm;
+}
+
 NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
   const SparseCholesky* held = chords.held;
   const auto t_start = SteadyClock::now();
@@ -99,6 +106,8 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
     last_was_chord = record.chord;
 
     VecX dq;
+    // The step solves a positive definite model of the energy at this state.
+    bool convex_model = !record.chord && record.regularization == 0.0;
     if (record.chord && options_.krylov_chords) {
       // Newton–Krylov: the Newton system at this state, solved by conjugate gradients
       // preconditioned with the held factorization.
@@ -114,6 +123,7 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
         report.krylov_iterations += cg.iterations;
         // The held factorization no longer preconditions well: factorize next time.
         if (!cg.converged) reuse = false;
+        convex_model = cg.converged && !cg.negative_curvature;
       } else {
         dq = factor->solve(VecX(-g));
       }
@@ -143,6 +153,12 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
         accepted = true;
         break;
       }
+      if (k == 0 && convex_model && std::isfinite(new_energy) &&
+          accept_by_force(problem, energy, new_energy, record.force_norm)) {
+        accepted = true;
+        record.accepted_by_force = true;
+        break;
+      }
     }
     record.seconds_line_search = seconds_since(t0);
     if (!accepted && record.chord) {
@@ -164,6 +180,7 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
     energy = new_energy;
     record.step_size = alpha;
     if (record.chord) ++report.chord_steps;
+    if (record.accepted_by_force) ++report.force_accepted_steps;
     report.history.push_back(record);
     if (options_.on_step) options_.on_step(record, seconds_since(t_start));
   }

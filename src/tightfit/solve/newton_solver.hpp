@@ -41,6 +41,18 @@ struct NewtonOptions {
   bool krylov_chords = true;
   double krylov_tolerance = 1e-3;
   int krylov_iterations = 20;
+  /// Acceptance by force where the energy cannot tell. Near an equilibrium the energy
+  /// change of a step is a difference of parts that cancel (a garment pressing on the
+  /// body: their changes agree to ~1e-3), and inside the Gregory regions of the limit
+  /// surface its derivatives are not exactly those of its positions (limit_surface.hpp),
+  /// so a full Newton step that cuts the force tenfold can show a rise of the total
+  /// energy at ~1e-12 of it, and the Armijo test would stall the solve on tiny steps. A
+  /// full step whose model is positive definite (an unshifted factorization, or a
+  /// Newton–Krylov step whose CG converged without negative curvature) is therefore also
+  /// accepted when the energy rises by at most `energy_precision` × |energy| and the force
+  /// norm falls to at most `force_merit_contraction` × its value (0: never).
+  double energy_precision = 1e-10;
+  double force_merit_contraction = 0.5;
   /// Called after every accepted step with its record (forces before the step) and the
   /// seconds since the solve started: progress reports of long solves. Not part of the
   /// numerics; empty by default.
@@ -54,14 +66,16 @@ struct NewtonOptions {
 
 /// One Newton iteration, for reports and convergence tests.
 struct NewtonIteration {
-  double energy = 0.0;            ///< J, before the step
-  double force_norm = 0.0;        ///< N, before the step
-  double step_size = 0.0;         ///< accepted line-search alpha
-  double regularization = 0.0;    ///< diagonal shift δ used (N/m at a DOF of mean
-                                  ///< stiffness, ShiftSequence; 0 if none)
-  bool chord = false;             ///< step from the held factorization (no new Hessian)
-  int krylov_iterations = 0;      ///< of a chord step: conjugate-gradient products
-  double seconds_assembly = 0.0;  ///< gradient + Hessian
+  double energy = 0.0;             ///< J, before the step
+  double force_norm = 0.0;         ///< N, before the step
+  double step_size = 0.0;          ///< accepted line-search alpha
+  double regularization = 0.0;     ///< diagonal shift δ used (N/m at a DOF of mean
+                                   ///< stiffness, ShiftSequence; 0 if none)
+  bool chord = false;              ///< step from the held factorization (no new Hessian)
+  int krylov_iterations = 0;       ///< of a chord step: conjugate-gradient products
+  bool accepted_by_force = false;  ///< accepted by its force decrease, not by the energy
+                                   ///< (NewtonOptions::energy_precision)
+  double seconds_assembly = 0.0;   ///< gradient + Hessian
   double seconds_factorization = 0.0;
   double seconds_solve = 0.0;
   double seconds_line_search = 0.0;
@@ -69,10 +83,11 @@ struct NewtonIteration {
 
 struct NewtonReport {
   bool converged = false;
-  int iterations = 0;         ///< steps taken (chord steps included)
-  int chord_steps = 0;        ///< of them: with the held factorization
-  int factorizations = 0;     ///< Hessians factorized (shifted retries included)
-  int krylov_iterations = 0;  ///< conjugate-gradient products of the chord steps
+  int iterations = 0;            ///< steps taken (chord steps included)
+  int chord_steps = 0;           ///< of them: with the held factorization
+  int factorizations = 0;        ///< Hessians factorized (shifted retries included)
+  int krylov_iterations = 0;     ///< conjugate-gradient products of the chord steps
+  int force_accepted_steps = 0;  ///< steps accepted by their force decrease
   double final_energy = 0.0;
   double final_force_norm = 0.0;  ///< N
   double tolerance = 0.0;         ///< N, the force tolerance that was applied
@@ -132,6 +147,12 @@ class NewtonSolver {
   /// when given (SparseCholesky::factorize).
   double factorize_regularized(const SparseMatrix& H, int& factorizations,
                                const CholeskyOrdering* ordering);
+
+  /// The full step at the problem's current (trial) state may be accepted by its force
+  /// decrease (NewtonOptions::energy_precision): the energy rose by at most the energy
+  /// precision and the force norm fell enough from `force_norm` (N).
+  bool accept_by_force(NewtonProblem& problem, double energy, double new_energy,
+                       double force_norm) const;
 
   NewtonOptions options_;
   SparseCholesky cholesky_;
