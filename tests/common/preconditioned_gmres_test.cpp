@@ -125,4 +125,27 @@ TEST(FactorizeShifted, ShiftsEachDofInProportionToItsStiffness) {
               1e-12 * *shift_a / A.diagonal().cwiseAbs().mean());
 }
 
+TEST(FactorizeShifted, TheShiftItReturnedMakesTheSameFactorizationAgain) {
+  // A resumed optimization makes a held factorization again from its matrix and shift.
+  SparseMatrix A = laplacian_1d(25, 0.0);
+  A.coeffRef(7, 7) = -0.7;
+  SparseCholesky first, again;
+  int count = 0;
+  const auto shift = factorize_shifted(first, A, ShiftSequence{}, count);
+  ASSERT_TRUE(shift.has_value());
+  ASSERT_GT(*shift, 0.0);
+  ASSERT_TRUE(factorize_with_shift(again, A, *shift));
+  const VecX b = VecX::LinSpaced(25, -1.0, 3.0);
+  EXPECT_EQ(first.solve(b), again.solve(b));          // bit for bit
+  EXPECT_FALSE(factorize_with_shift(again, A, 0.0));  // A itself is indefinite
+  ASSERT_TRUE(factorize_with_shift(again, laplacian_1d(25, 0.1), 0.0));
+  // swap hands factorizations over without copying.
+  first.swap(again);
+  EXPECT_LT((laplacian_1d(25, 0.1) * first.solve(b) - b).norm(), 1e-12 * b.norm());
+  int unused = 0;
+  SparseCholesky reference;
+  ASSERT_TRUE(factorize_shifted(reference, A, ShiftSequence{}, unused));
+  EXPECT_EQ(again.solve(b), reference.solve(b));
+}
+
 }  // namespace tightfit::preconditioned_gmres_test

@@ -111,6 +111,46 @@ TEST(AdjointSolve, IterativeAgreesWithTheDirectFactorizationOfTheExactHessian) {
   }
 }
 
+TEST(AdjointSolve, NewtonsLastFactorizationSolvesTheAdjointWithoutOneOfItsOwn) {
+  SleeveSceneOptions o;
+  o.axial_scale = 1.05;  // wrinkled: projected elements, an exact H unlike H_N
+  for (const bool soft : {false, true}) {
+    o.soft_body = soft;
+    auto scene = make_sleeve_scene(o);
+    GarmentSimulation& sim = *scene->sim;
+    EmbeddedState factorized_at;
+    ChordSteps chords;
+    chords.on_factorized = [&] { factorized_at = sim.problem().state(); };
+    ASSERT_TRUE(sim.solve(chords).converged);
+    ASSERT_FALSE(factorized_at.garment.empty());
+    const double shift = sim.newton().factorization_shift();
+    const VecX rhs = test::random_vector(sim.problem().num_dofs(), 13);
+    AdjointSolver solver;
+    ASSERT_TRUE(solver.adopt(sim, factorized_at));
+    EXPECT_FALSE(solver.held_made_here(sim));
+    const AdjointSolve reused = solver.solve(sim, rhs);
+    EXPECT_EQ(reused.factorizations, 0) << "soft " << soft;
+    EXPECT_EQ(reused.method, AdjointMethod::kPreconditioned);
+    EXPECT_LE(reused.krylov_iterations, solver.options().max_reuse_iterations);
+    const AdjointSolve direct = AdjointSolver().solve(sim, rhs, true);
+    const double diff = (reused.lambda - direct.lambda).norm() / direct.lambda.norm();
+    std::printf("soft %d: reused Newton's factorization, GMRES %d iterations; vs direct %.2e\n",
+                soft, reused.krylov_iterations, diff);
+    EXPECT_LT(diff, 1e-8);
+
+    // Made again where it was made (a resumed run), it is the same factorization.
+    const EmbeddedState equilibrium = sim.problem().state();
+    sim.set_state(factorized_at);
+    AdjointSolver again;
+    again.set_next_ordering(solver.held_ordering());
+    ASSERT_TRUE(again.factorize_held(sim, shift));
+    EXPECT_TRUE(again.held_made_here(sim));
+    sim.set_state(equilibrium);
+    EXPECT_FALSE(again.held_made_here(sim));
+    EXPECT_EQ(again.held_factorization()->solve(rhs), solver.held_factorization()->solve(rhs));
+  }
+}
+
 TEST(AdjointSolve, TautEquilibriumNeedsOneDirectSolve) {
   auto scene = make_sleeve_scene();  // hoop 0.9, axial 0.95: taut everywhere
   GarmentSimulation& sim = *scene->sim;

@@ -56,6 +56,8 @@ TEST(OptimizationCheckpoint, JsonRoundTripIsExact) {
   c.history[1].snap = snap;
   c.held_ordering.permutation = {2, 0, 3, 1};
   c.held_ordering.factor_nonzeros = 7.0;
+  c.held_point = HeldFactorizationPoint{c.parameters * 0.9, c.state, 1.0 / 3.0};
+  c.held_point->state.garment[1].v = 0.5 / 3.0;
   const std::vector<std::string> names{"stretch", "seam length"};
   const fs::path file = scratch("roundtrip.json");
   write_checkpoint(file, c, names);
@@ -81,6 +83,11 @@ TEST(OptimizationCheckpoint, JsonRoundTripIsExact) {
   EXPECT_EQ(r.history[1].snap->label, snap.label);
   EXPECT_EQ(r.held_ordering.permutation, c.held_ordering.permutation);
   EXPECT_EQ(r.held_ordering.factor_nonzeros, 7.0);
+  ASSERT_TRUE(r.held_point);
+  EXPECT_EQ(r.held_point->parameters, c.held_point->parameters);
+  EXPECT_EQ(r.held_point->state.garment[1].v, 0.5 / 3.0);
+  EXPECT_EQ(r.held_point->state.body, c.state.body);
+  EXPECT_EQ(r.held_point->shift, 1.0 / 3.0);
 
   EXPECT_THROW(read_checkpoint(file, {"stretch"}), InputError);  // other objective
   std::ofstream(file) << R"({"format": "something else"})";
@@ -100,6 +107,19 @@ TEST(OptimizationCheckpoint, JsonRoundTripIsExact) {
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("/held_ordering/permutation/1"), std::string::npos)
           << e.what();
+    }
+  }
+  // A held point of another design, or with a negative shift, names where it is wrong.
+  for (const auto& [key, value, where] :
+       {std::tuple{"parameters", nlohmann::json::array({0.1, 0.2}), "/held_point/parameters"},
+        std::tuple{"shift", nlohmann::json(-1.0), "/held_point/shift"}}) {
+    nlohmann::json j = checkpoint_json(c, names);
+    j["held_point"][key] = value;
+    try {
+      checkpoint_from_json(j, names, "checkpoint.json");
+      FAIL() << "expected an InputError for " << key;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
     }
   }
   fs::remove_all(file.parent_path());
@@ -163,6 +183,9 @@ TEST_P(PatternOptimizerResume, ContinuesExactlyLikeAnUninterruptedRun) {
   ASSERT_EQ(optimizer.history().size(), 7u);
   EXPECT_EQ(problem.accepted_parameters(), straight);
   EXPECT_EQ(problem.accepted_ordering().permutation, straight_ordering.permutation);
+  // The accepted point holds a factorization, made where the checkpoint says.
+  ASSERT_TRUE(problem.accepted_held_point());
+  EXPECT_TRUE(read_checkpoint(file, names).held_point);
   fs::remove_all(file.parent_path());
 }
 

@@ -89,6 +89,41 @@ struct FoldingRun {
   }
 };
 
+TEST(DesignProblem, AGradientAfterAFactorizingForwardSolveFactorizesNothingMore) {
+  test::SleeveSceneOptions o;
+  o.soft_body = true;
+  auto scene = make_sleeve_scene(o);
+  GarmentSimulation& sim = *scene->sim;
+  sim.solve();
+  auto objective = std::make_shared<DesignTermSum>();
+  objective->add(
+      std::make_shared<test::TargetPositionTerm>(test::turned_targets(sim, 0.0175, 0.002)), 1.0);
+  DesignProblem problem(sim, objective);
+  const VecX p0 = problem.initial_parameters();
+  ASSERT_TRUE(problem.evaluate(p0, true).ok);
+  problem.accept();
+  ASSERT_TRUE(problem.accepted_held_point());
+  // A pattern 8 % smaller: the forward solve needs Newton steps of its own.
+  const VecX p1 = 0.92 * p0;
+  const DesignEvaluation ev = problem.evaluate(p1, true);
+  ASSERT_TRUE(ev.ok) << ev.failure;
+  ASSERT_GT(ev.factorizations, 0);
+  EXPECT_EQ(ev.adjoint_factorizations, 0);
+  EXPECT_EQ(ev.adjoint_method, AdjointMethod::kPreconditioned);
+  EXPECT_LT(ev.adjoint_residual, 1e-11);
+  problem.accept();
+  // Held: Newton's matrix at a state before the equilibrium, with the trial's rest shape.
+  const std::optional<HeldFactorizationPoint>& held = problem.accepted_held_point();
+  ASSERT_TRUE(held);
+  EXPECT_EQ(held->parameters, p1);
+  bool elsewhere = false;
+  for (size_t i = 0; i < held->state.garment.size(); ++i) {
+    const SurfacePoint &a = held->state.garment[i], &b = problem.accepted_state().garment[i];
+    elsewhere |= a.face != b.face || a.u != b.u || a.v != b.v;
+  }
+  EXPECT_TRUE(elsewhere);
+}
+
 TEST(PatternOptimizer, BacktracksOverFailedForwardSolvesAndFlippedPatterns) {
   FoldingRun run;
   GarmentSimulation& sim = run.sim;

@@ -151,15 +151,12 @@ std::int64_t SparseCholesky::factor_nonzeros() const {
 
 Eigen::Index SparseCholesky::size() const { return impl_->n; }
 
-std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMatrix& A,
-                                        const ShiftSequence& shifts, int& factorizations,
-                                        double* last_shift, const CholeskyOrdering* ordering) {
-  if (shifts.try_unshifted) {
-    ++factorizations;
-    if (cholesky.factorize(A, ordering)) return 0.0;
-  }
+namespace {
+
+/// S of ShiftSequence: diag(max(|A_ii|, floor · mean|A_ii|)) / mean|A_ii|, and that mean.
+SparseMatrix shift_scaling(const SparseMatrix& A, double diagonal_floor, double& mean_diag) {
   const VecX diag = A.diagonal().cwiseAbs();
-  double mean_diag = diag.mean();
+  mean_diag = diag.mean();
   if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
   // The shift of DOF i is δ·max(|A_ii|, floor)/mean|A_ii|: each DOF is shifted relative to
   // its own stiffness (Levenberg–Marquardt scaling), so that soft DOFs (a garment
@@ -168,9 +165,22 @@ std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMa
   SparseMatrix scaling(A.rows(), A.cols());
   scaling.reserve(Eigen::VectorXi::Constant(A.cols(), 1));
   for (Eigen::Index i = 0; i < A.rows(); ++i)
-    scaling.insert(i, i) = std::isfinite(diag[i])
-                               ? std::max(diag[i], shifts.diagonal_floor * mean_diag) / mean_diag
-                               : 1.0;
+    scaling.insert(i, i) =
+        std::isfinite(diag[i]) ? std::max(diag[i], diagonal_floor * mean_diag) / mean_diag : 1.0;
+  return scaling;
+}
+
+}  // namespace
+
+std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMatrix& A,
+                                        const ShiftSequence& shifts, int& factorizations,
+                                        double* last_shift, const CholeskyOrdering* ordering) {
+  if (shifts.try_unshifted) {
+    ++factorizations;
+    if (cholesky.factorize(A, ordering)) return 0.0;
+  }
+  double mean_diag = 1.0;
+  const SparseMatrix scaling = shift_scaling(A, shifts.diagonal_floor, mean_diag);
   double shift = shifts.initial * mean_diag;
   for (int k = 0; k < shifts.attempts; ++k) {
     if (last_shift) *last_shift = shift;
@@ -179,6 +189,14 @@ std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMa
     shift *= shifts.growth;
   }
   return std::nullopt;
+}
+
+bool factorize_with_shift(SparseCholesky& cholesky, const SparseMatrix& A, double shift,
+                          const CholeskyOrdering* ordering, double diagonal_floor) {
+  if (shift == 0.0) return cholesky.factorize(A, ordering);
+  double mean_diag = 1.0;
+  const SparseMatrix scaling = shift_scaling(A, diagonal_floor, mean_diag);
+  return cholesky.factorize(SparseMatrix(A + shift * scaling), ordering);
 }
 
 }  // namespace tightfit

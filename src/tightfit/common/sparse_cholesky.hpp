@@ -56,6 +56,8 @@ class SparseCholesky {
   std::int64_t factor_nonzeros() const;
   /// Dimension n of the last factorized matrix.
   Eigen::Index size() const;
+  /// Exchanges factorizations (and symbolic analyses) with `other`, copying nothing.
+  void swap(SparseCholesky& other) noexcept { impl_.swap(other.impl_); }
 
  private:
   struct Impl;
@@ -85,5 +87,13 @@ std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMa
                                         const ShiftSequence& shifts, int& factorizations,
                                         double* last_shift = nullptr,
                                         const CholeskyOrdering* ordering = nullptr);
+
+/// Factorizes A + shift·S, S the scaling of ShiftSequence with `diagonal_floor`: the
+/// matrix factorize_shifted() factorized when it returned `shift` (bit for bit), so a
+/// shifted factorization can be made again from its matrix and shift alone. shift = 0
+/// factorizes A. Returns false when that matrix is not positive definite.
+bool factorize_with_shift(SparseCholesky& cholesky, const SparseMatrix& A, double shift,
+                          const CholeskyOrdering* ordering = nullptr,
+                          double diagonal_floor = ShiftSequence{}.diagonal_floor);
 
 }  // namespace tightfit

@@ -121,13 +121,59 @@ std::optional<double> AdjointSolver::factorize_held(const SparseMatrix& H_newton
       factorize_shifted(newton_factor_, H_newton, shifts, factorizations, nullptr,
                         held_ordering_.permutation.empty() ? nullptr : &held_ordering_);
   held_valid_ = shift.has_value();
+  held_shift_ = shift.value_or(0.0);
   if (held_valid_) next_ordering_ = newton_factor_.ordering();
   return shift;
 }
 
 bool AdjointSolver::factorize_held(GarmentSimulation& sim) {
   int factorizations = 0;
-  return factorize_held(sim.problem().hessian(HessianKind::kNewton), factorizations).has_value();
+  const bool ok =
+      factorize_held(sim.problem().hessian(HessianKind::kNewton), factorizations).has_value();
+  held_state_ = sim.problem().state();
+  held_rest_ = sim.rest_positions();
+  return ok;
+}
+
+bool AdjointSolver::factorize_held(GarmentSimulation& sim, double shift) {
+  ++generation_;
+  held_ordering_ = next_ordering_;
+  held_valid_ =
+      factorize_with_shift(newton_factor_, sim.problem().hessian(HessianKind::kNewton), shift,
+                           held_ordering_.permutation.empty() ? nullptr : &held_ordering_);
+  held_shift_ = held_valid_ ? shift : 0.0;
+  held_state_ = sim.problem().state();
+  held_rest_ = sim.rest_positions();
+  if (held_valid_) next_ordering_ = newton_factor_.ordering();
+  return held_valid_;
+}
+
+bool AdjointSolver::adopt(GarmentSimulation& sim, const EmbeddedState& state) {
+  NewtonSolver& newton = sim.newton();
+  if (newton.factorization().size() != sim.problem().num_dofs()) return false;
+  newton.swap_factorization(newton_factor_);
+  ++generation_;
+  held_valid_ = true;
+  held_shift_ = newton.factorization_shift();
+  held_state_ = state;
+  held_rest_ = sim.rest_positions();
+  held_ordering_ = newton_factor_.ordering();
+  next_ordering_ = held_ordering_;
+  return true;
+}
+
+bool AdjointSolver::held_made_here(const GarmentSimulation& sim) const {
+  if (!held_valid_) return false;
+  const EmbeddedState& now = sim.problem().state();
+  if (now.garment.size() != held_state_.garment.size() ||
+      now.body.rows() != held_state_.body.rows() ||
+      sim.rest_positions().rows() != held_rest_.rows())
+    return false;
+  for (size_t i = 0; i < now.garment.size(); ++i) {
+    const SurfacePoint &a = now.garment[i], &b = held_state_.garment[i];
+    if (a.face != b.face || a.u != b.u || a.v != b.v) return false;
+  }
+  return now.body == held_state_.body && sim.rest_positions() == held_rest_;
 }
 
 AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool force_fallback) {
@@ -138,7 +184,6 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
                              options_.max_regularizations};
   AdjointSolve out;
   const SparseMatrix H_newton = problem.hessian(HessianKind::kNewton);
-  const auto newton_shift = factorize_held(H_newton, out.factorizations);
   // H = H_N + Jᵀ D J, applied without assembling it (D: the projected elements only).
   const SparseMatrix D = projection_difference(sim);
   const SparseMatrix J = D.nonZeros() > 0 ? problem.position_jacobian() : SparseMatrix();
@@ -150,29 +195,42 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
   auto residual_of = [&](const VecX& lambda) {
     return (apply_exact(lambda) - rhs).norm() / rhs.norm();
   };
-
-  if (!force_fallback && held_valid_ && *newton_shift == 0.0 && D.nonZeros() == 0) {
-    out.lambda = newton_factor_.solve(rhs);
-    out.method = AdjointMethod::kDirect;
-    out.residual = residual_of(out.lambda);
-    return out;
-  }
-  if (!force_fallback && held_valid_) {
+  // λ from the held factorization: directly when it is H_N here and H_N is H, else by
+  // GMRES preconditioned with it. False when GMRES does not converge.
+  bool here = held_made_here(sim);
+  auto solve_with_held = [&](int max_iterations) {
+    if (here && held_shift_ == 0.0 && D.nonZeros() == 0) {
+      out.lambda = newton_factor_.solve(rhs);
+      out.method = AdjointMethod::kDirect;
+      out.residual = residual_of(out.lambda);
+      return true;
+    }
     GmresOptions gmres;
     gmres.relative_tolerance = options_.iterative_tolerance;
-    gmres.max_iterations = options_.max_iterative_iterations;
-    VecX lambda = newton_factor_.solve(rhs);  // the solution where nothing was projected
+    gmres.max_iterations = max_iterations;
+    VecX lambda = newton_factor_.solve(rhs);
     const GmresReport report = preconditioned_gmres(
         apply_exact, [&](const VecX& v) { return newton_factor_.solve(v); }, rhs, lambda, gmres);
-    out.krylov_iterations = report.iterations;
-    if (report.converged && lambda.allFinite()) {
-      out.lambda = std::move(lambda);
-      // No Krylov step needed: H and H_N differ by round-off only (projections of
-      // eigenvalues that are zero up to round-off).
-      out.method = report.iterations == 0 ? AdjointMethod::kDirect : AdjointMethod::kPreconditioned;
-      out.residual = report.relative_residual;
-      return out;
-    }
+    out.krylov_iterations += report.iterations;
+    if (!report.converged || !lambda.allFinite()) return false;
+    out.lambda = std::move(lambda);
+    // No Krylov step needed: the held factorization solves H to the tolerance (here, H
+    // and H_N differ by round-off only).
+    out.method = report.iterations == 0 ? AdjointMethod::kDirect : AdjointMethod::kPreconditioned;
+    out.residual = report.relative_residual;
+    return true;
+  };
+
+  if (!force_fallback && held_valid_ && !here && solve_with_held(options_.max_reuse_iterations))
+    return out;
+  if (!force_fallback && !here) {
+    const auto newton_shift = factorize_held(H_newton, out.factorizations);
+    held_state_ = problem.state();
+    held_rest_ = sim.rest_positions();
+    here = true;
+    if (newton_shift && solve_with_held(options_.max_iterative_iterations)) return out;
+  } else if (!force_fallback && held_valid_ && solve_with_held(options_.max_iterative_iterations)) {
+    return out;
   }
   const SparseMatrix H =
       problem.projects_hessians() ? problem.hessian(HessianKind::kExact) : H_newton;

@@ -20,19 +20,27 @@
 /// (EmbeddedEquilibrium::hessian(HessianKind::kExact)), including the second-derivative
 /// terms of Eq. 18.
 ///
-/// One factorization per gradient, shared with the next forward solves. The solver
-/// factorizes Newton's matrix H_N at the equilibrium (the same sparsity pattern as every
-/// Newton iteration, so the symbolic analysis is done once per garment topology):
+/// No factorization of its own in most gradients. The adjoint system is solved with a
+/// HELD factorization of a Newton matrix H_N (the same sparsity pattern as every Newton
+/// iteration, so the symbolic analysis is done once per garment topology):
+///  * the forward solve's last factorization, handed over (adopt()) when the forward solve
+///    factorized: H_N at a state one or two Newton steps before the equilibrium;
+///  * otherwise the factorization held before (made at an earlier point).
+/// H λ = ∂T/∂q is solved by GMRES preconditioned with it to `iterative_tolerance` in at
+/// most `max_reuse_iterations` (a preconditioner from a nearby state takes a handful).
+/// Only when that fails is H_N factorized at the equilibrium itself (it becomes the held
+/// factorization); then
 ///  * when no element was projected, H_N is the exact H and λ is one direct solve (so
 ///    too when projections changed H only by round-off: GMRES stops before its first
 ///    step);
-///  * otherwise H λ = ∂T/∂q is solved by GMRES preconditioned with that factorization
-///    (H and H_N differ only on the projected elements) to `iterative_tolerance`;
+///  * otherwise GMRES preconditioned with it (H and H_N differ only on the projected
+///    elements) to `iterative_tolerance`;
 ///  * only when GMRES does not converge is H itself factorized (the fallback, reported as
 ///    AdjointMethod::kFallback).
-/// The factorization of H_N at the equilibrium is kept (held_factorization()): the
-/// forward solves of the next design trials start with chord steps from it
-/// (NewtonSolver::solve's `held`), which is the first-order equilibrium predictor.
+/// The held factorization is what the forward solves of the next design trials start
+/// their chord steps with (NewtonSolver::solve's `held`): the first one is the
+/// first-order equilibrium predictor. DesignProblem records where it was made, so that a
+/// resumed run makes it again (factorize_held(sim, shift)) and continues bit for bit.
 ///
 /// Indefinite H. At a stable equilibrium H is positive semi-definite; it is singular
 /// where the equilibrium is not locally unique (e.g. slack or wrinkled cloth with no
@@ -63,6 +71,10 @@ struct AdjointOptions {
   double iterative_tolerance = 1e-12;
   /// GMRES iterations before the fallback factorizes the exact H.
   int max_iterative_iterations = 100;
+  /// GMRES iterations a held factorization made at another state may take before H_N is
+  /// factorized at the equilibrium instead (one iteration costs two triangular solves
+  /// and a product with H: a few dozen cost about one assembly and factorization).
+  int max_reuse_iterations = 30;
 };
 
 /// How the adjoint system was solved.
@@ -137,9 +149,26 @@ class AdjointSolver {
   /// The ordering the next held factorization is analysed with.
   void set_next_ordering(CholeskyOrdering ordering) { next_ordering_ = std::move(ordering); }
   /// Factorizes Newton's matrix at the simulation's current state as solve() does (it
-  /// becomes the held factorization; a new generation). Returns false when it is not
-  /// positive definite even with the largest shift (nothing is held then).
+  /// becomes the held factorization, made here; a new generation). Returns false when it
+  /// is not positive definite even with the largest shift (nothing is held then).
   bool factorize_held(GarmentSimulation& sim);
+  /// Makes a held factorization again: Newton's matrix at the simulation's current state
+  /// and rest positions shifted by `shift` (factorize_with_shift), analysed with the
+  /// next ordering (set_next_ordering). Returns false (nothing held) when that matrix is
+  /// not positive definite.
+  bool factorize_held(GarmentSimulation& sim, double shift);
+  /// Takes over the forward solve's last factorization (NewtonSolver::swap_factorization)
+  /// as the held one (a new generation): Newton's matrix at `state` (where that solve
+  /// factorized it) and the simulation's current rest positions. Returns false, holding
+  /// nothing new, when the solver's factorization is not of the simulation's size.
+  bool adopt(GarmentSimulation& sim, const EmbeddedState& state);
+  /// The diagonal shift δ of the held factorization (0: unshifted).
+  double held_shift() const { return held_shift_; }
+  /// The state the held factorization's Newton matrix was assembled at.
+  const EmbeddedState& held_state() const { return held_state_; }
+  /// True when the held factorization is Newton's matrix at the simulation's current
+  /// state and rest positions.
+  bool held_made_here(const GarmentSimulation& sim) const;
 
   const AdjointOptions& options() const { return options_; }
 
@@ -151,6 +180,9 @@ class AdjointSolver {
   SparseCholesky newton_factor_;
   SparseCholesky exact_factor_;
   bool held_valid_ = false;
+  double held_shift_ = 0.0;   // its diagonal shift
+  EmbeddedState held_state_;  // where it was made
+  Points2 held_rest_;
   long generation_ = 0;
   CholeskyOrdering held_ordering_;  // what the held factorization was analysed with
   CholeskyOrdering next_ordering_;  // what the next one will be

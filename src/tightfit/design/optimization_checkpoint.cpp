@@ -46,6 +46,35 @@ std::vector<VecX> read_vectors(const nlohmann::json& j, const std::string& sourc
   return out;
 }
 
+nlohmann::json state_json(const EmbeddedState& state) {
+  nlohmann::json garment = nlohmann::json::array();
+  for (const SurfacePoint& s : state.garment) garment.push_back({s.face, s.u, s.v});
+  nlohmann::json body = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < state.body.rows(); ++i)
+    body.push_back({state.body(i, 0), state.body(i, 1), state.body(i, 2)});
+  return {{"garment", garment}, {"body", body}};
+}
+
+/// The state object read by `fields` (at `path`, e.g. "/state").
+EmbeddedState read_state(JsonFields& fields, const std::string& source, const std::string& path) {
+  EmbeddedState state;
+  const nlohmann::json& garment = fields.raw("garment");
+  if (!garment.is_array()) fields.fail("expected an array of [face, u, v]", "garment");
+  for (size_t i = 0; i < garment.size(); ++i) {
+    const nlohmann::json& e = garment[i];
+    if (!e.is_array() || e.size() != 3 || !e[0].is_number_integer() || !e[1].is_number() ||
+        !e[2].is_number())
+      throw InputError(source, path + "/garment/" + std::to_string(i) + ": expected [face, u, v]");
+    state.garment.push_back({e[0].get<int>(), e[1].get<double>(), e[2].get<double>()});
+  }
+  const std::vector<VecX> body = read_vectors(fields.raw("body"), source, path + "/body", 3);
+  state.body.resize(static_cast<Eigen::Index>(body.size()), 3);
+  for (size_t i = 0; i < body.size(); ++i)
+    state.body.row(static_cast<Eigen::Index>(i)) = body[i].transpose();
+  fields.finish();
+  return state;
+}
+
 }  // namespace
 
 std::vector<std::string> term_names(const DesignTermSum& objective) {
@@ -200,11 +229,6 @@ OptimizationIteration iteration_from_json(const nlohmann::json& j,
 
 nlohmann::json checkpoint_json(const OptimizationCheckpoint& c,
                                const std::vector<std::string>& term_names) {
-  nlohmann::json garment = nlohmann::json::array();
-  for (const SurfacePoint& s : c.state.garment) garment.push_back({s.face, s.u, s.v});
-  nlohmann::json body = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < c.state.body.rows(); ++i)
-    body.push_back({c.state.body(i, 0), c.state.body(i, 1), c.state.body(i, 2)});
   nlohmann::json s = nlohmann::json::array(), y = nlohmann::json::array();
   for (const VecX& v : c.memory.s) s.push_back(vector_json(v));
   for (const VecX& v : c.memory.y) y.push_back(vector_json(v));
@@ -216,12 +240,16 @@ nlohmann::json checkpoint_json(const OptimizationCheckpoint& c,
                       {"iteration", c.iteration},
                       {"terms", term_names},
                       {"parameters", vector_json(c.parameters)},
-                      {"state", {{"garment", garment}, {"body", body}}},
+                      {"state", state_json(c.state)},
                       {"memory", {{"s", s}, {"y", y}}},
                       {"history", history}};
   if (!c.held_ordering.permutation.empty())
     j["held_ordering"] = {{"permutation", c.held_ordering.permutation},
                           {"factor_nonzeros", c.held_ordering.factor_nonzeros}};
+  if (c.held_point)
+    j["held_point"] = {{"parameters", vector_json(c.held_point->parameters)},
+                       {"state", state_json(c.held_point->state)},
+                       {"shift", c.held_point->shift}};
   if (c.remeshed) {
     nlohmann::json mesh_rest = nlohmann::json::array();
     for (const Points2& rest : c.remeshed->mesh_rest) {
@@ -253,21 +281,7 @@ OptimizationCheckpoint checkpoint_from_json(const nlohmann::json& j,
   c.parameters = read_vector(f.raw("parameters"), source, "/parameters");
 
   auto state = f.object("state", true);
-  const nlohmann::json& garment = state->raw("garment");
-  if (!garment.is_array()) state->fail("expected an array of [face, u, v]", "garment");
-  for (size_t i = 0; i < garment.size(); ++i) {
-    const nlohmann::json& e = garment[i];
-    const std::string p = "/state/garment/" + std::to_string(i);
-    if (!e.is_array() || e.size() != 3 || !e[0].is_number_integer() || !e[1].is_number() ||
-        !e[2].is_number())
-      throw InputError(source, p + ": expected [face, u, v]");
-    c.state.garment.push_back({e[0].get<int>(), e[1].get<double>(), e[2].get<double>()});
-  }
-  const std::vector<VecX> body = read_vectors(state->raw("body"), source, "/state/body", 3);
-  c.state.body.resize(static_cast<Eigen::Index>(body.size()), 3);
-  for (size_t i = 0; i < body.size(); ++i)
-    c.state.body.row(static_cast<Eigen::Index>(i)) = body[i].transpose();
-  state->finish();
+  c.state = read_state(*state, source, "/state");
 
   auto memory = f.object("memory", true);
   c.memory.s = read_vectors(memory->raw("s"), source, "/memory/s", c.parameters.size());
@@ -292,6 +306,18 @@ OptimizationCheckpoint checkpoint_from_json(const nlohmann::json& j,
     }
     c.held_ordering.factor_nonzeros = ordering->positive("factor_nonzeros");
     ordering->finish();
+  }
+  if (auto held = f.object("held_point")) {
+    HeldFactorizationPoint h;
+    h.parameters =
+        read_vector(held->raw("parameters"), source, "/held_point/parameters", c.parameters.size());
+    auto held_state = held->object("state", true);
+    h.state = read_state(*held_state, source, "/held_point/state");
+    h.shift = held->number("shift");
+    if (!std::isfinite(h.shift) || h.shift < 0.0)
+      held->fail("expected a finite shift >= 0", "shift");
+    held->finish();
+    c.held_point = std::move(h);
   }
   if (auto remeshed = f.object("remeshed")) {
     RemeshedDesign d;

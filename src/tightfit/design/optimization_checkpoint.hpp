@@ -7,8 +7,11 @@
 ///   "state": {"garment": [[face, u, v], ...], "body": [[x, y, z], ...] (m)},
 ///   "memory": {"s": [[...], ...], "y": [[...], ...]}, "history": [iteration records],
 ///   "held_ordering" (optional): {"permutation": [n indices], "factor_nonzeros"}, the
-///     fill-reducing ordering the adjoint's factorization at the accepted point was
+///     fill-reducing ordering the held factorization of the accepted point was
 ///     analysed with (adjoint_gradient.hpp), so that a resumed run factorizes alike,
+///   "held_point" (optional): {"parameters": [p...], "state": {...}, "shift": δ}, where
+///     that factorization was made (DesignProblem::accepted_held_point): Newton's matrix
+///     at that state and those parameters' rest positions, shifted by δ,
 ///   "remeshed" (only after a remeshing): {"pattern": the complete pattern with the
 ///     reference rest positions (garment/pattern_record.hpp), "mesh_rest": per piece
 ///     [[x, y], ...] (m), the rest positions its mesh was made with}}

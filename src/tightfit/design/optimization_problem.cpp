@@ -163,7 +163,11 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
     const long held_generation = accepted_generation_;
     accepted_generation_ = -1;
     if (held_generation >= 0) {
-      if (held_generation != adjoint_.generation()) adjoint_.factorize_held(sim_);
+      if (held_generation != adjoint_.generation()) {
+        adjoint_.factorize_held(sim_);
+        record_held_point(accepted_p_);
+        accepted_held_ = held_point_;
+      }
       if (adjoint_.held_factorization()) accepted_generation_ = adjoint_.generation();
     }
     out.seconds = seconds_since(t0);
@@ -318,7 +322,13 @@ DesignEvaluation DesignProblem::evaluate_at(const Reference& ref, const VecX& p,
     sim_.set_state(start);
     const Points3 start_positions = sim_.problem().garment_positions();
     sim_.set_rest_positions(rest);
-    const NewtonReport report = sim_.solve({held, options_.reuse_factorizations});
+    newton_factorized_ = false;
+    ChordSteps chords{held, options_.reuse_factorizations};
+    chords.on_factorized = [this] {
+      newton_state_ = sim_.problem().state();
+      newton_factorized_ = true;
+    };
+    const NewtonReport report = sim_.solve(chords);
     ev.newton_iterations = report.iterations;
     ev.chord_steps = report.chord_steps;
     ev.factorizations = report.factorizations;
@@ -384,14 +394,22 @@ bool DesignProblem::add_gradient_at(const Reference& ref, DesignEvaluation& ev) 
     throw std::logic_error("DesignProblem::add_gradient: no successful evaluation to complete");
   const auto t0 = SteadyClock::now();
   try {
+    // The forward solve's last factorization is held from now on (when the adjoint
+    // needs one of its own at the equilibrium, that one is). A shifted one is not: it
+    // preconditions the next predictor and the adjoint's GMRES poorly.
+    const long generation = adjoint_.generation();
+    if (newton_factorized_ && sim_.newton().factorization_shift() == 0.0)
+      adjoint_.adopt(sim_, newton_state_);
+    newton_factorized_ = false;
     const AdjointResult r = adjoint_.rest_gradient(sim_, *ref.objective);
+    if (adjoint_.generation() != generation) record_held_point(current_p_);
     ev.gradient = ref.coordinates.pull_back(r.rest_gradient);
     ev.hessian_shift = r.hessian_shift;
     ev.adjoint_residual = r.adjoint_residual;
     ev.adjoint_method = r.method;
     ev.krylov_iterations = r.krylov_iterations;
     ev.adjoint_factorizations = r.factorizations;
-    if (r.solved) gradient_generation_ = adjoint_.generation();
+    if (adjoint_.held_factorization()) gradient_generation_ = adjoint_.generation();
     // Never accepted with a non-finite gradient: it would enter the L-BFGS memory and
     // every later direction.
     if (!ev.gradient.allFinite()) {
@@ -414,8 +432,20 @@ void DesignProblem::accept() {
   accepted_p_ = current_p_;
   accepted_state_ = sim_.problem().state();
   accepted_generation_ = gradient_generation_;
-  if (accepted_generation_ >= 0 && accepted_generation_ == adjoint_.generation())
+  if (accepted_generation_ >= 0 && accepted_generation_ == adjoint_.generation()) {
     accepted_ordering_ = adjoint_.held_ordering();
+    accepted_held_ = held_point_;
+  } else {
+    accepted_held_.reset();
+  }
+}
+
+void DesignProblem::record_held_point(const VecX& p) {
+  if (!adjoint_.held_factorization()) {
+    held_point_.reset();
+    return;
+  }
+  held_point_ = HeldFactorizationPoint{p, adjoint_.held_state(), adjoint_.held_shift()};
 }
 
 void DesignProblem::restore_accepted() {
@@ -426,7 +456,8 @@ void DesignProblem::restore_accepted() {
 }
 
 void DesignProblem::set_accepted(const VecX& p, const EmbeddedState& state,
-                                 const CholeskyOrdering& held_ordering) {
+                                 const CholeskyOrdering& held_ordering,
+                                 const std::optional<HeldFactorizationPoint>& held_point) {
   if (p.size() != num_parameters())
     throw InputError("checkpoint", "it has " + std::to_string(p.size()) +
                                        " design parameters, the garment needs " +
@@ -434,11 +465,26 @@ void DesignProblem::set_accepted(const VecX& p, const EmbeddedState& state,
   if (static_cast<int>(state.garment.size()) != sim_.garment().num_garment_vertices() ||
       state.body.rows() != sim_.body().volume.vertices.rows())
     throw InputError("checkpoint", "its state does not match the garment and body");
+  if (held_point && (held_point->parameters.size() != p.size() ||
+                     held_point->state.garment.size() != state.garment.size() ||
+                     held_point->state.body.rows() != state.body.rows()))
+    throw InputError("checkpoint", "its held factorization point does not match the design");
   accepted_p_ = p;
   accepted_state_ = state;
   accepted_generation_ = -1;
   accepted_ordering_ = held_ordering;
+  accepted_held_.reset();
   adjoint_.set_next_ordering(held_ordering);
+  if (held_point) {
+    // The factorization the uninterrupted run held here, made again where it was made.
+    sim_.set_rest_positions(rest_positions(held_point->parameters));
+    sim_.set_state(held_point->state);
+    if (adjoint_.factorize_held(sim_, held_point->shift)) {
+      record_held_point(held_point->parameters);
+      accepted_generation_ = adjoint_.generation();
+      accepted_held_ = held_point_;
+    }
+  }
   restore_accepted();
 }
 

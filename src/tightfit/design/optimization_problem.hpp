@@ -10,12 +10,15 @@
 ///
 /// Evaluating at p sets the simulation's rest positions to W p and solves for the
 /// equilibrium, warm-started from the last ACCEPTED equilibrium (never from a rejected
-/// trial). Newton's first steps there are chord steps with the factorization the
-/// adjoint made at the accepted equilibrium (AdjointSolver::held_factorization): the
-/// first one is the first-order prediction Δq = −H⁻¹ (∂g/∂p) Δp of the new
-/// equilibrium, and while the chord steps contract fast the forward solve needs no
-/// factorization of its own. Everything a trial starts from is a function of the
-/// accepted point, so a resumed run repeats an uninterrupted one exactly. The gradient comes from
+/// trial). Newton's first steps there are chord steps with the factorization held for
+/// the accepted point (AdjointSolver::held_factorization: the accepted trial's last
+/// Newton factorization, or one made at an earlier point or at the equilibrium when
+/// the adjoint needed it): the first one is the first-order prediction
+/// Δq = −H⁻¹ (∂g/∂p) Δp of the new equilibrium, and while the chord steps contract fast
+/// the forward solve needs no factorization of its own. Everything a trial starts from
+/// is a function of the accepted point and of where its held factorization was made
+/// (accepted_held_point(), stored in the checkpoint), so a resumed run repeats an
+/// uninterrupted one exactly. The gradient comes from
 /// the adjoint (adjoint_gradient.hpp) and the biharmonic pull-back, dT/dp = Wᵀ dT/dXbar. A trial
 /// fails, without throwing, when
 ///  * a rest triangle flips or shrinks below `min_area_ratio` of its initial area,
@@ -151,14 +154,22 @@ class DesignProblem {
   /// put there too. Throws InputError when sizes do not match this problem.
   /// `held_ordering`: the checkpoint's ordering for the factorization at the accepted
   /// point (accepted_ordering()); empty: search one.
+  /// `held_point`: where the checkpoint's held factorization was made
+  /// (accepted_held_point()); it is made again there. Absent: made at the accepted
+  /// point by the first gradient. Throws InputError when its sizes do not match.
   void set_accepted(const VecX& p, const EmbeddedState& state,
-                    const CholeskyOrdering& held_ordering = {});
+                    const CholeskyOrdering& held_ordering = {},
+                    const std::optional<HeldFactorizationPoint>& held_point = std::nullopt);
 
   const VecX& accepted_parameters() const { return accepted_p_; }
   const EmbeddedState& accepted_state() const { return accepted_state_; }
-  /// The fill-reducing ordering the adjoint's factorization at the accepted point was
+  /// The fill-reducing ordering the held factorization of the accepted point was
   /// analysed with (AdjointSolver::held_ordering; empty: its own search).
   const CholeskyOrdering& accepted_ordering() const { return accepted_ordering_; }
+  /// Where the held factorization of the accepted point was made (nullopt: none held).
+  const std::optional<HeldFactorizationPoint>& accepted_held_point() const {
+    return accepted_held_;
+  }
 
   /// Xbar(p) (n_p×2, m). Throws std::invalid_argument for a wrong length.
   Points2 rest_positions(const VecX& p) const;
@@ -243,6 +254,13 @@ class DesignProblem {
   CholeskyOrdering accepted_ordering_;
   VecX current_p_;  // parameters the simulation's rest positions are set to
   bool last_ok_ = false;
+  /// Records that the adjoint's held factorization was (re)made at parameters `p`.
+  void record_held_point(const VecX& p);
+
+  EmbeddedState newton_state_;      // where the last forward solve last factorized
+  bool newton_factorized_ = false;  // the last forward solve factorized (at newton_state_)
+  std::optional<HeldFactorizationPoint> held_point_;     // of the adjoint's held factorization
+  std::optional<HeldFactorizationPoint> accepted_held_;  // of the accepted point's
   long gradient_generation_ = -1;  // adjoint factorization made at the last evaluation
   long accepted_generation_ = -1;  // adjoint factorization made at the accepted point
 };

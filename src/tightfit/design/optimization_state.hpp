@@ -102,6 +102,16 @@ struct RemeshedDesign {
 /// Everything needed to continue a run: the accepted parameters and equilibrium, the
 /// L-BFGS memory and the history so far, and the remeshed pattern when pieces were
 /// remeshed.
+/// Where the factorization the next forward solves start from was made (the held
+/// factorization, adjoint_gradient.hpp): Newton's matrix at `state` with the rest
+/// positions of `parameters`, shifted by `shift` (N/m at a DOF of mean stiffness). A
+/// resumed run makes it again from these.
+struct HeldFactorizationPoint {
+  VecX parameters;      ///< p (m)
+  EmbeddedState state;  ///< the state its Newton matrix was assembled at
+  double shift = 0.0;   ///< diagonal shift δ (0: unshifted)
+};
+
 struct OptimizationCheckpoint {
   int iteration = 0;    ///< last accepted iteration
   VecX parameters;      ///< p (m)
@@ -109,9 +119,12 @@ struct OptimizationCheckpoint {
   LbfgsMemory memory;   ///< pairs since the last remeshing (it clears the memory)
   std::vector<OptimizationIteration> history;
   std::optional<RemeshedDesign> remeshed;  ///< set once a remeshing succeeded
-  /// The ordering the adjoint's factorization at the accepted point was analysed with
+  /// The ordering the held factorization of the accepted point was analysed with
   /// (DesignProblem::accepted_ordering; empty: its own search).
   CholeskyOrdering held_ordering;
+  /// Where that factorization was made (absent in checkpoints of older versions: the
+  /// resumed run then factorizes at the accepted point).
+  std::optional<HeldFactorizationPoint> held_point;
 };
 
 }  // namespace tightfit

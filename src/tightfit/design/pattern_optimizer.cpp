@@ -128,7 +128,8 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
                          " garment surface points, the garment has " +
                          std::to_string(problem_.simulation().garment().num_garment_vertices()) +
                          " vertices (another garment or mesh?)");
-  problem_.set_accepted(checkpoint.parameters, checkpoint.state, checkpoint.held_ordering);
+  problem_.set_accepted(checkpoint.parameters, checkpoint.state, checkpoint.held_ordering,
+                        checkpoint.held_point);
   memory_ = checkpoint.memory;
   while (static_cast<int>(memory_.s.size()) > options_.memory) {
     memory_.s.erase(memory_.s.begin());
@@ -174,6 +175,7 @@ OptimizationCheckpoint PatternOptimizer::checkpoint() const {
   c.history = history_;
   c.remeshed = problem_.remeshed_design();
   c.held_ordering = problem_.accepted_ordering();
+  c.held_point = problem_.accepted_held_point();
   return c;
 }
 

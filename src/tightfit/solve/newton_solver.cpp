@@ -98,6 +98,8 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
       record.regularization =
           factorize_regularized(H, report.factorizations, held ? &held->ordering() : nullptr);
       record.seconds_factorization = seconds_since(t0);
+      factorization_shift_ = record.regularization;
+      if (chords.on_factorized) chords.on_factorized();
       report.factor_nonzeros = cholesky_.factor_nonzeros();
       factor = &cholesky_;
       reuse = chords.reuse_own && options_.max_chord_steps > 0;

@@ -105,6 +105,9 @@ struct ChordSteps {
   const SparseCholesky* held = nullptr;
   /// Also reuse each Newton step's own factorization for the steps after it.
   bool reuse_own = false;
+  /// Called after each Hessian factorization of the solve, with the problem still at the
+  /// state it was assembled at (e.g. to record where factorization() was made).
+  std::function<void()> on_factorized = nullptr;
 };
 
 class NewtonSolver {
@@ -137,6 +140,12 @@ class NewtonSolver {
   /// The factorization of the last Hessian that was factorized (at the state before the
   /// last full Newton step).
   const SparseCholesky& factorization() const { return cholesky_; }
+  /// The diagonal shift δ of factorization() (ShiftSequence's scaling; 0: unshifted):
+  /// factorize_with_shift(H, δ) makes it again from its Hessian H.
+  double factorization_shift() const { return factorization_shift_; }
+  /// Hands factorization() over to `into` by exchanging the two (nothing is copied); the
+  /// solver then holds what `into` held and factorizes anew before using its own.
+  void swap_factorization(SparseCholesky& into) noexcept { cholesky_.swap(into); }
 
   const NewtonOptions& options() const { return options_; }
 
@@ -156,7 +165,8 @@ class NewtonSolver {
 
   NewtonOptions options_;
   SparseCholesky cholesky_;
-  double shift_hint_ = 0.0;  // last successful shift in this solve() (0: none needed)
+  double shift_hint_ = 0.0;           // last successful shift in this solve() (0: none needed)
+  double factorization_shift_ = 0.0;  // δ of cholesky_
 };
 
 }  // namespace tightfit
