@@ -151,6 +151,25 @@ TEST(AdjointSolve, NewtonsLastFactorizationSolvesTheAdjointWithoutOneOfItsOwn) {
   }
 }
 
+TEST(AdjointSolve, AFactorizationHeldForAnotherGarmentIsNotUsed) {
+  // After a remeshing the held factorization is of the old garment's size: the next
+  // adjoint solve factorizes anew instead of applying it.
+  AdjointSolver solver;
+  for (const double edge : {0.016, 0.021}) {
+    SleeveSceneOptions o;
+    o.edge_length = edge;
+    auto scene = make_sleeve_scene(o);
+    GarmentSimulation& sim = *scene->sim;
+    sim.solve();
+    const VecX rhs = test::random_vector(sim.problem().num_dofs(), 14);
+    const AdjointSolve a = solver.solve(sim, rhs);
+    EXPECT_EQ(a.factorizations, 1) << "edge " << edge;
+    EXPECT_LT(a.residual, 1e-10);
+    ASSERT_NE(solver.held_factorization(), nullptr);
+    EXPECT_EQ(solver.held_factorization()->size(), sim.problem().num_dofs());
+  }
+}
+
 TEST(AdjointSolve, TautEquilibriumNeedsOneDirectSolve) {
   auto scene = make_sleeve_scene();  // hoop 0.9, axial 0.95: taut everywhere
   GarmentSimulation& sim = *scene->sim;

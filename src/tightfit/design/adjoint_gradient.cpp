@@ -197,6 +197,8 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
   };
   // λ from the held factorization: directly when it is H_N here and H_N is H, else by
   // GMRES preconditioned with it. False when GMRES does not converge.
+  // A factorization held from before a remeshing is of another size: not usable.
+  if (held_valid_ && newton_factor_.size() != rhs.size()) held_valid_ = false;
   bool here = held_made_here(sim);
   auto solve_with_held = [&](int max_iterations) {
     if (here && held_shift_ == 0.0 && D.nonZeros() == 0) {
