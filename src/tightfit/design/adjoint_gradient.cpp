@@ -183,25 +183,29 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
   const ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
                              options_.max_regularizations};
   AdjointSolve out;
-  const SparseMatrix H_newton = problem.hessian(HessianKind::kNewton);
-  // H = H_N + Jᵀ D J, applied without assembling it (D: the projected elements only).
-  const SparseMatrix D = projection_difference(sim);
-  const SparseMatrix J = D.nonZeros() > 0 ? problem.position_jacobian() : SparseMatrix();
-  auto apply_exact = [&](const VecX& v) {
-    VecX y = H_newton * v;
-    if (D.nonZeros() > 0) y += J.transpose() * (D * (J * v));
-    return y;
+  // The exact H applied from its factors; H_N and what its projection took away (D, the
+  // projected elements only: H = H_N + Jᵀ D J) only where a factorization is made here.
+  const LinearOperator apply_exact = problem.hessian_operator(HessianKind::kExact);
+  std::optional<SparseMatrix> H_newton;
+  std::optional<bool> projected;
+  auto newton_matrix = [&]() -> const SparseMatrix& {
+    if (!H_newton) H_newton = problem.hessian(HessianKind::kNewton);
+    return *H_newton;
+  };
+  auto anything_projected = [&] {
+    if (!projected) projected = projection_difference(sim).nonZeros() > 0;
+    return *projected;
   };
   auto residual_of = [&](const VecX& lambda) {
     return (apply_exact(lambda) - rhs).norm() / rhs.norm();
   };
-  // λ from the held factorization: directly when it is H_N here and H_N is H, else by
-  // GMRES preconditioned with it. False when GMRES does not converge.
   // A factorization held from before a remeshing is of another size: not usable.
   if (held_valid_ && newton_factor_.size() != rhs.size()) held_valid_ = false;
   bool here = held_made_here(sim);
+  // λ from the held factorization: directly when it is H_N here and H_N is H, else by
+  // GMRES preconditioned with it. False when GMRES does not converge.
   auto solve_with_held = [&](int max_iterations) {
-    if (here && held_shift_ == 0.0 && D.nonZeros() == 0) {
+    if (here && held_shift_ == 0.0 && !anything_projected()) {
       out.lambda = newton_factor_.solve(rhs);
       out.method = AdjointMethod::kDirect;
       out.residual = residual_of(out.lambda);
@@ -226,7 +230,7 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
   if (!force_fallback && held_valid_ && !here && solve_with_held(options_.max_reuse_iterations))
     return out;
   if (!force_fallback && !here) {
-    const auto newton_shift = factorize_held(H_newton, out.factorizations);
+    const auto newton_shift = factorize_held(newton_matrix(), out.factorizations);
     held_state_ = problem.state();
     held_rest_ = sim.rest_positions();
     here = true;
@@ -235,7 +239,7 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
     return out;
   }
   const SparseMatrix H =
-      problem.projects_hessians() ? problem.hessian(HessianKind::kExact) : H_newton;
+      problem.projects_hessians() ? problem.hessian(HessianKind::kExact) : newton_matrix();
   double last = 0.0;
   const auto shift = factorize_shifted(exact_factor_, H, shifts, out.factorizations, &last);
   if (!shift)

@@ -138,8 +138,8 @@ SparseMatrix EmbeddedEquilibrium::hessian(HessianKind kind) {
   return H;
 }
 
-std::optional<LinearOperator> EmbeddedEquilibrium::hessian_operator() {
-  auto parts = std::make_shared<const HessianParts>(hessian_parts(HessianKind::kNewton));
+LinearOperator EmbeddedEquilibrium::hessian_operator(HessianKind kind) {
+  auto parts = std::make_shared<const HessianParts>(hessian_parts(kind));
   return LinearOperator([parts](const VecX& v) {
     const VecX xv = parts->J * v;
     return VecX(parts->J.transpose() * (parts->Hxx * xv) + parts->extra * v);

@@ -55,7 +55,12 @@ class EmbeddedEquilibrium : public NewtonProblem {
   SparseMatrix hessian() override { return hessian(HessianKind::kNewton); }
   /// The product with the Newton Hessian at the current state, v ↦ Jᵀ(H_xx (J v)) + E v,
   /// from its factors (no sparse matrix product).
-  std::optional<LinearOperator> hessian_operator() override;
+  std::optional<LinearOperator> hessian_operator() override {
+    return hessian_operator(HessianKind::kNewton);
+  }
+  /// The product with the Hessian of the given kind at the current state, from its
+  /// factors (J, H_xx, E: no sparse matrix product is formed).
+  LinearOperator hessian_operator(HessianKind kind);
   /// The Hessian of the given kind at the current state (num_dofs × num_dofs, N/m, both
   /// triangles stored, the pattern independent of the state and of the kind).
   SparseMatrix hessian(HessianKind kind);
