@@ -185,17 +185,21 @@ TEST_F(OptimizeCli, ResumeContinuesFromTheCheckpoint) {
 
   // A checkpoint whose garment state names a face the body does not have, or a point
   // outside its face: an input error at that point, before any solve.
+  // So too in the state the held factorization was made at.
   for (const nlohmann::json& point :
        {nlohmann::json::array({1000000, 0.2, 0.2}), nlohmann::json::array({0, 0.7, 0.7})}) {
-    nlohmann::json checkpoint = read_json(out / "checkpoint.json");
-    checkpoint["state"]["garment"][3] = point;
-    const fs::path bad = dir_ / "bad";
-    fs::create_directories(bad);
-    std::ofstream(bad / "checkpoint.json") << checkpoint.dump();
-    r = run_cli("optimize " + second.string() + " --out " + (dir_ / "out3").string() +
-                " --resume " + bad.string());
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_NE(r.output.find("/state/garment/3"), std::string::npos) << r.output;
+    for (const std::string where : {"/state/garment/3", "/held_point/state/garment/3"}) {
+      nlohmann::json checkpoint = read_json(out / "checkpoint.json");
+      ASSERT_TRUE(checkpoint.contains("held_point"));
+      checkpoint[nlohmann::json::json_pointer(where)] = point;
+      const fs::path bad = dir_ / "bad";
+      fs::create_directories(bad);
+      std::ofstream(bad / "checkpoint.json") << checkpoint.dump();
+      r = run_cli("optimize " + second.string() + " --out " + (dir_ / "out3").string() +
+                  " --resume " + bad.string());
+      EXPECT_EQ(r.exit_code, 2) << r.output;
+      EXPECT_NE(r.output.find(where), std::string::npos) << r.output;
+    }
   }
 }
 
