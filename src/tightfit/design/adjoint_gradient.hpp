@@ -16,15 +16,17 @@
 ///
 /// Exact Hessian. The simulation's Newton matrix projects each cloth/seam element
 /// Hessian onto the PSD cone (a descent safeguard) and is therefore not ∂g/∂q wherever
-/// an element is indefinite. The adjoint system uses the exact Hessian
-/// (EmbeddedEquilibrium::hessian(HessianKind::kExact)), including the second-derivative
-/// terms of Eq. 18.
+/// an element is indefinite. The adjoint system uses the exact Hessian, including the
+/// second-derivative terms of Eq. 18, applied from its factors
+/// (EmbeddedEquilibrium::hessian_operator(HessianKind::kExact); assembled only for the
+/// fallback).
 ///
 /// No factorization of its own in most gradients. The adjoint system is solved with a
 /// HELD factorization of a Newton matrix H_N (the same sparsity pattern as every Newton
 /// iteration, so the symbolic analysis is done once per garment topology):
 ///  * the forward solve's last factorization, handed over (adopt()) when the forward solve
-///    factorized: H_N at a state one or two Newton steps before the equilibrium;
+///    factorized without a diagonal shift (DesignProblem): H_N at a state one or two
+///    Newton steps before the equilibrium;
 ///  * otherwise the factorization held before (made at an earlier point).
 /// H λ = ∂T/∂q is solved by GMRES preconditioned with it to `iterative_tolerance` in at
 /// most `max_reuse_iterations` (a preconditioner from a nearby state takes a handful).
@@ -132,9 +134,9 @@ class AdjointSolver {
   /// when no method succeeds.
   AdjointSolve solve(GarmentSimulation& sim, const VecX& rhs, bool force_fallback = false);
 
-  /// The factorization of Newton's matrix H_N at the state of the last solve() (null
-  /// before one). Its generation() grows with every new factorization, so a holder can
-  /// tell whether it still describes the state it was taken at.
+  /// The held factorization: Newton's matrix H_N at held_state() (shifted by
+  /// held_shift()), null while none is held. Its generation() grows with every new one
+  /// (made or adopted), so a holder can tell whether it is still the one it took.
   const SparseCholesky* held_factorization() const {
     return held_valid_ ? &newton_factor_ : nullptr;
   }
