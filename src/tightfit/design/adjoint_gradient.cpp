@@ -111,7 +111,8 @@ AdjointResult AdjointSolver::rest_gradient(GarmentSimulation& sim, const DesignT
   return r;
 }
 
-std::optional<double> AdjointSolver::factorize_held(const SparseMatrix& H_newton,
+std::optional<double> AdjointSolver::factorize_held(const GarmentSimulation& sim,
+                                                    const SparseMatrix& H_newton,
                                                     int& factorizations) {
   const ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
                              options_.max_regularizations};
@@ -122,17 +123,16 @@ std::optional<double> AdjointSolver::factorize_held(const SparseMatrix& H_newton
                         held_ordering_.permutation.empty() ? nullptr : &held_ordering_);
   held_valid_ = shift.has_value();
   held_shift_ = shift.value_or(0.0);
+  held_state_ = sim.problem().state();
+  held_rest_ = sim.rest_positions();
   if (held_valid_) next_ordering_ = newton_factor_.ordering();
   return shift;
 }
 
 bool AdjointSolver::factorize_held(GarmentSimulation& sim) {
   int factorizations = 0;
-  const bool ok =
-      factorize_held(sim.problem().hessian(HessianKind::kNewton), factorizations).has_value();
-  held_state_ = sim.problem().state();
-  held_rest_ = sim.rest_positions();
-  return ok;
+  return factorize_held(sim, sim.problem().hessian(HessianKind::kNewton), factorizations)
+      .has_value();
 }
 
 bool AdjointSolver::factorize_held(GarmentSimulation& sim, double shift) {
@@ -230,9 +230,7 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
   if (!force_fallback && held_valid_ && !here && solve_with_held(options_.max_reuse_iterations))
     return out;
   if (!force_fallback && !here) {
-    const auto newton_shift = factorize_held(newton_matrix(), out.factorizations);
-    held_state_ = problem.state();
-    held_rest_ = sim.rest_positions();
+    const auto newton_shift = factorize_held(sim, newton_matrix(), out.factorizations);
     here = true;
     if (newton_shift && solve_with_held(options_.max_iterative_iterations)) return out;
   } else if (!force_fallback && held_valid_ && solve_with_held(options_.max_iterative_iterations)) {

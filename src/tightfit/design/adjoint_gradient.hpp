@@ -175,8 +175,10 @@ class AdjointSolver {
   const AdjointOptions& options() const { return options_; }
 
  private:
-  /// factorize_held() with the matrix already assembled; returns the shift used.
-  std::optional<double> factorize_held(const SparseMatrix& H_newton, int& factorizations);
+  /// factorize_held() with the matrix already assembled (at sim's state); returns the
+  /// shift used.
+  std::optional<double> factorize_held(const GarmentSimulation& sim, const SparseMatrix& H_newton,
+                                       int& factorizations);
 
   AdjointOptions options_;
   SparseCholesky newton_factor_;

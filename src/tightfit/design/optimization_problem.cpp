@@ -165,8 +165,8 @@ RemeshOutcome DesignProblem::remesh(const std::vector<int>& pieces) {
     if (held_generation >= 0) {
       if (held_generation != adjoint_.generation()) {
         adjoint_.factorize_held(sim_);
-        record_held_point(accepted_p_);
-        accepted_held_ = held_point_;
+        held_parameters_ = accepted_p_;
+        accepted_held_ = current_held_point();
       }
       if (adjoint_.held_factorization()) accepted_generation_ = adjoint_.generation();
     }
@@ -402,7 +402,7 @@ bool DesignProblem::add_gradient_at(const Reference& ref, DesignEvaluation& ev) 
       adjoint_.adopt(sim_, newton_state_);
     newton_factorized_ = false;
     const AdjointResult r = adjoint_.rest_gradient(sim_, *ref.objective);
-    if (adjoint_.generation() != generation) record_held_point(current_p_);
+    if (adjoint_.generation() != generation) held_parameters_ = current_p_;
     ev.gradient = ref.coordinates.pull_back(r.rest_gradient);
     ev.hessian_shift = r.hessian_shift;
     ev.adjoint_residual = r.adjoint_residual;
@@ -434,18 +434,15 @@ void DesignProblem::accept() {
   accepted_generation_ = gradient_generation_;
   if (accepted_generation_ >= 0 && accepted_generation_ == adjoint_.generation()) {
     accepted_ordering_ = adjoint_.held_ordering();
-    accepted_held_ = held_point_;
+    accepted_held_ = current_held_point();
   } else {
     accepted_held_.reset();
   }
 }
 
-void DesignProblem::record_held_point(const VecX& p) {
-  if (!adjoint_.held_factorization()) {
-    held_point_.reset();
-    return;
-  }
-  held_point_ = HeldFactorizationPoint{p, adjoint_.held_state(), adjoint_.held_shift()};
+std::optional<HeldFactorizationPoint> DesignProblem::current_held_point() const {
+  if (!adjoint_.held_factorization()) return std::nullopt;
+  return HeldFactorizationPoint{held_parameters_, adjoint_.held_state(), adjoint_.held_shift()};
 }
 
 void DesignProblem::restore_accepted() {
@@ -480,9 +477,9 @@ void DesignProblem::set_accepted(const VecX& p, const EmbeddedState& state,
     sim_.set_rest_positions(rest_positions(held_point->parameters));
     sim_.set_state(held_point->state);
     if (adjoint_.factorize_held(sim_, held_point->shift)) {
-      record_held_point(held_point->parameters);
+      held_parameters_ = held_point->parameters;
       accepted_generation_ = adjoint_.generation();
-      accepted_held_ = held_point_;
+      accepted_held_ = current_held_point();
     }
   }
   restore_accepted();

@@ -254,12 +254,12 @@ class DesignProblem {
   CholeskyOrdering accepted_ordering_;
   VecX current_p_;  // parameters the simulation's rest positions are set to
   bool last_ok_ = false;
-  /// Records that the adjoint's held factorization was (re)made at parameters `p`.
-  void record_held_point(const VecX& p);
+  /// Where the adjoint's held factorization was made (nullopt: none held).
+  std::optional<HeldFactorizationPoint> current_held_point() const;
 
   EmbeddedState newton_state_;      // where the last forward solve last factorized
   bool newton_factorized_ = false;  // the last forward solve factorized (at newton_state_)
-  std::optional<HeldFactorizationPoint> held_point_;     // of the adjoint's held factorization
+  VecX held_parameters_;  // p of the adjoint's held factorization (its state, shift: adjoint_)
   std::optional<HeldFactorizationPoint> accepted_held_;  // of the accepted point's
   long gradient_generation_ = -1;  // adjoint factorization made at the last evaluation
   long accepted_generation_ = -1;  // adjoint factorization made at the accepted point

@@ -99,15 +99,9 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
   const GarmentSimulation& sim = problem_.simulation();
   check_surface_points(checkpoint.state.garment, sim.surface().num_faces(), "checkpoint",
                        "/state/garment");
-  if (checkpoint.held_point) {
+  if (checkpoint.held_point)  // its sizes: DesignProblem::set_accepted
     check_surface_points(checkpoint.held_point->state.garment, sim.surface().num_faces(),
                          "checkpoint", "/held_point/state/garment");
-    if (checkpoint.held_point->state.garment.size() != checkpoint.state.garment.size() ||
-        checkpoint.held_point->state.body.rows() != checkpoint.state.body.rows())
-      throw InputError("checkpoint",
-                       "its held factorization point (/held_point) has another "
-                       "size than its state");
-  }
   if (checkpoint.state.body.rows() != sim.body_positions().rows())
     throw InputError("checkpoint",
                      "its body state has " + std::to_string(checkpoint.state.body.rows()) +
