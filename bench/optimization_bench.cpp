@@ -134,6 +134,25 @@ void report(benchmark::State& state, DesignProblem& problem, const PatternOptimi
   const bool ok = cholesky.factorize(H);
   const double factorization =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // The pieces of a Newton step at the final state, each timed once (s).
+  auto seconds_of = [](auto&& fn) {
+    const auto start = std::chrono::steady_clock::now();
+    fn();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  NewtonProblem& equilibrium = sim.problem();
+  VecX g;
+  const double gradient_s = seconds_of([&] { g = equilibrium.gradient(); });
+  const double hessian_s = seconds_of([&] { benchmark::DoNotOptimize(equilibrium.hessian()); });
+  std::optional<LinearOperator> product;
+  const double operator_s = seconds_of([&] { product = equilibrium.hessian_operator(); });
+  const double product_s = seconds_of([&] { benchmark::DoNotOptimize((*product)(g)); });
+  const double solve_s = seconds_of([&] { benchmark::DoNotOptimize(cholesky.solve(g)); });
+  state.counters["gradient_s"] = gradient_s;
+  state.counters["hessian_s"] = hessian_s;
+  state.counters["hessian_operator_s"] = operator_s;
+  state.counters["product_s"] = product_s;
+  state.counters["solve_s"] = solve_s;
   const double d = std::max(1, n);
   state.counters["threads"] = thread_count();
   state.counters["garment_triangles"] =

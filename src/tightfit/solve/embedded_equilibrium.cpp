@@ -19,6 +19,7 @@ VecX flat(const Points3& p) { return Eigen::Map<const VecX>(p.data(), p.size());
 EmbeddedEquilibrium::EmbeddedEquilibrium(EmbeddedSystemSetup setup, EmbeddedState initial)
     : setup_(std::move(setup)), base_(std::move(initial)), state_(base_) {
   if (!setup_.surface) throw SolverError("EmbeddedEquilibrium: no limit surface");
+  if (!setup_.hessian_layouts) setup_.hessian_layouts = std::make_shared<HessianLayouts>();
   num_control_ = setup_.surface->num_control_vertices();
   if (state_.body.rows() < num_control_)
     throw SolverError("EmbeddedEquilibrium: body has fewer vertices than the surface");
@@ -131,66 +132,59 @@ SparseMatrix EmbeddedEquilibrium::position_jacobian() const {
 }
 
 SparseMatrix EmbeddedEquilibrium::hessian(HessianKind kind) {
-  const HessianParts parts = hessian_parts(kind);
-  SparseMatrix H = SparseMatrix(parts.J.transpose() * parts.Hxx * parts.J);
-  H += parts.extra;
-  H.makeCompressed();
-  return H;
+  return CoupledHessian(hessian_factors(kind)).matrix();
 }
 
 LinearOperator EmbeddedEquilibrium::hessian_operator(HessianKind kind) {
-  auto parts = std::make_shared<const HessianParts>(hessian_parts(kind));
-  return LinearOperator([parts](const VecX& v) {
-    const VecX xv = parts->J * v;
-    return VecX(parts->J.transpose() * (parts->Hxx * xv) + parts->extra * v);
-  });
+  auto hessian = std::make_shared<const CoupledHessian>(hessian_factors(kind));
+  return LinearOperator([hessian](const VecX& v) { return hessian->multiply(v); });
 }
 
-EmbeddedEquilibrium::HessianParts EmbeddedEquilibrium::hessian_parts(HessianKind kind) const {
+CoupledHessianFactors EmbeddedEquilibrium::hessian_factors(HessianKind kind) const {
   const int ng = num_garment_vertices();
-  const VecX x = flat(x_);
   const bool project = kind == HessianKind::kNewton && setup_.project_garment_hessians;
-  std::vector<Triplet> hx;
-  for (const Energy* energy : setup_.garment_energies) energy->add_hessian(x, hx, project);
-  HessianParts parts;
-  parts.Hxx.resize(3 * ng, 3 * ng);
-  parts.Hxx.setFromTriplets(hx.begin(), hx.end());
-  parts.J = position_jacobian();
-
-  // Second-derivative terms of Eq. 18 contracted with dU/dx, and the body Hessian.
-  const VecX gx = garment_energy_gradient();
-  std::vector<Triplet> t;
-  for (int i = 0; i < ng; ++i) {
-    const Vec3 gi = gx.segment<3>(3 * i);
-    const int d = garment_dof_[i];
-    if (d < 0) continue;
-    const double huu = xuu_.row(i).dot(gi), huv = xuv_.row(i).dot(gi), hvv = xvv_.row(i).dot(gi);
-    t.emplace_back(d, d, huu);
-    t.emplace_back(d, d + 1, huv);
-    t.emplace_back(d + 1, d, huv);
-    t.emplace_back(d + 1, d + 1, hvv);
-    const LimitWeights& w = weights_[i];
-    for (size_t j = 0; j < w.index.size(); ++j) {
-      const int b = body_dof_[w.index[j]];
-      if (b < 0) continue;
-      for (int c = 0; c < 3; ++c) {
-        t.emplace_back(d, b + c, w.du[j] * gi[c]);
-        t.emplace_back(b + c, d, w.du[j] * gi[c]);
-        t.emplace_back(d + 1, b + c, w.dv[j] * gi[c]);
-        t.emplace_back(b + c, d + 1, w.dv[j] * gi[c]);
-      }
-    }
-  }
+  CoupledHessianFactors f;
+  f.num_dofs = num_dofs_;
+  f.garment_dof = garment_dof_;
+  f.body_dof = body_dof_;
+  std::vector<Triplet> triplets;
+  const VecX x = flat(x_);
+  for (const Energy* energy : setup_.garment_energies) energy->add_hessian(x, triplets, project);
+  HessianLayouts& layouts = *setup_.hessian_layouts;
+  f.garment = BlockSparseMatrix3::from_triplets(triplets, ng, layouts.garment);
+  layouts.garment = f.garment.layout();
+  triplets.clear();
   const VecX y = flat(state_.body);
-  std::vector<Triplet> hy;
-  for (const Energy* energy : setup_.body_energies) energy->add_hessian(y, hy, false);
-  for (const Triplet& e : hy) {
-    const int r = body_dof_[e.row() / 3], c = body_dof_[e.col() / 3];
-    if (r >= 0 && c >= 0) t.emplace_back(r + e.row() % 3, c + e.col() % 3, e.value());
+  for (const Energy* energy : setup_.body_energies) energy->add_hessian(y, triplets, false);
+  f.body = BlockSparseMatrix3::from_triplets(triplets, static_cast<int>(state_.body.rows()),
+                                             layouts.body);
+  layouts.body = f.body.layout();
+
+  // J's rows and the second-derivative terms of Eq. 18 contracted with dU/dx.
+  const VecX gx = garment_energy_gradient();
+  f.garment_forces = Eigen::Map<const Points3>(gx.data(), ng, 3);
+  f.tangents.resize(ng);
+  f.curvature_terms.resize(ng);
+  f.stencil_start.assign(static_cast<std::size_t>(ng) + 1, 0);
+  for (int i = 0; i < ng; ++i) f.stencil_start[i + 1] = f.stencil_start[i] + weights_[i].size();
+  const auto entries = static_cast<std::size_t>(f.stencil_start[ng]);
+  f.stencil_vertex.resize(entries);
+  f.weight.resize(entries);
+  f.weight_u.resize(entries);
+  f.weight_v.resize(entries);
+  for (int i = 0; i < ng; ++i) {
+    f.tangents[i] = tangent_basis(i);
+    const Vec3 gi = gx.segment<3>(3 * i);
+    const double huv = xuv_.row(i).dot(gi);
+    f.curvature_terms[i] << xuu_.row(i).dot(gi), huv, huv, xvv_.row(i).dot(gi);
+    const LimitWeights& w = weights_[i];
+    const auto first = static_cast<std::ptrdiff_t>(f.stencil_start[i]);
+    std::copy(w.index.begin(), w.index.end(), f.stencil_vertex.begin() + first);
+    std::copy(w.p.begin(), w.p.end(), f.weight.begin() + first);
+    std::copy(w.du.begin(), w.du.end(), f.weight_u.begin() + first);
+    std::copy(w.dv.begin(), w.dv.end(), f.weight_v.begin() + first);
   }
-  parts.extra.resize(num_dofs_, num_dofs_);
-  parts.extra.setFromTriplets(t.begin(), t.end());
-  return parts;
+  return f;
 }
 
 bool EmbeddedEquilibrium::set_step(const VecX& dq, double alpha) {

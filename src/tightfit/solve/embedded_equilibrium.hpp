@@ -8,11 +8,13 @@
 /// terms of Eq. 18; energies on y (the body) are added directly. Steps move garment
 /// vertices across faces by walking in the parameter domain (Eq. 20).
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "tightfit/physics/energy.hpp"
+#include "tightfit/solve/coupled_hessian.hpp"
 #include "tightfit/solve/newton_problem.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
@@ -22,6 +24,11 @@ namespace tightfit {
 struct EmbeddedState {
   std::vector<SurfacePoint> garment;  ///< n_g surface points
   Points3 body;                       ///< n_b×3 deformed body positions (m)
+};
+
+/// The layouts of the garment energies' (H_xx) and the body energies' Hessian triplets.
+struct HessianLayouts {
+  std::shared_ptr<const BlockLayout> garment, body;
 };
 
 /// Which Hessian of the total energy to assemble. Both have the same sparsity pattern
@@ -42,6 +49,10 @@ struct EmbeddedSystemSetup {
   bool project_garment_hessians = true;         ///< per-element PSD projection of cloth terms
   /// Optional: what a garment vertex belongs to, for messages (e.g. "piece 'front'").
   std::function<std::string(int garment_vertex)> garment_vertex_label;
+  /// Where the energies' Hessian triplets go (BlockLayout), shared by the problems made
+  /// for the same garment and body one after the other (a new rest shape, a new state),
+  /// so that it is analysed once; made and kept up to date here when null.
+  std::shared_ptr<HessianLayouts> hessian_layouts;
 };
 
 class EmbeddedEquilibrium : public NewtonProblem {
@@ -101,12 +112,9 @@ class EmbeddedEquilibrium : public NewtonProblem {
   Vec3 garment_normal(int i) const;
 
  private:
-  /// The Hessian as J (dx/dq), H_xx (the garment energies' Hessian in x) and E (the
-  /// second-derivative terms of Eq. 18 and the body): H = Jᵀ H_xx J + E.
-  struct HessianParts {
-    SparseMatrix J, Hxx, extra;
-  };
-  HessianParts hessian_parts(HessianKind kind) const;
+  /// The factors of the Hessian of the given kind at the current state
+  /// (coupled_hessian.hpp: H = Jᵀ H_xx J + E).
+  CoupledHessianFactors hessian_factors(HessianKind kind) const;
   void evaluate_garment();      // stencils, x, derivatives at the current state
   VecX total_gradient() const;  // gradient() (the interface's is not const)
   Eigen::Matrix<double, 3, 2> tangent_basis(int garment_vertex) const;              // [x_u x_v]

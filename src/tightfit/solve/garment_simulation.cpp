@@ -88,6 +88,7 @@ void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
   setup.pinned_garment = garment_.topology->pinned;
   setup.force_scale = force_scale_;
   setup.garment_vertex_label = [this](int vertex) { return garment_vertex_piece(vertex); };
+  setup.hessian_layouts = hessian_layouts_;
   problem_ = std::make_unique<EmbeddedEquilibrium>(std::move(setup), state);
 }
 

@@ -110,6 +110,8 @@ class GarmentSimulation {
   std::unique_ptr<GarmentEnergies> energies_;
   std::unique_ptr<NeoHookeanEnergy> body_energy_;
   std::unique_ptr<EmbeddedEquilibrium> problem_;
+  // Shared by every problem_ this simulation makes (EmbeddedSystemSetup::hessian_layouts).
+  std::shared_ptr<HessianLayouts> hessian_layouts_ = std::make_shared<HessianLayouts>();
   double force_scale_ = 1.0;
 };
 
