@@ -192,6 +192,37 @@ TEST(NewtonSolver, KrylovChordStepsConvergeWithFewerFactorizations) {
   EXPECT_LT((krylov_problem.q() - chord_problem.q()).norm(), 1e-8 * chord_problem.q().norm());
 }
 
+TEST(NewtonSolver, KrylovToleranceFollowsTheForceDecrease) {
+  // Eisenstat–Walker forcing: loose CG tolerances while the force falls slowly, never
+  // below krylov_tolerance nor above krylov_max_tolerance, the first step at
+  // krylov_tolerance; the same equilibrium as with a fixed tolerance.
+  OperatorChainProblem forced_problem(200), fixed_problem(200);
+  SparseCholesky held_forced, held_fixed;
+  solve_and_factorize(forced_problem, held_forced);
+  solve_and_factorize(fixed_problem, held_fixed);
+  forced_problem.scale_load(3.0);
+  fixed_problem.scale_load(3.0);
+  NewtonOptions fixed_options;
+  fixed_options.krylov_forcing = 0.0;
+  NewtonSolver forced, fixed(fixed_options);
+  const NewtonReport f = forced.solve(forced_problem, {&held_forced, true});
+  const NewtonReport x = fixed.solve(fixed_problem, {&held_fixed, true});
+  ASSERT_TRUE(f.converged);
+  ASSERT_TRUE(x.converged);
+  const NewtonOptions& o = forced.options();
+  ASSERT_FALSE(f.history.empty());
+  EXPECT_EQ(f.history.front().krylov_tolerance, o.krylov_tolerance);
+  bool loosened = false;
+  for (const NewtonIteration& it : f.history) {
+    EXPECT_GE(it.krylov_tolerance, o.krylov_tolerance);
+    EXPECT_LE(it.krylov_tolerance, o.krylov_max_tolerance);
+    loosened = loosened || it.krylov_tolerance > o.krylov_tolerance;
+  }
+  EXPECT_TRUE(loosened);
+  for (const NewtonIteration& it : x.history) EXPECT_EQ(it.krylov_tolerance, o.krylov_tolerance);
+  EXPECT_LT((forced_problem.q() - fixed_problem.q()).norm(), 1e-8 * fixed_problem.q().norm());
+}
+
 TEST(NewtonSolver, IgnoresAHeldFactorizationOfAnotherSize) {
   ChainProblem small(10);
   SparseCholesky held;

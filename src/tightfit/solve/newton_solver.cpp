@@ -42,6 +42,18 @@ bool NewtonSolver::accept_by_force(NewtonProblem& problem, double energy, double
   return problem.force_norm(problem.gradient()) <= options_.force_merit_contraction * force_norm;
 }
 
+double NewtonSolver::krylov_tolerance(double force, double previous_force,
+                                      double previous_tolerance) const {
+  const double gamma = options_.krylov_forcing;
+  if (!(gamma > 0.0) || !(previous_force > 0.0)) return options_.krylov_tolerance;
+  const double ratio = force / previous_force;
+  double eta = gamma * ratio * ratio;
+  if (const double safeguard = gamma * previous_tolerance * previous_tolerance; safeguard > 0.1)
+    eta = std::max(eta, safeguard);
+  return std::clamp(eta, options_.krylov_tolerance,
+                    std::max(options_.krylov_tolerance, options_.krylov_max_tolerance));
+}
+
 NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
   const SparseCholesky* held = chords.held;
   const auto t_start = SteadyClock::now();
@@ -59,6 +71,7 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
   bool last_was_chord = false;
   int failed_chords = 0;  // chord steps without descent (taken back)
   double previous_force = 0.0;
+  double previous_tolerance = options_.krylov_tolerance;
   shift_hint_ = 0.0;
 
   for (int it = 0;; ++it) {
@@ -85,6 +98,9 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
     }
     if (last_was_chord && record.force_norm > options_.chord_contraction * previous_force)
       reuse = false;
+    record.krylov_tolerance =
+        krylov_tolerance(record.force_norm, previous_force, previous_tolerance);
+    previous_tolerance = record.krylov_tolerance;
     previous_force = record.force_norm;
     if (reuse && factor && chord_run < options_.max_chord_steps) {
       record.chord = true;
@@ -120,7 +136,7 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
       if (H) {
         TruncatedCgReport cg;
         dq = truncated_cg(*H, [&](const VecX& r) { return factor->solve(r); }, VecX(-g), cg,
-                          {options_.krylov_tolerance, options_.krylov_iterations});
+                          {record.krylov_tolerance, options_.krylov_iterations});
         record.krylov_iterations = cg.iterations;
         report.krylov_iterations += cg.iterations;
         // The held factorization no longer preconditions well: factorize next time.

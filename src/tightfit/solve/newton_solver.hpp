@@ -41,6 +41,14 @@ struct NewtonOptions {
   bool krylov_chords = true;
   double krylov_tolerance = 1e-3;
   int krylov_iterations = 20;
+  /// Eisenstat–Walker forcing ("choice 2", SIAM J. Sci. Comput. 17, 1996): the CG
+  /// tolerance of a Newton–Krylov step is η_k = γ (‖g_k‖ / ‖g_{k−1}‖)², at least γ η_{k−1}²
+  /// when that exceeds 0.1, kept within [krylov_tolerance, krylov_max_tolerance] — loose
+  /// while the force falls slowly (far from the equilibrium a precise solve of a model
+  /// that does not hold is wasted), tight as Newton converges. The first step of a solve
+  /// uses krylov_tolerance. γ = krylov_forcing (0: always krylov_tolerance).
+  double krylov_forcing = 0.9;
+  double krylov_max_tolerance = 0.5;
   /// Acceptance by force where the energy cannot tell. Near an equilibrium the energy
   /// change of a step is a difference of parts that cancel (a garment pressing on the
   /// body: their changes agree to ~1e-3), and inside the Gregory regions of the limit
@@ -73,6 +81,8 @@ struct NewtonIteration {
                                    ///< stiffness, ShiftSequence; 0 if none)
   bool chord = false;              ///< step from the held factorization (no new Hessian)
   int krylov_iterations = 0;       ///< of a chord step: conjugate-gradient products
+  double krylov_tolerance = 0.0;   ///< of a Newton–Krylov step: the relative residual
+                                   ///< CG was asked for (NewtonOptions::krylov_forcing)
   bool accepted_by_force = false;  ///< accepted by its force decrease, not by the energy
                                    ///< (NewtonOptions::energy_precision)
   double seconds_assembly = 0.0;   ///< gradient + Hessian
@@ -162,6 +172,11 @@ class NewtonSolver {
   /// precision and the force norm fell enough from `force_norm` (N).
   bool accept_by_force(NewtonProblem& problem, double energy, double new_energy,
                        double force_norm) const;
+
+  /// The CG tolerance η of a Newton–Krylov step at force norm `force` after a step from
+  /// `previous_force` (0: the first of the solve) that had `previous_tolerance`
+  /// (NewtonOptions::krylov_forcing).
+  double krylov_tolerance(double force, double previous_force, double previous_tolerance) const;
 
   NewtonOptions options_;
   SparseCholesky cholesky_;
