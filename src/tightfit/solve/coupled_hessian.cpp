@@ -184,15 +184,20 @@ SparseMatrix CoupledHessian::matrix() const {
       const int dof = columns[c];
       accumulate_column(dof, spa);
       std::sort(spa.touched.begin(), spa.touched.end());
+      int count = 0;  // nonzeros of each scalar column of this block
+      for (const int r : spa.touched) count += block_size(r);
       for (int col = 0; col < block_size(dof); ++col) {
-        int count = 0;
+        const std::size_t first = inner[t].size();
+        inner[t].resize(first + static_cast<std::size_t>(count));
+        values[t].resize(first + static_cast<std::size_t>(count));
+        int* row_out = inner[t].data() + first;
+        double* value_out = values[t].data() + first;
         for (const int r : spa.touched) {
-          const double* block = spa.values.data() + 9 * static_cast<std::size_t>(r);
+          const double* block = spa.values.data() + 9 * static_cast<std::size_t>(r) + 3 * col;
           for (int row = 0; row < block_size(r); ++row) {
-            inner[t].push_back(r + row);
-            values[t].push_back(block[3 * col + row]);
+            *row_out++ = r + row;
+            *value_out++ = block[row];
           }
-          count += block_size(r);
         }
         column_nonzeros[dof + col + 1] = count;
       }
