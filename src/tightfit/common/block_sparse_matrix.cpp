@@ -58,8 +58,7 @@ std::shared_ptr<const BlockLayout> make_layout(const std::vector<Triplet>& tripl
       block_of_row[layout->rows[k]] = static_cast<int>(k);
     for (int k = begin; k < end; ++k) {
       const Triplet& e = triplets[by_column[k]];
-      layout->entry[by_column[k]] =
-          9 * block_of_row[e.row() / 3] + 3 * (e.col() % 3) + e.row() % 3;
+      layout->entry[by_column[k]] = 9 * block_of_row[e.row() / 3] + 3 * (e.col() % 3) + e.row() % 3;
     }
     for (std::size_t k = first; k < layout->rows.size(); ++k) block_of_row[layout->rows[k]] = -1;
     layout->column_start[c + 1] = static_cast<int>(layout->rows.size());

@@ -153,12 +153,15 @@ CoupledHessianFactors EmbeddedEquilibrium::hessian_factors(HessianKind kind) con
   HessianLayouts& layouts = *setup_.hessian_layouts;
   f.garment = BlockSparseMatrix3::from_triplets(triplets, ng, layouts.garment);
   layouts.garment = f.garment.layout();
-  triplets.clear();
-  const VecX y = flat(state_.body);
-  for (const Energy* energy : setup_.body_energies) energy->add_hessian(y, triplets, false);
-  f.body = BlockSparseMatrix3::from_triplets(triplets, static_cast<int>(state_.body.rows()),
-                                             layouts.body);
-  layouts.body = f.body.layout();
+  // The body's Hessian only where a body vertex is free (a rigid body has none).
+  if (std::any_of(body_dof_.begin(), body_dof_.end(), [](int d) { return d >= 0; })) {
+    triplets.clear();
+    const VecX y = flat(state_.body);
+    for (const Energy* energy : setup_.body_energies) energy->add_hessian(y, triplets, false);
+    f.body = BlockSparseMatrix3::from_triplets(triplets, static_cast<int>(state_.body.rows()),
+                                               layouts.body);
+    layouts.body = f.body.layout();
+  }
 
   // J's rows and the second-derivative terms of Eq. 18 contracted with dU/dx.
   const VecX gx = garment_energy_gradient();
