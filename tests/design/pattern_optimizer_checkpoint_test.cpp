@@ -44,6 +44,8 @@ TEST(OptimizationCheckpoint, JsonRoundTripIsExact) {
   it.term_values = {0.1, 1.0 / 7.0 - 0.1};
   it.gradient_norm = 3e-9;
   it.seconds = 1.25;
+  it.chord_steps = 4;
+  it.force_accepted_steps = 2;
   c.history = {it, it};
   SnapRecord snap;
   snap.trials = 3;
@@ -73,6 +75,8 @@ TEST(OptimizationCheckpoint, JsonRoundTripIsExact) {
   ASSERT_EQ(r.history.size(), 2u);
   EXPECT_EQ(r.history[1].term_values, it.term_values);
   EXPECT_EQ(r.history[1].value, it.value);
+  EXPECT_EQ(r.history[1].chord_steps, 4);
+  EXPECT_EQ(r.history[1].force_accepted_steps, 2);
   EXPECT_FALSE(r.history[0].snap);
   ASSERT_TRUE(r.history[1].snap);
   EXPECT_EQ(r.history[1].snap->trials, 3);

@@ -176,6 +176,7 @@ nlohmann::json iteration_json(const OptimizationIteration& it,
                       {"failed_solves", it.failed_solves},
                       {"newton_iterations", it.newton_iterations},
                       {"chord_steps", it.chord_steps},
+                      {"force_accepted_steps", it.force_accepted_steps},
                       {"factorizations", it.factorizations},
                       {"adjoint_method", it.adjoint_method},
                       {"krylov_iterations", it.krylov_iterations},
@@ -211,6 +212,7 @@ OptimizationIteration iteration_from_json(const nlohmann::json& j,
   it.failed_solves = f.integer("failed_solves");
   it.newton_iterations = f.integer("newton_iterations");
   it.chord_steps = f.integer("chord_steps", 0);
+  it.force_accepted_steps = f.integer("force_accepted_steps", 0);
   it.factorizations = f.integer("factorizations", 0);
   it.adjoint_method = f.string("adjoint_method", std::string());
   it.krylov_iterations = f.integer("krylov_iterations", 0);

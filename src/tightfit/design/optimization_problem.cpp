@@ -331,6 +331,7 @@ DesignEvaluation DesignProblem::evaluate_at(const Reference& ref, const VecX& p,
     const NewtonReport report = sim_.solve(chords);
     ev.newton_iterations = report.iterations;
     ev.chord_steps = report.chord_steps;
+    ev.force_accepted_steps = report.force_accepted_steps;
     ev.factorizations = report.factorizations;
     for (const NewtonIteration& it : report.history) {
       ev.seconds_assembly += it.seconds_assembly;

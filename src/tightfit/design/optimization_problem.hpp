@@ -83,6 +83,8 @@ struct DesignEvaluation {
   double adjoint_residual = 0.0;    ///< relative residual of the adjoint solve
   int newton_iterations = 0;        ///< of the forward solve (chord steps included)
   int chord_steps = 0;              ///< of them: chord steps from the held factorization
+  int force_accepted_steps = 0;     ///< of them: accepted by their force decrease
+                                    ///< (NewtonOptions::energy_precision)
   int factorizations = 0;           ///< Cholesky factorizations of the forward solve
   int adjoint_factorizations = 0;   ///< and of the gradient
   AdjointMethod adjoint_method = AdjointMethod::kNone;

@@ -58,16 +58,18 @@ struct OptimizationIteration {
   /// next iteration's first trial is capped relative to it (PatternOptimizerOptions::
   /// step_growth). At least max_point_move.
   double max_solved_move = 0.0;
-  double step_factor = 0.0;    ///< accepted line-search factor α
-  int line_search_trials = 0;  ///< forward solves tried for this step
-  int failed_solves = 0;       ///< of them: rejected patterns / unconverged solves
-  int newton_iterations = 0;   ///< forward Newton iterations of this iteration
-  int chord_steps = 0;         ///< of them: chord steps (no Hessian factorized)
-  int factorizations = 0;      ///< Cholesky factorizations, forward and adjoint
-  std::string adjoint_method;  ///< adjoint_method_name of the accepted gradient
-  int krylov_iterations = 0;   ///< GMRES iterations of the accepted gradient
-  double hessian_shift = 0.0;  ///< adjoint Hessian shift (0: exact gradient)
-  double seconds = 0.0;        ///< wall time since the run started (s)
+  double step_factor = 0.0;      ///< accepted line-search factor α
+  int line_search_trials = 0;    ///< forward solves tried for this step
+  int failed_solves = 0;         ///< of them: rejected patterns / unconverged solves
+  int newton_iterations = 0;     ///< forward Newton iterations of this iteration
+  int chord_steps = 0;           ///< of them: chord steps (no Hessian factorized)
+  int force_accepted_steps = 0;  ///< of them: accepted by their force decrease, not the
+                                 ///< energy (NewtonOptions::energy_precision)
+  int factorizations = 0;        ///< Cholesky factorizations, forward and adjoint
+  std::string adjoint_method;    ///< adjoint_method_name of the accepted gradient
+  int krylov_iterations = 0;     ///< GMRES iterations of the accepted gradient
+  double hessian_shift = 0.0;    ///< adjoint Hessian shift (0: exact gradient)
+  double seconds = 0.0;          ///< wall time since the run started (s)
   /// Time split of this iteration (s), summed over its line-search trials: forward
   /// Newton solves, objective evaluations at the equilibria, and the gradient (term
   /// gradients, adjoint solve, pull-back).

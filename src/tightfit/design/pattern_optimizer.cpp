@@ -207,6 +207,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
     first.line_search_trials = 1;
     first.newton_iterations = current.newton_iterations;
     first.chord_steps = current.chord_steps;
+    first.force_accepted_steps = current.force_accepted_steps;
     first.factorizations = current.factorizations + current.adjoint_factorizations;
     first.adjoint_method = adjoint_method_name(current.adjoint_method);
     first.krylov_iterations = current.krylov_iterations;
@@ -314,6 +315,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
         rec.seconds_objective += trial.seconds_objective;
         rec.newton_iterations += trial.newton_iterations;
         rec.chord_steps += trial.chord_steps;
+        rec.force_accepted_steps += trial.force_accepted_steps;
         rec.factorizations += trial.factorizations;
         rec.seconds_assembly += trial.seconds_assembly;
         rec.seconds_factorization += trial.seconds_factorization;
