@@ -103,6 +103,33 @@ TEST(FactorizeShifted, ShiftsAnIndefiniteMatrixUntilItFactorizes) {
   EXPECT_EQ(from_hint, 1);
 }
 
+TEST(FactorizeShifted, AnEstimatedFirstShiftSavesTheClimb) {
+  // A negative eigenvalue far below the first shift: the plain sequence climbs a decade
+  // per failed factorization; with the Lanczos estimate the first shift is near the
+  // one needed.
+  SparseMatrix A = laplacian_1d(300, 0.0);
+  A.coeffRef(100, 100) = -2.0;
+  SparseCholesky chol;
+  int climbing = 0, estimated = 0;
+  const auto plain = factorize_shifted(chol, A, ShiftSequence{}, climbing);
+  ShiftSequence with_estimate;
+  with_estimate.estimate_steps = 60;
+  const auto shift = factorize_shifted(chol, A, with_estimate, estimated);
+  ASSERT_TRUE(plain && shift);
+  EXPECT_GE(climbing, 8);
+  EXPECT_LE(estimated, 2);  // A itself, then the estimated shift
+  // A + δS is positive definite only for δ above −λ_min: the estimate (a bound from
+  // above of λ_min) never lands below the shift that is needed.
+  const VecX b = VecX::LinSpaced(300, -1.0, 1.0);
+  EXPECT_TRUE(chol.solve(b).allFinite());
+  SparseCholesky check;
+  EXPECT_FALSE(factorize_with_shift(check, A, *shift / with_estimate.estimate_margin / 1.01));
+  // Positive definite matrices never reach the estimate.
+  int once = 0;
+  EXPECT_EQ(*factorize_shifted(chol, laplacian_1d(50, 0.1), with_estimate, once), 0.0);
+  EXPECT_EQ(once, 1);
+}
+
 TEST(FactorizeShifted, ShiftsEachDofInProportionToItsStiffness) {
   // Newton's unknowns mix units (a garment vertex's surface coordinates, a body vertex's
   // metres): rescaling some unknowns, A -> D A D, must not change which shifts

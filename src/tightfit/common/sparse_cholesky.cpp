@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/lanczos.hpp"
 
 namespace tightfit {
 
@@ -153,8 +154,9 @@ Eigen::Index SparseCholesky::size() const { return impl_->n; }
 
 namespace {
 
-/// S of ShiftSequence: diag(max(|A_ii|, floor · mean|A_ii|)) / mean|A_ii|, and that mean.
-SparseMatrix shift_scaling(const SparseMatrix& A, double diagonal_floor, double& mean_diag) {
+/// The diagonal of S of ShiftSequence, max(|A_ii|, floor · mean|A_ii|) / mean|A_ii|, and
+/// that mean.
+VecX shift_scaling_diagonal(const SparseMatrix& A, double diagonal_floor, double& mean_diag) {
   const VecX diag = A.diagonal().cwiseAbs();
   mean_diag = diag.mean();
   if (!(mean_diag > 0.0) || !std::isfinite(mean_diag)) mean_diag = 1.0;
@@ -162,12 +164,18 @@ SparseMatrix shift_scaling(const SparseMatrix& A, double diagonal_floor, double&
   // its own stiffness (Levenberg–Marquardt scaling), so that soft DOFs (a garment
   // sliding on a body many times stiffer) are not swamped by a shift sized for the
   // stiff ones; δ is the shift at a DOF of mean stiffness.
-  SparseMatrix scaling(A.rows(), A.cols());
-  scaling.reserve(Eigen::VectorXi::Constant(A.cols(), 1));
+  VecX scaling(A.rows());
   for (Eigen::Index i = 0; i < A.rows(); ++i)
-    scaling.insert(i, i) =
+    scaling[i] =
         std::isfinite(diag[i]) ? std::max(diag[i], diagonal_floor * mean_diag) / mean_diag : 1.0;
   return scaling;
+}
+
+SparseMatrix diagonal_matrix(const VecX& d) {
+  SparseMatrix D(d.size(), d.size());
+  D.reserve(Eigen::VectorXi::Constant(d.size(), 1));
+  for (Eigen::Index i = 0; i < d.size(); ++i) D.insert(i, i) = d[i];
+  return D;
 }
 
 }  // namespace
@@ -180,8 +188,13 @@ std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMa
     if (cholesky.factorize(A, ordering)) return 0.0;
   }
   double mean_diag = 1.0;
-  const SparseMatrix scaling = shift_scaling(A, shifts.diagonal_floor, mean_diag);
+  const VecX scaling_diagonal = shift_scaling_diagonal(A, shifts.diagonal_floor, mean_diag);
+  const SparseMatrix scaling = diagonal_matrix(scaling_diagonal);
   double shift = shifts.initial * mean_diag;
+  if (shifts.try_unshifted && shifts.estimate_steps > 0) {
+    const double theta = lowest_ritz_value(A, scaling_diagonal, shifts.estimate_steps);
+    if (std::isfinite(theta)) shift = std::max(shift, -shifts.estimate_margin * theta);
+  }
   for (int k = 0; k < shifts.attempts; ++k) {
     if (last_shift) *last_shift = shift;
     ++factorizations;
@@ -195,7 +208,8 @@ bool factorize_with_shift(SparseCholesky& cholesky, const SparseMatrix& A, doubl
                           const CholeskyOrdering* ordering, double diagonal_floor) {
   if (shift == 0.0) return cholesky.factorize(A, ordering);
   double mean_diag = 1.0;
-  const SparseMatrix scaling = shift_scaling(A, diagonal_floor, mean_diag);
+  const SparseMatrix scaling =
+      diagonal_matrix(shift_scaling_diagonal(A, diagonal_floor, mean_diag));
   return cholesky.factorize(SparseMatrix(A + shift * scaling), ordering);
 }
 

@@ -75,6 +75,13 @@ struct ShiftSequence {
   int attempts = 30;
   bool try_unshifted = true;     ///< try A itself before the first shift
   double diagonal_floor = 1e-6;  ///< smallest |A_ii| a shift is scaled by, relative to the mean
+  /// When > 0 and A itself was tried and is not positive definite: the first shift is
+  /// at least `estimate_margin` · (−θ), θ the lowest Ritz value of `estimate_steps`
+  /// Lanczos steps on S^{−1/2} A S^{−1/2} (lanczos.hpp; A + δS is positive definite only
+  /// for δ > −θ), instead of climbing there from `initial` one failed factorization per
+  /// decade. 0: no estimate.
+  int estimate_steps = 0;
+  double estimate_margin = 2.0;
 };
 
 /// Factorizes A (when shifts.try_unshifted), or else A + δS with the smallest δ of
