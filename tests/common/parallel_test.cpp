@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "tightfit/common/sparse_cholesky.hpp"
+
 namespace tightfit::parallel_test {
 
 /// Restores the thread count a test changed.
@@ -87,6 +89,32 @@ TEST(BlasInfo, NamesTheLoadedLibrary) {
   EXPECT_FALSE(info.library.empty()) << "dgemm_ should come from a loaded BLAS (CHOLMOD's)";
   EXPECT_FALSE(info.name.empty());
   EXPECT_GE(info.threads, 1);
+}
+
+TEST(BlasInfo, OpenBlasIdleThreadsSpinBriefly) {
+  if (blas_info().name != "OpenBLAS" || std::getenv("OPENBLAS_THREAD_TIMEOUT"))
+    GTEST_SKIP() << "not OpenBLAS, or its timeout set by the user";
+  set_thread_count(thread_count());
+  EXPECT_EQ(blas_info().thread_timeout, 20);
+  EXPECT_EQ(std::getenv("OPENBLAS_THREAD_TIMEOUT"), nullptr);  // the environment as it was
+  // The restarted pool still computes: a supernodal factorization (dense BLAS blocks)
+  // of a 2D Laplacian.
+  const int m = 120;
+  std::vector<Triplet> t;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      t.emplace_back(i * m + j, i * m + j, 4.01);
+      if (i + 1 < m) t.emplace_back(i * m + j, (i + 1) * m + j, -1.0);
+      if (i + 1 < m) t.emplace_back((i + 1) * m + j, i * m + j, -1.0);
+      if (j + 1 < m) t.emplace_back(i * m + j, i * m + j + 1, -1.0);
+      if (j + 1 < m) t.emplace_back(i * m + j + 1, i * m + j, -1.0);
+    }
+  SparseMatrix A(m * m, m * m);
+  A.setFromTriplets(t.begin(), t.end());
+  SparseCholesky cholesky;
+  ASSERT_TRUE(cholesky.factorize(A));
+  const VecX b = VecX::LinSpaced(m * m, -1.0, 1.0);
+  EXPECT_LT((A * cholesky.solve(b) - b).norm(), 1e-10 * b.norm());
 }
 
 }  // namespace tightfit::parallel_test

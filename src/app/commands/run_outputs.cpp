@@ -194,7 +194,8 @@ nlohmann::json compute_json() {
            {{"name", blas.name},
             {"library", blas.library},
             {"config", blas.config},
-            {"threads", blas.threads}}}};
+            {"threads", blas.threads},
+            {"thread_timeout", blas.thread_timeout}}}};
 }
 
 }  // namespace tightfit::app

@@ -22,7 +22,31 @@ Fn loaded_symbol(const char* name) {
   return reinterpret_cast<Fn>(dlsym(RTLD_DEFAULT, name));
 }
 
+/// OpenBLAS's worker threads spin (sched_yield) for 2^28 cycles, about 0.1 s, after each
+/// BLAS call before they sleep. On two cores the spinning thread takes turns on the
+/// cores of tightfit's own loop threads between factorizations (session 19, c0 pants
+/// scene: 4–7 % of the wall time, half the system time). Unless the user set
+/// OPENBLAS_THREAD_TIMEOUT, OpenBLAS re-reads it as 20 (2^20 cycles, about 0.4 ms) and
+/// restarts its thread pool once, through its exported openblas_read_env,
+/// blas_thread_shutdown_ and blas_thread_init; the environment is left as it was.
+void shorten_blas_spin() {
+  static bool done = false;
+  if (done) return;
+  done = true;
+  if (std::getenv("OPENBLAS_THREAD_TIMEOUT")) return;
+  auto read_env = loaded_symbol<void (*)()>("openblas_read_env");
+  auto shutdown = loaded_symbol<int (*)()>("blas_thread_shutdown_");
+  auto init = loaded_symbol<int (*)()>("blas_thread_init");
+  if (!read_env || !shutdown || !init) return;
+  setenv("OPENBLAS_THREAD_TIMEOUT", "20", 0);
+  read_env();
+  unsetenv("OPENBLAS_THREAD_TIMEOUT");
+  shutdown();
+  init();
+}
+
 void apply(int n) {
+  shorten_blas_spin();
   if (auto set = loaded_symbol<void (*)(int)>("openblas_set_num_threads")) set(n);
   // CHOLMOD's OpenMP teams (a fixed 4 threads) run serially: see the header.
   if (auto levels = loaded_symbol<void (*)(int)>("omp_set_max_active_levels")) levels(0);
@@ -177,6 +201,8 @@ BlasInfo blas_info() {
     info.config = config();
     if (auto threads = loaded_symbol<int (*)()>("openblas_get_num_threads"))
       info.threads = threads();
+    if (auto timeout = loaded_symbol<int (*)()>("openblas_thread_timeout"))
+      info.thread_timeout = timeout();
   } else if (info.library.find("/blas/") != std::string::npos) {
     info.name = "reference BLAS (netlib)";
   } else {

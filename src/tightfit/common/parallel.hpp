@@ -23,8 +23,9 @@
 namespace tightfit {
 
 /// Sets the thread count of the element loops and of the BLAS (OpenBLAS is told through
-/// openblas_set_num_threads when it is the loaded BLAS). Throws std::invalid_argument
-/// for n < 1.
+/// openblas_set_num_threads when it is the loaded BLAS; the first call also shortens the
+/// spin of OpenBLAS's idle threads to 2^20 cycles unless OPENBLAS_THREAD_TIMEOUT is set). Throws
+/// std::invalid_argument for n < 1.
 void set_thread_count(int n);
 /// The thread count in force (set_thread_count, or the default below).
 int thread_count();
@@ -64,6 +65,9 @@ struct BlasInfo {
   std::string name;     ///< "OpenBLAS", "reference BLAS (netlib)", or the file name
   std::string config;   ///< openblas_get_config() for OpenBLAS, else empty
   int threads = 1;      ///< threads the BLAS may use
+  /// OpenBLAS: its idle threads spin 2^thread_timeout cycles before they sleep (see
+  /// set_thread_count); 0 when not known.
+  int thread_timeout = 0;
 };
 BlasInfo blas_info();
 
