@@ -236,19 +236,6 @@ void write_pattern_pdf_tiled(const Pattern& pattern, const PatternExportOptions&
   const std::vector<PieceDrawing> pieces = draw_pattern_pieces(pattern, options, path.string());
   const PatternLayout layout = layout_pattern(pieces, options);
   const TileGrid grid = tile_grid(layout, options);
-  // The layout is drawn once, in layout mm, into a recording that every tile paints
-  // through its clip: the PDF holds the drawing once (a form XObject each page refers
-  // to) instead of once per page, and writing it costs one drawing, not one per tile.
-  Surface recording(cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, nullptr),
-                    cairo_surface_destroy);
-  {
-    Cairo rc(cairo_create(recording.get()), cairo_destroy);
-    draw_layout(rc.get(), pieces, layout, options);
-    draw_alignment_marks(rc.get(), grid);
-    if (cairo_status(rc.get()) != CAIRO_STATUS_SUCCESS)
-      throw InputError(path.string(), std::string("cannot draw the pattern: ") +
-                                          cairo_status_to_string(cairo_status(rc.get())));
-  }
   write_pdf(path, grid.page.width_mm, grid.page.height_mm, [&](cairo_t* cr) {
     for (int r = 0; r < grid.rows; ++r) {
       for (int c = 0; c < grid.cols; ++c) {
@@ -260,8 +247,8 @@ void write_pattern_pdf_tiled(const Pattern& pattern, const PatternExportOptions&
         cairo_clip(cr);
         cairo_translate(cr, grid.margin_mm - c * grid.step_x_mm(),
                         grid.margin_mm - r * grid.step_y_mm());
-        cairo_set_source_surface(cr, recording.get(), 0.0, 0.0);
-        cairo_paint(cr);
+        draw_layout(cr, pieces, layout, options);
+        draw_alignment_marks(cr, grid);
         cairo_restore(cr);
         draw_tile_furniture(cr, grid, r, c);
         cairo_restore(cr);
