@@ -69,6 +69,9 @@ struct AdjointOptions {
   double initial_regularization = 1e-10;
   double regularization_growth = 10.0;  ///< factor between shifts
   int max_regularizations = 30;
+  /// Lanczos steps that estimate the first shift (ShiftSequence::estimate_steps; 0: climb
+  /// from initial_regularization one factorization per decade).
+  int shift_estimate_steps = 80;
   /// Relative residual ‖H λ − ∂T/∂q‖ / ‖∂T/∂q‖ the preconditioned GMRES solve reaches.
   double iterative_tolerance = 1e-12;
   /// GMRES iterations before the fallback factorizes the exact H.
