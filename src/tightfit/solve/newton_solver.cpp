@@ -16,7 +16,6 @@ double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factoriza
   ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
                        options_.max_regularizations};
   shifts.estimate_steps = options_.shift_estimate_steps;
-  shifts.estimate_margin = options_.shift_estimate_margin;
   // After a shifted iteration, start one step below the shift that worked (the
   // unshifted matrix has just failed nearby; each failed attempt is a factorization).
   if (shift_hint_ > 0.0) {

@@ -29,10 +29,8 @@ struct NewtonOptions {
   /// Where a Hessian is not positive definite and no shift of this solve is known, the
   /// first shift is estimated by this many Lanczos steps (ShiftSequence::estimate_steps:
   /// a product with H each, against the failed factorizations of a search climbing from
-  /// `initial_regularization` one decade at a time), at least `shift_estimate_margin`
-  /// times the shift the estimate says is needed. 0: no estimate.
+  /// `initial_regularization` one decade at a time). 0: no estimate.
   int shift_estimate_steps = 80;
-  double shift_estimate_margin = 2.0;
   bool throw_on_failure = true;  ///< throw SolverError if not converged
   /// Chord steps (solve()'s ChordSteps): steps with a factorization that is already
   /// there instead of a new one. At most this many in a
