@@ -233,6 +233,55 @@ TEST(PatternDrawing, TileGridAndLabels) {
   EXPECT_DOUBLE_EQ(grid.step_y_mm(), 263.0);
 }
 
+TEST(PatternDrawing, TileBoxIsTheContentRectangleAtTheTilesPlace) {
+  PatternLayout layout;
+  layout.width_mm = 500.0;
+  layout.height_mm = 600.0;
+  const TileGrid grid = tile_grid(layout, {});
+  const Box2 box = tile_box(grid, 1, 2, 0.5);
+  EXPECT_DOUBLE_EQ(box.min.x(), 2.0 * grid.step_x_mm() - 0.5);
+  EXPECT_DOUBLE_EQ(box.min.y(), grid.step_y_mm() - 0.5);
+  EXPECT_DOUBLE_EQ(box.width(), grid.content_width_mm + 1.0);
+  EXPECT_DOUBLE_EQ(box.height(), grid.content_height_mm + 1.0);
+}
+
+TEST(PatternDrawing, OutlineRunsKeepTheEdgesABoxMeetsWithTheirArcLength) {
+  // A 40 mm × 20 mm outline, vertex 0 at the origin, 10 mm edges, counter-clockwise.
+  std::vector<Vec2> outline;
+  for (double x = 0.0; x < 40.0; x += 10.0) outline.emplace_back(x, 0.0);
+  for (double y = 0.0; y < 20.0; y += 10.0) outline.emplace_back(40.0, y);
+  for (double x = 40.0; x > 0.0; x -= 10.0) outline.emplace_back(x, 20.0);
+  for (double y = 20.0; y > 0.0; y -= 10.0) outline.emplace_back(0.0, y);
+  ASSERT_EQ(outline.size(), 12u);
+
+  const auto all = outline_runs(outline, {{-1.0, -1.0}, {41.0, 21.0}});
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(all[0].first, 0u);
+  EXPECT_EQ(all[0].count, 12u);
+  EXPECT_DOUBLE_EQ(all[0].arc_length, 0.0);
+
+  EXPECT_TRUE(outline_runs(outline, {{100.0, 100.0}, {110.0, 110.0}}).empty());
+
+  // A box over the right end: edge 3 (x 30 … 40 at the bottom), 4 and 5 (the right
+  // side), 6 (x 40 … 30 at the top).
+  const auto right = outline_runs(outline, {{35.0, -5.0}, {45.0, 25.0}});
+  ASSERT_EQ(right.size(), 1u);
+  EXPECT_EQ(right[0].first, 3u);
+  EXPECT_EQ(right[0].count, 4u);
+  EXPECT_DOUBLE_EQ(right[0].arc_length, 30.0);
+
+  // A box over the left side meets the last edges and the first one: two runs, the
+  // second one starting at vertex 0 (a run does not wrap past it).
+  const auto left = outline_runs(outline, {{-5.0, -5.0}, {5.0, 25.0}});
+  ASSERT_EQ(left.size(), 2u);
+  EXPECT_EQ(left[0].first, 0u);
+  EXPECT_EQ(left[0].count, 1u);
+  EXPECT_DOUBLE_EQ(left[0].arc_length, 0.0);
+  EXPECT_EQ(left[1].first, 9u);
+  EXPECT_EQ(left[1].count, 3u);
+  EXPECT_DOUBLE_EQ(left[1].arc_length, 90.0);
+}
+
 void expect_input_error(const Pattern& pattern, const std::string& fragment,
                         const PatternExportOptions& options = {}) {
   try {

@@ -93,6 +93,32 @@ TileGrid tile_grid(const PatternLayout& layout, const PatternExportOptions& opti
   return grid;
 }
 
+Box2 tile_box(const TileGrid& grid, int row, int col, double slack_mm) {
+  const Vec2 lo(col * grid.step_x_mm(), row * grid.step_y_mm());
+  const Vec2 hi = lo + Vec2(grid.content_width_mm, grid.content_height_mm);
+  return {lo.array() - slack_mm, hi.array() + slack_mm};
+}
+
+std::vector<OutlineRun> outline_runs(const std::vector<Vec2>& outline, const Box2& box) {
+  std::vector<OutlineRun> runs;
+  const size_t n = outline.size();
+  double arc_length = 0.0;  // from vertex 0 to vertex i
+  bool in_run = false;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2& a = outline[i];
+    const Vec2& b = outline[(i + 1) % n];
+    if (box.meets(a.cwiseMin(b), a.cwiseMax(b))) {
+      if (!in_run) runs.push_back({i, 0, arc_length});
+      ++runs.back().count;
+      in_run = true;
+    } else {
+      in_run = false;
+    }
+    arc_length += (b - a).norm();
+  }
+  return runs;
+}
+
 std::string tile_label(int row, int col) {
   std::string letters;
   for (int r = row + 1; r > 0; r = (r - 1) / 26) {

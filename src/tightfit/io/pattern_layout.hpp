@@ -19,6 +19,10 @@ struct Box2 {
   Vec2 max = Vec2::Zero();
   double width() const { return max.x() - min.x(); }
   double height() const { return max.y() - min.y(); }
+  /// Whether the box [lo, hi] meets this one (touching counts).
+  bool meets(const Vec2& lo, const Vec2& hi) const {
+    return lo.x() <= max.x() && hi.x() >= min.x() && lo.y() <= max.y() && hi.y() >= min.y();
+  }
 };
 
 struct PatternLayout {
@@ -62,6 +66,23 @@ struct TileGrid {
 /// cols = max(1, ceil((W − overlap) / (content width − overlap))), rows likewise with
 /// the heights, for a W × H layout.
 TileGrid tile_grid(const PatternLayout& layout, const PatternExportOptions& options);
+
+/// The layout rectangle tile (row, col) shows (mm), grown by `slack_mm` on every side.
+Box2 tile_box(const TileGrid& grid, int row, int col, double slack_mm);
+
+/// Consecutive edges of a closed outline: edges first … first + count − 1, edge i
+/// joining vertex i to vertex (i + 1) mod n, starting `arc_length` (mm) along the
+/// outline from vertex 0.
+struct OutlineRun {
+  size_t first = 0;
+  size_t count = 0;
+  double arc_length = 0.0;
+};
+
+/// The runs of edges of the closed outline `outline` (layout mm, n vertices) whose
+/// bounding boxes meet `box`, in order of the outline; a run never wraps past vertex 0,
+/// so every edge seen → one run {0, n, 0}; none → no run.
+std::vector<OutlineRun> outline_runs(const std::vector<Vec2>& outline, const Box2& box);
 
 /// Label of tile (row, col), 0-based: rows are letters (A..Z, AA, AB, ...), columns
 /// numbers from 1: (0, 0) → "A1", (1, 2) → "B3".

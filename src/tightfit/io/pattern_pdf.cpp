@@ -3,6 +3,7 @@
 #include <cairo-pdf.h>
 #include <cairo.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -17,16 +18,54 @@ namespace {
 using Cairo = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
 using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 
-void polygon_path(cairo_t* cr, const PatternLayout& layout, size_t p, const Polygon2& polygon) {
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    const Vec2 q = layout.to_layout(p, polygon[i]);
-    if (i == 0) {
-      cairo_move_to(cr, q.x(), q.y());
-    } else {
-      cairo_line_to(cr, q.x(), q.y());
-    }
+/// Slack around a tile's rectangle (mm) within which lines count as seen: more than
+/// half the widest line (0.4 mm) and its round caps.
+constexpr double kTileSlackMm = 1.0;
+
+/// Whether every edge of the closed outline `q` runs along an axis (to 0.01 mm). cairo
+/// writes an axis-aligned rectangle as a PDF rectangle, dashed from its top-left corner
+/// whatever its first vertex: such outlines are drawn whole on tiles too (they are cheap).
+bool axis_aligned(const std::vector<Vec2>& q) {
+  for (size_t i = 0; i < q.size(); ++i) {
+    const Vec2 d = (q[(i + 1) % q.size()] - q[i]).cwiseAbs();
+    if (std::min(d.x(), d.y()) > 0.01) return false;
   }
-  cairo_close_path(cr);
+  return true;
+}
+
+/// Strokes the closed `polygon` of piece `p` with the current source and width, dashed
+/// by `dash` (empty: solid). With a tile's `view` (layout mm), only the runs of edges
+/// it sees are drawn, each dashed from its arc-length offset along the outline, so the
+/// dashes fall where the whole outline (the full-size page) puts them: a piece spanning
+/// many pages does not carry its whole outline on each.
+void stroke_outline(cairo_t* cr, const PatternLayout& layout, size_t p, const Polygon2& polygon,
+                    const std::vector<double>& dash, const Box2* view) {
+  const size_t n = polygon.size();
+  std::vector<Vec2> q(n);
+  for (size_t i = 0; i < n; ++i) q[i] = layout.to_layout(p, polygon[i]);
+  const int dashes = static_cast<int>(dash.size());
+  if (!view || axis_aligned(q)) {
+    cairo_set_dash(cr, dash.data(), dashes, 0.0);
+    for (size_t i = 0; i < n; ++i) {
+      if (i == 0) {
+        cairo_move_to(cr, q[i].x(), q[i].y());
+      } else {
+        cairo_line_to(cr, q[i].x(), q[i].y());
+      }
+    }
+    cairo_close_path(cr);
+    cairo_stroke(cr);
+    return;
+  }
+  for (const OutlineRun& run : outline_runs(q, *view)) {
+    cairo_set_dash(cr, dash.data(), dashes, run.arc_length);
+    cairo_move_to(cr, q[run.first].x(), q[run.first].y());
+    for (size_t k = 1; k <= run.count; ++k) {
+      const Vec2& v = q[(run.first + k) % n];
+      cairo_line_to(cr, v.x(), v.y());
+    }
+    cairo_stroke(cr);
+  }
 }
 
 void segment(cairo_t* cr, const Vec2& a, const Vec2& b) {
@@ -64,11 +103,13 @@ void arrow_head(cairo_t* cr, const Vec2& tip, const Vec2& from) {
 }
 
 /// Draws the whole layout in layout mm (the current matrix maps mm to the page).
+/// On a tile, `view` leaves out what the tile does not see (nullptr: draw everything).
 void draw_layout(cairo_t* cr, const std::vector<PieceDrawing>& pieces, const PatternLayout& layout,
-                 const PatternExportOptions& options) {
+                 const PatternExportOptions& options, const Box2* view) {
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  if (layout.has_test_square) {
+  if (layout.has_test_square &&
+      (!view || view->meets(layout.test_square.min, layout.test_square.max))) {
     const Box2& s = layout.test_square;
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_line_width(cr, 0.3);
@@ -79,21 +120,13 @@ void draw_layout(cairo_t* cr, const std::vector<PieceDrawing>& pieces, const Pat
   }
   for (size_t p = 0; p < pieces.size(); ++p) {
     const PieceDrawing& piece = pieces[p];
-    cairo_set_dash(cr, nullptr, 0, 0.0);
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_line_width(cr, 0.4);
-    polygon_path(cr, layout, p, piece.cut_line);
-    cairo_stroke(cr);
-    for (const Polygon2& hole : piece.holes) {
-      polygon_path(cr, layout, p, hole);
-      cairo_stroke(cr);
-    }
-    const double dash[] = {3.0, 1.5};
-    cairo_set_dash(cr, dash, 2, 0.0);
+    stroke_outline(cr, layout, p, piece.cut_line, {}, view);
+    for (const Polygon2& hole : piece.holes) stroke_outline(cr, layout, p, hole, {}, view);
     cairo_set_source_rgb(cr, 0.1, 0.31, 0.82);
     cairo_set_line_width(cr, 0.25);
-    polygon_path(cr, layout, p, piece.trued_sew_line);
-    cairo_stroke(cr);
+    stroke_outline(cr, layout, p, piece.trued_sew_line, {3.0, 1.5}, view);
     cairo_set_dash(cr, nullptr, 0, 0.0);
     cairo_set_source_rgb(cr, 0.75, 0, 0);
     cairo_set_line_width(cr, 0.4);
@@ -122,11 +155,13 @@ void draw_layout(cairo_t* cr, const std::vector<PieceDrawing>& pieces, const Pat
 }
 
 /// Circle-and-cross marks on the strips shared by neighbouring tiles (layout mm).
-void draw_alignment_marks(cairo_t* cr, const TileGrid& grid) {
+/// On a tile, `view` leaves out the marks it does not see.
+void draw_alignment_marks(cairo_t* cr, const TileGrid& grid, const Box2& view) {
   cairo_set_dash(cr, nullptr, 0, 0.0);
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_set_line_width(cr, 0.2);
   auto mark = [&](double x, double y) {
+    if (!view.meets(Vec2(x - 4.0, y - 4.0), Vec2(x + 4.0, y + 4.0))) return;
     cairo_new_sub_path(cr);
     cairo_arc(cr, x, y, 2.5, 0.0, 6.283185307179586);
     segment(cr, Vec2(x - 4.0, y), Vec2(x + 4.0, y));
@@ -247,8 +282,9 @@ void write_pattern_pdf_tiled(const Pattern& pattern, const PatternExportOptions&
         cairo_clip(cr);
         cairo_translate(cr, grid.margin_mm - c * grid.step_x_mm(),
                         grid.margin_mm - r * grid.step_y_mm());
-        draw_layout(cr, pieces, layout, options);
-        draw_alignment_marks(cr, grid);
+        const Box2 view = tile_box(grid, r, c, kTileSlackMm);
+        draw_layout(cr, pieces, layout, options, &view);
+        draw_alignment_marks(cr, grid, view);
         cairo_restore(cr);
         draw_tile_furniture(cr, grid, r, c);
         cairo_restore(cr);
@@ -264,7 +300,7 @@ void write_pattern_pdf_full_size(const Pattern& pattern, const PatternExportOpti
   const PatternLayout layout = layout_pattern(pieces, options);
   write_pdf(path, layout.width_mm, layout.height_mm, [&](cairo_t* cr) {
     cairo_scale(cr, kPointsPerMm, kPointsPerMm);
-    draw_layout(cr, pieces, layout, options);
+    draw_layout(cr, pieces, layout, options, nullptr);
     cairo_show_page(cr);
   });
 }
