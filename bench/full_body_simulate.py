@@ -8,9 +8,10 @@ body's surface edge (--body-mm) and the pattern's edge (--garment-mm), keeps eve
 else of the example (crops, layout, fabric, the 0.9 scale), lets Newton take up to
 --max-newton iterations, and runs the command under /usr/bin/time for the peak RSS.
 Prints and writes (OUT/full_body_simulate.json): garment triangles, body tets, DOFs,
-Newton iterations, whether it converged and its final force residual against the
-tolerance, wall time and its split (assembly, factorization, solve, line search), the
-Hessian's and the factor's nonzeros, the peak RSS, the threads and the BLAS.
+Newton iterations (of them chord steps) and factorizations, whether it converged and
+its final force residual against the tolerance, wall time and its split (assembly,
+factorization, solve, line search), the Hessian's and the factor's nonzeros, the peak
+RSS, the threads and the BLAS.
 
 Usage: bench/full_body_simulate.py BUILD/tightfit [--body-mm 12] [--garment-mm 7.5]
        [--max-newton 200] [--threads N] [--out out/bench/full_body]
@@ -88,6 +89,9 @@ def main():
         "body_tets": result["counts"]["body_tets"],
         "dofs": result["counts"]["dofs"],
         "newton_iterations": newton["iterations"],
+        "chord_steps": newton.get("chord_steps"),
+        "factorizations": newton.get("factorizations"),
+        "krylov_iterations": newton.get("krylov_iterations"),
         "converged": newton["converged"],
         "message": newton["message"],
         "force_residual_n": newton["final_force_residual_n"],
@@ -103,7 +107,8 @@ def main():
     with open(os.path.join(a.out, "full_body_simulate.json"), "w") as f:
         json.dump(row, f, indent=1)
     print(f"{row['garment_triangles']} garment triangles, {row['body_tets']} tets, "
-          f"{row['dofs']} DOFs: {row['newton_iterations']} Newton iterations, "
+          f"{row['dofs']} DOFs: {row['newton_iterations']} Newton iterations "
+          f"({row['chord_steps']} chord steps, {row['factorizations']} factorizations), "
           f"converged {row['converged']} (residual {row['force_residual_n']:.3g} N, "
           f"tolerance {row['force_tolerance_n']:.3g} N), wall {wall:.1f} s, "
           f"peak RSS {row['peak_rss_mb']:.0f} MB")

@@ -192,6 +192,16 @@ TEST_F(ExportCli, SimulateRunIsRegeneratedExactly) {
   // Printed with 4 digits: the residual Newton reported at the end of the run.
   EXPECT_NEAR(tol, newton["force_tolerance_n"].get<double>(), 1e-3 * tol);
   EXPECT_NEAR(res, newton["final_force_residual_n"].get<double>(), 1e-3 * res);
+  // The solve's steps: chord steps reuse a factorization (those taken back have step 0),
+  // the others made one (or more, with shifted retries).
+  int chords = 0, taken_chords = 0;
+  for (const auto& step : newton["history"]) {
+    chords += step["chord"].get<bool>() ? 1 : 0;
+    taken_chords += step["chord"].get<bool>() && step["step"].get<double>() > 0.0 ? 1 : 0;
+  }
+  EXPECT_EQ(newton["chord_steps"].get<int>(), taken_chords);
+  EXPECT_EQ(newton["iterations"].get<int>(), static_cast<int>(newton["history"].size()));
+  EXPECT_GE(newton["factorizations"].get<int>(), newton["iterations"].get<int>() - chords);
 }
 
 TEST_F(ExportCli, OptimizeRunKeepsHistoryAndCheckpointInPlace) {

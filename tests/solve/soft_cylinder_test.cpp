@@ -109,7 +109,7 @@ TEST(SoftCylinderSleeveSlow, NewtonConvergesQuadratically) {
   SimulationMaterials m;
   GarmentSimulation sim(c.body, *c.surface,
                         make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
-  const NewtonReport r = sim.solve();
+  const NewtonReport r = sim.solve(ChordSteps{});  // plain Newton: every step factorizes
   ASSERT_TRUE(r.converged);
   // Once the residual is small, each step squares it (up to a constant).
   int quadratic = 0;
@@ -123,6 +123,29 @@ TEST(SoftCylinderSleeveSlow, NewtonConvergesQuadratically) {
     }
   }
   EXPECT_GE(quadratic, 1);
+}
+
+TEST(SoftCylinderSleeveSlow, TheDefaultSolveReusesFactorizationsForTheSameEquilibrium) {
+  SoftCylinder c = make_soft_cylinder(0.02);
+  SimulationMaterials m;
+  GarmentSimulation plain(c.body, *c.surface,
+                          make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
+  GarmentSimulation reusing(
+      c.body, *c.surface, make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
+  const NewtonReport p = plain.solve(ChordSteps{});
+  const NewtonReport r = reusing.solve();
+  ASSERT_TRUE(p.converged);
+  ASSERT_TRUE(r.converged);
+  std::printf("plain Newton: %d steps, %d factorizations; default: %d steps (%d chord), %d\n",
+              p.iterations, p.factorizations, r.iterations, r.chord_steps, r.factorizations);
+  EXPECT_GT(r.chord_steps, 0);
+  EXPECT_LT(r.factorizations, p.factorizations);
+  const double garment =
+      (plain.garment_positions() - reusing.garment_positions()).cwiseAbs().maxCoeff();
+  const double body = (plain.body_positions() - reusing.body_positions()).cwiseAbs().maxCoeff();
+  std::printf("largest difference: garment %.3e m, body %.3e m\n", garment, body);
+  EXPECT_LT(garment, 1e-6);
+  EXPECT_LT(body, 1e-6);
 }
 
 }  // namespace tightfit::soft_cylinder_test

@@ -50,8 +50,10 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir,
   }
   const double t_solve = seconds_since(t0);
   std::printf(
-      "  Newton converged in %d iterations, force residual %.3e N (tolerance %.3e N), %.2f s\n",
-      report.iterations, report.final_force_norm, report.tolerance, t_solve);
+      "  Newton converged in %d iterations (%d chord steps, %d factorizations), force residual "
+      "%.3e N (tolerance %.3e N), %.2f s\n",
+      report.iterations, report.chord_steps, report.factorizations, report.final_force_norm,
+      report.tolerance, t_solve);
   t0 = SteadyClock::now();
   const FitAnalysis fit = sim->analyze();
   const double t_analysis = seconds_since(t0);

@@ -135,6 +135,9 @@ nlohmann::json newton_report_json(const NewtonReport& r) {
   j["converged"] = r.converged;
   j["message"] = r.message;
   j["iterations"] = r.iterations;
+  j["chord_steps"] = r.chord_steps;
+  j["factorizations"] = r.factorizations;
+  j["krylov_iterations"] = r.krylov_iterations;
   j["final_energy_j"] = r.final_energy;
   j["final_force_residual_n"] = r.final_force_norm;
   j["force_tolerance_n"] = r.tolerance;
@@ -147,7 +150,9 @@ nlohmann::json newton_report_json(const NewtonReport& r) {
     its.push_back({{"energy_j", it.energy},
                    {"force_residual_n", it.force_norm},
                    {"step", it.step_size},
-                   {"regularization", it.regularization}});
+                   {"regularization", it.regularization},
+                   {"chord", it.chord},
+                   {"krylov_iterations", it.krylov_iterations}});
     t_asm += it.seconds_assembly;
     t_fact += it.seconds_factorization;
     t_solve += it.seconds_solve;

@@ -48,8 +48,10 @@ class GarmentSimulation {
   ~GarmentSimulation();
 
   /// Newton from the current state (warm start). Throws SolverError if it fails.
-  /// `chords`: factorizations Newton may reuse for chord steps (NewtonSolver::solve).
-  NewtonReport solve(ChordSteps chords = {});
+  /// `chords`: factorizations Newton may reuse for chord steps (NewtonSolver::solve);
+  /// by default each Newton step's own (Newton–Krylov chord steps after it while they
+  /// contract: the same equilibrium to the tolerance with fewer factorizations).
+  NewtonReport solve(ChordSteps chords = {nullptr, true});
 
   const Garment& garment() const { return garment_; }
   const Body& body() const { return body_; }
