@@ -114,9 +114,7 @@ AdjointResult AdjointSolver::rest_gradient(GarmentSimulation& sim, const DesignT
 std::optional<double> AdjointSolver::factorize_held(const GarmentSimulation& sim,
                                                     const SparseMatrix& H_newton,
                                                     int& factorizations) {
-  ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
-                       options_.max_regularizations};
-  shifts.estimate_steps = options_.shift_estimate_steps;
+  const ShiftSequence shifts = options_.shift_sequence();
   ++generation_;
   held_ordering_ = next_ordering_;
   const auto shift =
@@ -181,9 +179,7 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
   EmbeddedEquilibrium& problem = sim.problem();
   if (rhs.size() != problem.num_dofs())
     throw SolverError("adjoint: right-hand side has the wrong size");
-  ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
-                       options_.max_regularizations};
-  shifts.estimate_steps = options_.shift_estimate_steps;
+  const ShiftSequence shifts = options_.shift_sequence();
   AdjointSolve out;
   // The exact H applied from its factors; H_N and what its projection took away (D, the
   // projected elements only: H = H_N + Jᵀ D J) only where a factorization is made here.

@@ -80,6 +80,13 @@ struct AdjointOptions {
   /// factorized at the equilibrium instead (one iteration costs two triangular solves
   /// and a product with H: a few dozen cost about one assembly and factorization).
   int max_reuse_iterations = 30;
+
+  /// The shifts tried where a matrix is not positive definite (factorize_shifted).
+  ShiftSequence shift_sequence() const {
+    ShiftSequence shifts{initial_regularization, regularization_growth, max_regularizations};
+    shifts.estimate_steps = shift_estimate_steps;
+    return shifts;
+  }
 };
 
 /// How the adjoint system was solved.

@@ -13,9 +13,7 @@ namespace tightfit {
 
 double NewtonSolver::factorize_regularized(const SparseMatrix& H, int& factorizations,
                                            const CholeskyOrdering* ordering) {
-  ShiftSequence shifts{options_.initial_regularization, options_.regularization_growth,
-                       options_.max_regularizations};
-  shifts.estimate_steps = options_.shift_estimate_steps;
+  ShiftSequence shifts = options_.shift_sequence();
   // After a shifted iteration, start one step below the shift that worked (the
   // unshifted matrix has just failed nearby; each failed attempt is a factorization).
   if (shift_hint_ > 0.0) {

@@ -75,6 +75,12 @@ struct NewtonOptions {
   double force_tolerance(double force_scale) const {
     return std::max(absolute_force_tolerance, relative_force_tolerance * force_scale);
   }
+  /// The shifts tried where a Hessian is not positive definite (factorize_shifted).
+  ShiftSequence shift_sequence() const {
+    ShiftSequence shifts{initial_regularization, regularization_growth, max_regularizations};
+    shifts.estimate_steps = shift_estimate_steps;
+    return shifts;
+  }
 };
 
 /// One Newton iteration, for reports and convergence tests.
