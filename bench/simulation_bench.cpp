@@ -2,7 +2,10 @@
 /// 32k garment triangles): per Newton iteration the assembly, factorization and solve
 /// times, the total equilibrium time from a cold start (the initial embedding) and from
 /// a warm start (the equilibrium, after a 1 % change of the rest shape), and the
-/// nonzeros of the Hessian and of its Cholesky factor.
+/// nonzeros of the Hessian and of its Cholesky factor. The second argument picks the
+/// solve: 1 the default (each factorization reused for Newton–Krylov chord steps), 0 plain
+/// Newton (a factorization per step); the two run one after the other at each
+/// resolution, so their ratio is of one run.
 #include <benchmark/benchmark.h>
 
 #include "tightfit/body/body_builder.hpp"
@@ -52,6 +55,8 @@ void report(benchmark::State& state, const SleeveScene& s, const NewtonReport& r
       static_cast<double>(s.garment.topology->garment_triangles.rows());
   state.counters["body_tets"] = s.body.volume.num_tets();
   state.counters["newton_iterations"] = r.iterations;
+  state.counters["chord_steps"] = r.chord_steps;
+  state.counters["factorizations"] = r.factorizations;
   state.counters["assembly_s_per_it"] = assembly / n;
   state.counters["factorization_s_per_it"] = factorization / n;
   state.counters["solve_s_per_it"] = solve / n;
@@ -61,12 +66,17 @@ void report(benchmark::State& state, const SleeveScene& s, const NewtonReport& r
   state.counters["factor_nnz"] = static_cast<double>(r.factor_nonzeros);
 }
 
+/// The solve the second argument asks for (see the file comment).
+ChordSteps chords(const benchmark::State& state) {
+  return state.range(1) != 0 ? ChordSteps{nullptr, true} : ChordSteps{};
+}
+
 void BM_SleeveColdStart(benchmark::State& state) {
   const SleeveScene s = make_scene(static_cast<double>(state.range(0)) * 1e-4);
   NewtonReport r;
   for (auto _ : state) {
     GarmentSimulation sim(s.body, *s.surface, s.garment, SimulationMaterials{});
-    r = sim.solve();
+    r = sim.solve(chords(state));
   }
   report(state, s, r);
 }
@@ -74,21 +84,27 @@ void BM_SleeveColdStart(benchmark::State& state) {
 void BM_SleeveWarmStart(benchmark::State& state) {
   const SleeveScene s = make_scene(static_cast<double>(state.range(0)) * 1e-4);
   GarmentSimulation sim(s.body, *s.surface, s.garment, SimulationMaterials{});
-  sim.solve();
+  sim.solve(chords(state));
   const Points2 rest = sim.garment().rest_positions();
   NewtonReport r;
   bool shrink = true;
   for (auto _ : state) {
     sim.set_rest_positions(rest * (shrink ? 0.99 : 1.0));
     shrink = !shrink;
-    r = sim.solve();
+    r = sim.solve(chords(state));
   }
   report(state, s, r);
 }
 
 // Garment edge length in 0.1 mm: ~2k, 8k and 32k triangles on a 20 cm sleeve.
-BENCHMARK(BM_SleeveColdStart)->Arg(79)->Arg(40)->Arg(20)->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK(BM_SleeveWarmStart)->Arg(79)->Arg(40)->Arg(20)->Unit(benchmark::kSecond)->Iterations(2);
+/// Both solves at each resolution, one after the other.
+void alternate_solves(benchmark::internal::Benchmark* b) {
+  for (int edge : {79, 40, 20})
+    for (int reuse : {0, 1}) b->Args({edge, reuse});
+}
+
+BENCHMARK(BM_SleeveColdStart)->Apply(alternate_solves)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_SleeveWarmStart)->Apply(alternate_solves)->Unit(benchmark::kSecond)->Iterations(2);
 
 }  // namespace
 }  // namespace tightfit
