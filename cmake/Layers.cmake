@@ -58,6 +58,25 @@ function(tightfit_unity target)
   endif()
 endfunction()
 
+# tightfit_cgal_sources_first(LIST): the sources of LIST that include CGAL headers first,
+# so that a unity build puts them in the same batches: they share the parsing and the
+# instantiation of CGAL's kernel and Surface_mesh templates (the body layer's six: 78 s
+# of compile CPU in one batch, 117 s apart). Read at configure time: a source that
+# starts or stops including CGAL is moved at the next configure.
+function(tightfit_cgal_sources_first list_var)
+  set(cgal_users "")
+  set(others "")
+  foreach(source IN LISTS ${list_var})
+    file(STRINGS ${source} cgal_includes REGEX "^#include <CGAL/" LIMIT_COUNT 1)
+    if(cgal_includes)
+      list(APPEND cgal_users ${source})
+    else()
+      list(APPEND others ${source})
+    endif()
+  endforeach()
+  set(${list_var} ${cgal_users} ${others} PARENT_SCOPE)
+endfunction()
+
 # tightfit_add_layer(NAME DEPS ...) builds src/tightfit/NAME/*.cpp into the library
 # tightfit_NAME (an INTERFACE library while the layer has no sources yet) and
 # tests/NAME/*_test.cpp into the test executable tightfit_NAME_tests.
@@ -65,6 +84,7 @@ set(TIGHTFIT_LAYERS "" CACHE INTERNAL "")
 function(tightfit_add_layer name)
   cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
   file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/tightfit/${name}/*.cpp)
+  tightfit_cgal_sources_first(sources)
   if(sources)
     add_library(tightfit_${name} STATIC ${sources})
     target_include_directories(tightfit_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)

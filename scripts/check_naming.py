@@ -4,7 +4,7 @@ text in CONTRIBUTING.md) over every source of src/ in a configured build.
 
 usage: scripts/check_naming.py [BUILD_DIR] [--jobs N] [--group N] [FILE...]
   BUILD_DIR  a CMake build with compile_commands.json (default build/release)
-  --group N  sources per clang-tidy run (default 16; 1: each source alone)
+  --group N  sources per clang-tidy run (default 48; 1: each source alone)
   FILE       check only these sources (default: every src/**/*.cpp in the build)
 
 Parsing the headers (Eigen, CGAL, JSON) is most of clang-tidy's time, so sources compiled
@@ -75,7 +75,7 @@ def run_tidy(db_dir, source):
 def main(argv):
     build = os.path.join(ROOT, "build", "release")
     jobs = os.cpu_count() or 2
-    group = 16
+    group = 48
     files = []
     args = iter(argv)
     for a in args:
@@ -163,6 +163,8 @@ def main(argv):
                 found |= check((half[0] if len(half) == 1 else write_group(half), half))
             return found
 
+        # Largest groups first, so that the last ones to finish are short.
+        units.sort(key=lambda unit: -len(unit[1]))
         with ThreadPoolExecutor(max_workers=jobs) as pool:
             problems = set().union(*pool.map(check, units))
     sources = sum(len(m) for _, m in units)

@@ -140,7 +140,7 @@ nlohmann::json body_mesh(const TriMesh& body, const Mat3& r, GltfBuffers& buffer
              {"mode", 4}}}}};
 }
 
-nlohmann::json coloring_json(const ResolvedColoring& c) {
+nlohmann::json glb_coloring_json(const ResolvedColoring& c) {
   return {{"field", c.coloring.field},
           {"label", c.coloring.label},
           {"unit", c.coloring.unit},
@@ -200,13 +200,13 @@ nlohmann::json garment_mesh(const std::string& name, const SplitGarment& g,
   nlohmann::json sets = nlohmann::json::array();
   for (std::size_t k = 0; k < colors.size(); ++k) {
     attributes["COLOR_" + std::to_string(k)] = colors[k];
-    nlohmann::json set = coloring_json(colorings[k]);
+    nlohmann::json set = glb_coloring_json(colorings[k]);
     set["attribute"] = "COLOR_" + std::to_string(k);
     sets.push_back(set);
   }
   return {{"name", name},
           {"primitives", {{{"attributes", attributes}, {"material", 1}, {"mode", 4}}}},
-          {"extras", {{"coloring", coloring_json(colorings.front())}, {"color_sets", sets}}}};
+          {"extras", {{"coloring", glb_coloring_json(colorings.front())}, {"color_sets", sets}}}};
 }
 
 void append_u32(std::string& out, std::uint32_t v) {
@@ -324,7 +324,7 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
                                 {"roughnessFactor", 0.9}}}}});
   nlohmann::json sets = nlohmann::json::array();
   for (std::size_t k = 0; k < colorings.size(); ++k) {
-    nlohmann::json set = coloring_json(colorings[k]);
+    nlohmann::json set = glb_coloring_json(colorings[k]);
     set["attribute"] = "COLOR_" + std::to_string(k);
     set["scene"] = static_cast<int>(k);  // scene 0 is the fit, scene k map k
     sets.push_back(set);
@@ -343,7 +343,7 @@ ResolvedColoring write_fit_glb(const std::filesystem::path& path, const FitView&
           {"rotation",
            "every position and normal is the scene's turned by the rotation that "
            "takes scene_up (the body's up direction) onto +y"},
-          {"coloring", coloring_json(colorings.front())},
+          {"coloring", glb_coloring_json(colorings.front())},
           {"color_sets", sets}}}}},
       {"scene", 0},
       {"scenes", scenes},

@@ -1,11 +1,11 @@
 #include "tightfit/io/grade_report.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <sstream>
 
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/xml_text.hpp"
+#include "tightfit/io/pattern_text.hpp"
 
 namespace tightfit {
 namespace {
@@ -15,12 +15,6 @@ const char* size_colour(size_t k) {
   static const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
                                   "#ff7f0e", "#17becf", "#8c564b", "#e377c2"};
   return colours[k % 8];
-}
-
-std::string fixed(double v, int digits) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", digits, v);
-  return text;
 }
 
 /// A number of `j[key]` with `digits` decimals, or "–".

@@ -17,11 +17,11 @@ namespace {
 
 using nlohmann::json;
 
-json point(const Vec2& q) { return json::array({q.x(), q.y()}); }
+json json_point(const Vec2& q) { return json::array({q.x(), q.y()}); }
 
 json polygon(const Polygon2& polygon) {
   json out = json::array();
-  for (const Vec2& q : polygon) out.push_back(point(q));
+  for (const Vec2& q : polygon) out.push_back(json_point(q));
   return out;
 }
 
@@ -44,8 +44,8 @@ void add_drawing(const PieceDrawing& drawing, json& piece) {
     notches.push_back({{"seam", n.seam},
                        {"side", n.side == 0 ? "a" : "b"},
                        {"index", n.index},
-                       {"sew", point(n.sew)},
-                       {"cut", point(n.cut)},
+                       {"sew", json_point(n.sew)},
+                       {"cut", json_point(n.cut)},
                        {"style", n.style == NotchStyle::kDouble ? "double" : "single"}});
   }
   piece["quantity"] = drawing.quantity;
@@ -53,7 +53,8 @@ void add_drawing(const PieceDrawing& drawing, json& piece) {
   piece["cut_line_mm"] = polygon(drawing.cut_line);
   piece["openings_mm"] = openings_mm(drawing);
   piece["allowance_mm"] = drawing.allowance;
-  piece["grain_line_mm"] = json::array({point(drawing.grain_start), point(drawing.grain_end)});
+  piece["grain_line_mm"] =
+      json::array({json_point(drawing.grain_start), json_point(drawing.grain_end)});
   piece["notches_mm"] = notches;
 }
 
