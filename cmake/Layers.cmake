@@ -60,9 +60,9 @@ endfunction()
 
 # tightfit_cgal_sources_first(LIST): the sources of LIST that include CGAL headers first,
 # so that a unity build puts them in the same batches: they share the parsing and the
-# instantiation of CGAL's kernel and Surface_mesh templates (the body layer's six: 78 s
-# of compile CPU in one batch, 117 s apart). Read at configure time: a source that
-# starts or stops including CGAL is moved at the next configure.
+# instantiation of CGAL's kernel and Surface_mesh templates (the body layer's five: 78 s
+# of compile CPU in one batch with three other sources, 117 s apart). Read at configure
+# time: a source that starts or stops including CGAL is moved at the next configure.
 function(tightfit_cgal_sources_first list_var)
   set(cgal_users "")
   set(others "")
