@@ -5,6 +5,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "tightfit/common/parallel.hpp"
+
 namespace tightfit::block_sparse_matrix_test {
 
 /// Random triplets over `n` vertices: some blocks written several times, some entries
@@ -73,6 +75,106 @@ TEST(BlockSparseMatrix3, MakesANewLayoutWhenThePositionsChange) {
   // A layout for another size is not used either.
   const BlockSparseMatrix3 m3 = BlockSparseMatrix3::from_triplets(t, n + 1, first.layout());
   EXPECT_EQ(m3.num_vertices(), n + 1);
+}
+
+/// Random element matrices of k vertices each over `n` vertices; element 0 repeats a
+/// vertex (its blocks add twice to the same block).
+ElementMatrices random_elements(int k, int count, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> vertex(0, n - 1);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<int> ids(static_cast<std::size_t>(k * count));
+  for (int& v : ids) v = vertex(rng);
+  if (k > 1) ids[1] = ids[0];
+  ElementMatrices m(k, ids);
+  const int size = 9 * k * k;
+  for (int e = 0; e < count; ++e)
+    for (int i = 0; i < size; ++i) m.matrix(e)[i] = value(rng);
+  return m;
+}
+
+/// The element matrices as scalar triplets (the reference of BlockSparseMatrix3::assemble).
+void append_triplets(const ElementMatrices& m, std::vector<Triplet>& t) {
+  const int k = m.vertices_per_element(), size = m.matrix_size();
+  for (std::int64_t e = 0; e < m.num_elements(); ++e)
+    for (int c = 0; c < size; ++c)
+      for (int r = 0; r < size; ++r)
+        t.emplace_back(3 * m.vertices()[k * e + r / 3] + r % 3,
+                       3 * m.vertices()[k * e + c / 3] + c % 3, m.matrix(e)[c * size + r]);
+}
+
+TEST(BlockSparseMatrix3, SumsElementMatricesAndTripletsLikeSetFromTriplets) {
+  const int n = 23;
+  std::vector<ElementMatrices> elements;
+  elements.push_back(random_elements(4, 30, n, 1));
+  elements.push_back(random_elements(2, 12, n, 2));
+  const std::vector<Triplet> t = random_triplets(n, 3);
+  std::vector<Triplet> all;
+  for (const ElementMatrices& m : elements) append_triplets(m, all);
+  all.insert(all.end(), t.begin(), t.end());
+  const BlockSparseMatrix3 m = BlockSparseMatrix3::assemble(elements, t, n);
+  EXPECT_LT((dense(m) - reference(all, n)).norm(), 1e-13);
+  // Same elements and triplet positions, new values: the layout is reused.
+  for (ElementMatrices& part : elements)
+    for (std::int64_t e = 0; e < part.num_elements(); ++e) part.matrix(e)[0] += 1.0;
+  all.clear();
+  for (const ElementMatrices& part : elements) append_triplets(part, all);
+  all.insert(all.end(), t.begin(), t.end());
+  const BlockSparseMatrix3 again = BlockSparseMatrix3::assemble(elements, t, n, m.layout());
+  EXPECT_EQ(again.layout(), m.layout());
+  EXPECT_LT((dense(again) - reference(all, n)).norm(), 1e-13);
+}
+
+TEST(BlockSparseMatrix3, MakesANewLayoutWhenTheElementsChange) {
+  const int n = 15;
+  std::vector<ElementMatrices> elements;
+  elements.push_back(random_elements(3, 20, n, 5));
+  const BlockSparseMatrix3 first = BlockSparseMatrix3::assemble(elements, {}, n);
+  // One element on other vertices (an element of the first layout is gone).
+  std::vector<int> ids = elements[0].vertices();
+  ids[7] = (ids[7] + 5) % n;
+  std::vector<ElementMatrices> moved;
+  moved.push_back(ElementMatrices(3, ids));
+  for (std::int64_t e = 0; e < moved[0].num_elements(); ++e)
+    std::copy_n(elements[0].matrix(e), 81, moved[0].matrix(e));
+  std::vector<Triplet> all;
+  append_triplets(moved[0], all);
+  const BlockSparseMatrix3 m = BlockSparseMatrix3::assemble(moved, {}, n, first.layout());
+  EXPECT_NE(m.layout(), first.layout());
+  EXPECT_LT((dense(m) - reference(all, n)).norm(), 1e-13);
+  // The same elements as triplets only: not the elements' layout either.
+  const BlockSparseMatrix3 as_triplets = BlockSparseMatrix3::from_triplets(all, n, m.layout());
+  EXPECT_NE(as_triplets.layout(), m.layout());
+  EXPECT_LT((dense(as_triplets) - dense(m)).norm(), 1e-13);
+}
+
+TEST(BlockSparseMatrix3, ElementAssemblyIsTheSameForEveryThreadCount) {
+  const int n = 400;
+  std::vector<ElementMatrices> elements;
+  elements.push_back(random_elements(4, 2000, n, 8));
+  const int threads = thread_count();
+  set_thread_count(1);
+  const MatX one = dense(BlockSparseMatrix3::assemble(elements, {}, n));
+  set_thread_count(2);
+  const MatX two = dense(BlockSparseMatrix3::assemble(elements, {}, n));
+  set_thread_count(threads);
+  EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(BlockSparseMatrix3, RejectsAnElementVertexOutsideTheMatrix) {
+  std::vector<ElementMatrices> elements;
+  elements.push_back(ElementMatrices(2, {0, 3}));
+  std::fill_n(elements[0].matrix(0), 36, 1.0);
+  EXPECT_THROW(BlockSparseMatrix3::assemble(elements, {}, 3), std::invalid_argument);
+}
+
+TEST(ElementMatrices, RejectsAnIncompleteElement) {
+  EXPECT_THROW(ElementMatrices(3, {0, 1, 2, 3}), std::invalid_argument);
+  EXPECT_THROW(ElementMatrices(0, {}), std::invalid_argument);
+  const ElementMatrices m(2, {0, 1, 1, 2});
+  EXPECT_EQ(m.num_elements(), 2);
+  EXPECT_EQ(m.matrix_size(), 6);
+  EXPECT_EQ(m.matrix(1) - m.matrix(0), 36);
 }
 
 TEST(BlockSparseMatrix3, EmptyTripletsGiveEmptyColumns) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tightfit/common/element_matrices.hpp"
 #include "tightfit/common/types.hpp"
 
 namespace tightfit {
@@ -31,6 +32,18 @@ class Energy {
   /// eigenvalues clamped to zero), which keeps Newton steps descent directions.
   virtual void add_hessian(const VecX& x, std::vector<Triplet>& H,
                            bool project_psd = false) const = 0;
+  /// The same Hessian as add_hessian, element by element: appends one ElementMatrices
+  /// (the element matrices over vertices of x, 3 DOFs each; their sum is d²U/dx²) and
+  /// returns true, or returns false without appending when the energy is not such a
+  /// sum (the caller then uses add_hessian). Assembling element matrices
+  /// (BlockSparseMatrix3::assemble) moves a ninth of the memory that triplets do.
+  virtual bool add_element_hessians(const VecX& x, std::vector<ElementMatrices>& H,
+                                    bool project_psd = false) const {
+    (void)x;
+    (void)H;
+    (void)project_psd;
+    return false;
+  }
 };
 
 }  // namespace tightfit

@@ -168,29 +168,47 @@ void NeoHookeanEnergy::add_gradient(const VecX& x, VecX& g) const {
     for (int k = 0; k < 4; ++k) g.segment<3>(3 * tets_[e][k]) += local[e].col(k);
 }
 
+Mat12 NeoHookeanEnergy::element_hessian(const VecX& x, int e, bool project_psd) const {
+  const Mat3 F = deformation_gradient(x, e);
+  const double J = F.determinant();
+  if (!(J > 0.0))
+    throw SolverError("NeoHookeanEnergy: Hessian at inverted tet " + std::to_string(e));
+  const double a = std::pow(J, -2.0 / 3.0);
+  const double i1 = F.squaredNorm();
+  const Vec9 f = Eigen::Map<const Vec9>(F.data());
+  const Mat3 cof_m = cofactor(F);
+  const Vec9 c = Eigen::Map<const Vec9>(cof_m.data());
+  Mat9 h = mu_ * a * Mat9::Identity();
+  h -= (2.0 / 3.0) * mu_ * a / J * (f * c.transpose() + c * f.transpose());
+  h += ((5.0 / 9.0) * mu_ * a * i1 / (J * J) + kappa_) * c * c.transpose();
+  h += (kappa_ * (J - 1.0) - mu_ * a * i1 / (3.0 * J)) * det_hessian(F);
+  Mat12 local = volume_[e] * pull_back_hessian(h, shape_gradients(rest_inverse_[e]));
+  if (project_psd) tightfit::project_psd(local);
+  return local;
+}
+
 void NeoHookeanEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd) const {
   check_size(x);
   constexpr size_t kPerElement = 144;
   const size_t first = H.size();
   H.resize(first + kPerElement * tets_.size());
   parallel_for(num_tets(), [&](std::int64_t e) {
-    const Mat3 F = deformation_gradient(x, static_cast<int>(e));
-    const double J = F.determinant();
-    if (!(J > 0.0))
-      throw SolverError("NeoHookeanEnergy: Hessian at inverted tet " + std::to_string(e));
-    const double a = std::pow(J, -2.0 / 3.0);
-    const double i1 = F.squaredNorm();
-    const Vec9 f = Eigen::Map<const Vec9>(F.data());
-    const Mat3 cof_m = cofactor(F);
-    const Vec9 c = Eigen::Map<const Vec9>(cof_m.data());
-    Mat9 h = mu_ * a * Mat9::Identity();
-    h -= (2.0 / 3.0) * mu_ * a / J * (f * c.transpose() + c * f.transpose());
-    h += ((5.0 / 9.0) * mu_ * a * i1 / (J * J) + kappa_) * c * c.transpose();
-    h += (kappa_ * (J - 1.0) - mu_ * a * i1 / (3.0 * J)) * det_hessian(F);
-    Mat12 local = volume_[e] * pull_back_hessian(h, shape_gradients(rest_inverse_[e]));
-    if (project_psd) tightfit::project_psd(local);
-    scatter_hessian<3>(tets_[e], local, H.data() + first + kPerElement * static_cast<size_t>(e));
+    scatter_hessian<3>(tets_[e], element_hessian(x, static_cast<int>(e), project_psd),
+                       H.data() + first + kPerElement * static_cast<size_t>(e));
   });
+}
+
+bool NeoHookeanEnergy::add_element_hessians(const VecX& x, std::vector<ElementMatrices>& H,
+                                            bool project_psd) const {
+  check_size(x);
+  std::vector<int> vertices;
+  vertices.reserve(4 * tets_.size());
+  for (const auto& t : tets_) vertices.insert(vertices.end(), t.begin(), t.end());
+  ElementMatrices& out = H.emplace_back(4, std::move(vertices));
+  parallel_for(num_tets(), [&](std::int64_t e) {
+    Eigen::Map<Mat12>(out.matrix(e)) = element_hessian(x, static_cast<int>(e), project_psd);
+  });
+  return true;
 }
 
 }  // namespace tightfit

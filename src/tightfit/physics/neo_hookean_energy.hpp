@@ -41,6 +41,9 @@ class NeoHookeanEnergy : public Energy {
   double value(const VecX& x) const override;
   void add_gradient(const VecX& x, VecX& g) const override;
   void add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd = false) const override;
+  /// One 12×12 matrix per tet, over its four vertices.
+  bool add_element_hessians(const VecX& x, std::vector<ElementMatrices>& H,
+                            bool project_psd = false) const override;
 
   int num_vertices() const { return num_vertices_; }
   int num_tets() const { return static_cast<int>(tets_.size()); }
@@ -52,6 +55,8 @@ class NeoHookeanEnergy : public Energy {
 
  private:
   void check_size(const VecX& v) const;
+  /// Tet e's 12×12 Hessian at x (projected onto the PSD cone with `project_psd`).
+  Eigen::Matrix<double, 12, 12> element_hessian(const VecX& x, int e, bool project_psd) const;
 
   int num_vertices_ = 0;
   NeoHookeanMaterial material_;

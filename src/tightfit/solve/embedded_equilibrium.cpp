@@ -14,6 +14,19 @@ namespace {
 
 VecX flat(const Points3& p) { return Eigen::Map<const VecX>(p.data(), p.size()); }
 
+/// Σ of the energies' Hessians at x over `num_vertices` vertices: element by element
+/// where an energy offers it, as triplets otherwise.
+BlockSparseMatrix3 assemble_hessian(const std::vector<const Energy*>& energies, const VecX& x,
+                                    int num_vertices, bool project,
+                                    std::shared_ptr<const BlockLayout> layout) {
+  std::vector<ElementMatrices> elements;
+  std::vector<Triplet> triplets;
+  for (const Energy* energy : energies)
+    if (!energy->add_element_hessians(x, elements, project))
+      energy->add_hessian(x, triplets, project);
+  return BlockSparseMatrix3::assemble(elements, triplets, num_vertices, std::move(layout));
+}
+
 }  // namespace
 
 EmbeddedEquilibrium::EmbeddedEquilibrium(EmbeddedSystemSetup setup, EmbeddedState initial)
@@ -147,19 +160,13 @@ CoupledHessianFactors EmbeddedEquilibrium::hessian_factors(HessianKind kind) con
   f.num_dofs = num_dofs_;
   f.garment_dof = garment_dof_;
   f.body_dof = body_dof_;
-  std::vector<Triplet> triplets;
-  const VecX x = flat(x_);
-  for (const Energy* energy : setup_.garment_energies) energy->add_hessian(x, triplets, project);
   HessianLayouts& layouts = *setup_.hessian_layouts;
-  f.garment = BlockSparseMatrix3::from_triplets(triplets, ng, layouts.garment);
+  f.garment = assemble_hessian(setup_.garment_energies, flat(x_), ng, project, layouts.garment);
   layouts.garment = f.garment.layout();
   // The body's Hessian only where a body vertex is free (a rigid body has none).
   if (std::any_of(body_dof_.begin(), body_dof_.end(), [](int d) { return d >= 0; })) {
-    triplets.clear();
-    const VecX y = flat(state_.body);
-    for (const Energy* energy : setup_.body_energies) energy->add_hessian(y, triplets, false);
-    f.body = BlockSparseMatrix3::from_triplets(triplets, static_cast<int>(state_.body.rows()),
-                                               layouts.body);
+    f.body = assemble_hessian(setup_.body_energies, flat(state_.body),
+                              static_cast<int>(state_.body.rows()), false, layouts.body);
     layouts.body = f.body.layout();
   }
 
