@@ -108,6 +108,30 @@ TEST(SparseCholesky, SearchesANewOrderingWhenTheGivenOneFillsTooMuch) {
   EXPECT_GT(lenient.ordering().factor_nonzeros, 1.25 * natural.factor_nonzeros);
 }
 
+TEST(SparseCholesky, FactorizesAPlusADiagonalBitForBitAsTheSum) {
+  const SparseMatrix A = grid_laplacian(9, -1.0, {{0, 40}, {7, 70}});
+  const VecX d = VecX::LinSpaced(81, 1.0, 2.0);
+  SparseMatrix D(81, 81);
+  for (Eigen::Index i = 0; i < 81; ++i) D.insert(i, i) = d[i];
+  const VecX b = VecX::LinSpaced(81, -1.0, 1.0);
+  SparseCholesky sum, plus;
+  ASSERT_TRUE(sum.factorize(SparseMatrix(A + D), nullptr));
+  ASSERT_TRUE(plus.factorize_plus_diagonal(A, d, nullptr));
+  EXPECT_EQ((sum.solve(b) - plus.solve(b)).cwiseAbs().maxCoeff(), 0.0);
+  // Without the diagonal the same matrix is not positive definite.
+  EXPECT_FALSE(plus.factorize(A));
+  // A diagonal entry that A does not store: the sum's pattern has it.
+  SparseMatrix gap = A;
+  gap.coeffRef(5, 5) = 0.0;
+  gap.prune(0.0);
+  ASSERT_LT(gap.nonZeros(), A.nonZeros());
+  SparseCholesky sum_gap, plus_gap;
+  ASSERT_TRUE(sum_gap.factorize(SparseMatrix(gap + D), nullptr));
+  ASSERT_TRUE(plus_gap.factorize_plus_diagonal(gap, d, nullptr));
+  EXPECT_EQ((sum_gap.solve(b) - plus_gap.solve(b)).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_THROW(plus.factorize_plus_diagonal(A, VecX::Ones(80), nullptr), SolverError);
+}
+
 TEST(SparseCholesky, ReportsIndefiniteMatrices) {
   SparseCholesky chol;
   EXPECT_FALSE(chol.factorize(laplacian_1d(20, -3.0)));

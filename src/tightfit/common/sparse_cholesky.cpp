@@ -9,6 +9,16 @@
 #include "tightfit/common/lanczos.hpp"
 
 namespace tightfit {
+namespace {
+
+SparseMatrix diagonal_matrix(const VecX& d) {
+  SparseMatrix D(d.size(), d.size());
+  D.reserve(Eigen::VectorXi::Constant(d.size(), 1));
+  for (Eigen::Index i = 0; i < d.size(); ++i) D.insert(i, i) = d[i];
+  return D;
+}
+
+}  // namespace
 
 struct SparseCholesky::Impl {
   cholmod_common common{};
@@ -75,12 +85,36 @@ bool SparseCholesky::factorize(const SparseMatrix& A) { return factorize(A, null
 bool SparseCholesky::factorize(const SparseMatrix& A, const CholeskyOrdering* ordering,
                                double max_fill_growth) {
   if (A.rows() != A.cols()) throw SolverError("SparseCholesky: matrix is not square");
+  impl_->upper = A.triangularView<Eigen::Upper>();
+  impl_->upper.makeCompressed();
+  return factorize_upper(A.rows(), ordering, max_fill_growth);
+}
+
+bool SparseCholesky::factorize_plus_diagonal(const SparseMatrix& A, const VecX& d,
+                                             const CholeskyOrdering* ordering,
+                                             double max_fill_growth) {
+  if (A.rows() != A.cols()) throw SolverError("SparseCholesky: matrix is not square");
+  if (d.size() != A.rows()) throw SolverError("SparseCholesky: diagonal has the wrong size");
+  SparseMatrix& upper = impl_->upper;
+  upper = A.triangularView<Eigen::Upper>();
+  upper.makeCompressed();
+  // In a compressed upper triangle with sorted rows the diagonal entry ends its column.
+  for (Eigen::Index j = 0; j < upper.cols(); ++j) {
+    const int end = upper.outerIndexPtr()[j + 1];
+    if (end == upper.outerIndexPtr()[j] || upper.innerIndexPtr()[end - 1] != j) {
+      // A diagonal entry is not stored: the sum's pattern has one more entry.
+      return factorize(SparseMatrix(A + diagonal_matrix(d)), ordering, max_fill_growth);
+    }
+    upper.valuePtr()[end - 1] += d[j];
+  }
+  return factorize_upper(A.rows(), ordering, max_fill_growth);
+}
+
+bool SparseCholesky::factorize_upper(Eigen::Index n, const CholeskyOrdering* ordering,
+                                     double max_fill_growth) {
   auto& d = *impl_;
-  d.upper = A.triangularView<Eigen::Upper>();
-  d.upper.makeCompressed();
   cholmod_sparse s = d.view();
-  if (ordering && static_cast<Eigen::Index>(ordering->permutation.size()) != A.rows())
-    ordering = nullptr;
+  if (ordering && static_cast<Eigen::Index>(ordering->permutation.size()) != n) ordering = nullptr;
   const std::vector<int> no_ordering;
   const std::vector<int>& wanted = ordering ? ordering->permutation : no_ordering;
   if (!d.same_pattern() || d.requested != wanted) {
@@ -106,7 +140,7 @@ bool SparseCholesky::factorize(const SparseMatrix& A, const CholeskyOrdering* or
     d.found.factor_nonzeros = d.common.lnz;
     d.pattern_outer.assign(d.upper.outerIndexPtr(), d.upper.outerIndexPtr() + d.upper.cols() + 1);
     d.pattern_inner.assign(d.upper.innerIndexPtr(), d.upper.innerIndexPtr() + d.upper.nonZeros());
-    d.n = A.rows();
+    d.n = n;
     ++d.analyses;
   }
   const int ok = cholmod_factorize(&s, d.factor, &d.common);
@@ -171,13 +205,6 @@ VecX shift_scaling_diagonal(const SparseMatrix& A, double diagonal_floor, double
   return scaling;
 }
 
-SparseMatrix diagonal_matrix(const VecX& d) {
-  SparseMatrix D(d.size(), d.size());
-  D.reserve(Eigen::VectorXi::Constant(d.size(), 1));
-  for (Eigen::Index i = 0; i < d.size(); ++i) D.insert(i, i) = d[i];
-  return D;
-}
-
 }  // namespace
 
 std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMatrix& A,
@@ -189,7 +216,6 @@ std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMa
   }
   double mean_diag = 1.0;
   const VecX scaling_diagonal = shift_scaling_diagonal(A, shifts.diagonal_floor, mean_diag);
-  const SparseMatrix scaling = diagonal_matrix(scaling_diagonal);
   double shift = shifts.initial * mean_diag;
   if (shifts.try_unshifted && shifts.estimate_steps > 0) {
     const double theta = lowest_ritz_value(A, scaling_diagonal, shifts.estimate_steps);
@@ -198,7 +224,7 @@ std::optional<double> factorize_shifted(SparseCholesky& cholesky, const SparseMa
   for (int k = 0; k < shifts.attempts; ++k) {
     if (last_shift) *last_shift = shift;
     ++factorizations;
-    if (cholesky.factorize(SparseMatrix(A + shift * scaling), ordering)) return shift;
+    if (cholesky.factorize_plus_diagonal(A, shift * scaling_diagonal, ordering)) return shift;
     shift *= shifts.growth;
   }
   return std::nullopt;
@@ -208,9 +234,8 @@ bool factorize_with_shift(SparseCholesky& cholesky, const SparseMatrix& A, doubl
                           const CholeskyOrdering* ordering, double diagonal_floor) {
   if (shift == 0.0) return cholesky.factorize(A, ordering);
   double mean_diag = 1.0;
-  const SparseMatrix scaling =
-      diagonal_matrix(shift_scaling_diagonal(A, diagonal_floor, mean_diag));
-  return cholesky.factorize(SparseMatrix(A + shift * scaling), ordering);
+  return cholesky.factorize_plus_diagonal(
+      A, shift * shift_scaling_diagonal(A, diagonal_floor, mean_diag), ordering);
 }
 
 }  // namespace tightfit

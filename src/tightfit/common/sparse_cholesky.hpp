@@ -40,6 +40,11 @@ class SparseCholesky {
   /// The result is a function of A and `ordering` only (not of earlier calls).
   bool factorize(const SparseMatrix& A, const CholeskyOrdering* ordering,
                  double max_fill_growth = 1.25);
+  /// As factorize(A, ordering, max_fill_growth) for A + diag(d) (d: n entries), bit for
+  /// bit, without forming that sum: d is added to the diagonal of the copy of A's upper
+  /// triangle that the factorization makes anyway.
+  bool factorize_plus_diagonal(const SparseMatrix& A, const VecX& d,
+                               const CholeskyOrdering* ordering, double max_fill_growth = 1.25);
 
   /// Solves A x = b with the last successful factorization. `b` has n rows.
   VecX solve(const VecX& b) const;
@@ -62,6 +67,9 @@ class SparseCholesky {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+
+  /// The factorization of the upper triangle already in impl_->upper.
+  bool factorize_upper(Eigen::Index n, const CholeskyOrdering* ordering, double max_fill_growth);
 };
 
 /// The growing diagonal shifts tried when a matrix is not positive definite:
