@@ -306,6 +306,25 @@ TEST(ClothEnergy, WeldedPiecesDerivativesMatchFiniteDifferences) {
   EXPECT_EQ(g(3, 1), 5);
 }
 
+TEST(ClothEnergy, ElementHessiansSumToTheHessian) {
+  // Two pieces welded along an edge (as above): shared garment vertices get blocks from
+  // triangles of both pieces.
+  Points2 rest(8, 2);
+  rest << 0, 0, 1, 0, 1, 1, 0, 1, 0, 0, 1.1, 0, 1.1, 1, 0, 1;
+  Triangles tri(4, 3);
+  tri << 0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7;
+  const ClothEnergy e(tri, rest, {0, 1, 2, 3, 1, 4, 5, 2}, 6);
+  Points3 x(6, 3);
+  x << 0, 0, 0, 0.9, 0, 0, 1.2, 1.1, 0, 0, 1.1, 0.1, 2.4, 0.1, 0.2, 2.4, 1.0, 0.3;
+  const VecX xv = flatten(x) + 0.05 * random_vector(18, 4);
+  for (const bool project : {false, true}) {
+    const MatX H = MatX(test::energy_hessian(e, xv, project));
+    const MatX sum = test::element_hessian_sum(e, xv, project);
+    ASSERT_EQ(sum.rows(), 18);
+    EXPECT_LT((sum - H).norm(), 1e-13 * H.norm());
+  }
+}
+
 TEST(ClothEnergy, ProjectedHessianIsPositiveSemiDefinite) {
   const Triangle t = stretched_triangle(1.2, 0.8, 17);  // wrinkled: indefinite raw Hessian
   const ClothEnergy e = single(t);

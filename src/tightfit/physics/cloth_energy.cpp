@@ -201,6 +201,17 @@ ClothElement gather_element(const Triangles& triangles, const Points2& rest,
   return el;
 }
 
+/// The element's 9×9 Hessian (over its three garment vertices), projected onto the PSD
+/// cone with `project_psd`.
+Mat9 cloth_element_hessian(const ClothElement& el, const RelaxedStVK& law, bool project_psd) {
+  const Phi phi = element_phi(el.deformed.value, el.rest.value, law, 2);
+  const Mat3x9& j = el.deformed.jacobian;
+  Mat9 local = law.material().thickness * (j.transpose() * phi.hessian.topLeftCorner<3, 3>() * j +
+                                           metric_curvature<3>(phi.gradient.head<3>()));
+  if (project_psd) tightfit::project_psd(local);
+  return local;
+}
+
 /// Runs fn(e, element) for every triangle in parallel (parallel_for: fn writes only to
 /// element e's slots).
 template <typename Fn>
@@ -254,17 +265,26 @@ void ClothEnergy::add_hessian(const VecX& x, std::vector<Triplet>& H, bool proje
   constexpr size_t kPerElement = 81;
   const size_t first = H.size();
   H.resize(first + kPerElement * static_cast<size_t>(triangles().rows()));
-  const double t = material().thickness;
   for_each_element(triangles(), rest(), pattern_to_garment(), x,
                    [&](std::int64_t e, const ClothElement& el) {
-                     const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
-                     const Mat3x9& j = el.deformed.jacobian;
-                     Mat9 local = t * (j.transpose() * phi.hessian.topLeftCorner<3, 3>() * j +
-                                       metric_curvature<3>(phi.gradient.head<3>()));
-                     if (project_psd) tightfit::project_psd(local);
-                     scatter_hessian<3>(el.garment, local,
+                     scatter_hessian<3>(el.garment, cloth_element_hessian(el, law_, project_psd),
                                         H.data() + first + kPerElement * static_cast<size_t>(e));
                    });
+}
+
+bool ClothEnergy::add_element_hessians(const VecX& x, std::vector<ElementMatrices>& H,
+                                       bool project_psd) const {
+  check_x(x);
+  std::vector<int> vertices(3 * static_cast<std::size_t>(triangles().rows()));
+  for (Eigen::Index e = 0; e < triangles().rows(); ++e)
+    for (int k = 0; k < 3; ++k)
+      vertices[3 * static_cast<std::size_t>(e) + k] = pattern_to_garment()[triangles()(e, k)];
+  ElementMatrices& out = H.emplace_back(3, std::move(vertices));
+  for_each_element(triangles(), rest(), pattern_to_garment(), x,
+                   [&](std::int64_t e, const ClothElement& el) {
+                     Eigen::Map<Mat9>(out.matrix(e)) = cloth_element_hessian(el, law_, project_psd);
+                   });
+  return true;
 }
 
 void ClothEnergy::add_gradient_rest(const VecX& x, VecX& g_rest) const {

@@ -42,6 +42,9 @@ class ClothEnergy : public RestDependentEnergy {
   double value(const VecX& x) const override;
   void add_gradient(const VecX& x, VecX& g) const override;
   void add_hessian(const VecX& x, std::vector<Triplet>& H, bool project_psd = false) const override;
+  /// One 9×9 matrix per triangle, over its three garment vertices.
+  bool add_element_hessians(const VecX& x, std::vector<ElementMatrices>& H,
+                            bool project_psd = false) const override;
 
   void check_rest(const Points2& rest) const override;
   void add_gradient_rest(const VecX& x, VecX& g_rest) const override;
