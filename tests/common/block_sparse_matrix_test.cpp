@@ -5,6 +5,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "support/element_triplets.hpp"
 #include "tightfit/common/parallel.hpp"
 
 namespace tightfit::block_sparse_matrix_test {
@@ -93,16 +94,6 @@ ElementMatrices random_elements(int k, int count, int n, unsigned seed) {
   return m;
 }
 
-/// The element matrices as scalar triplets (the reference of BlockSparseMatrix3::assemble).
-void append_triplets(const ElementMatrices& m, std::vector<Triplet>& t) {
-  const int k = m.vertices_per_element(), size = m.matrix_size();
-  for (std::int64_t e = 0; e < m.num_elements(); ++e)
-    for (int c = 0; c < size; ++c)
-      for (int r = 0; r < size; ++r)
-        t.emplace_back(3 * m.vertices()[k * e + r / 3] + r % 3,
-                       3 * m.vertices()[k * e + c / 3] + c % 3, m.matrix(e)[c * size + r]);
-}
-
 TEST(BlockSparseMatrix3, SumsElementMatricesAndTripletsLikeSetFromTriplets) {
   const int n = 23;
   std::vector<ElementMatrices> elements;
@@ -110,7 +101,7 @@ TEST(BlockSparseMatrix3, SumsElementMatricesAndTripletsLikeSetFromTriplets) {
   elements.push_back(random_elements(2, 12, n, 2));
   const std::vector<Triplet> t = random_triplets(n, 3);
   std::vector<Triplet> all;
-  for (const ElementMatrices& m : elements) append_triplets(m, all);
+  for (const ElementMatrices& m : elements) test::append_element_triplets(m, all);
   all.insert(all.end(), t.begin(), t.end());
   const BlockSparseMatrix3 m = BlockSparseMatrix3::assemble(elements, t, n);
   EXPECT_LT((dense(m) - reference(all, n)).norm(), 1e-13);
@@ -118,7 +109,7 @@ TEST(BlockSparseMatrix3, SumsElementMatricesAndTripletsLikeSetFromTriplets) {
   for (ElementMatrices& part : elements)
     for (std::int64_t e = 0; e < part.num_elements(); ++e) part.matrix(e)[0] += 1.0;
   all.clear();
-  for (const ElementMatrices& part : elements) append_triplets(part, all);
+  for (const ElementMatrices& part : elements) test::append_element_triplets(part, all);
   all.insert(all.end(), t.begin(), t.end());
   const BlockSparseMatrix3 again = BlockSparseMatrix3::assemble(elements, t, n, m.layout());
   EXPECT_EQ(again.layout(), m.layout());
@@ -138,7 +129,7 @@ TEST(BlockSparseMatrix3, MakesANewLayoutWhenTheElementsChange) {
   for (std::int64_t e = 0; e < moved[0].num_elements(); ++e)
     std::copy_n(elements[0].matrix(e), 81, moved[0].matrix(e));
   std::vector<Triplet> all;
-  append_triplets(moved[0], all);
+  test::append_element_triplets(moved[0], all);
   const BlockSparseMatrix3 m = BlockSparseMatrix3::assemble(moved, {}, n, first.layout());
   EXPECT_NE(m.layout(), first.layout());
   EXPECT_LT((dense(m) - reference(all, n)).norm(), 1e-13);

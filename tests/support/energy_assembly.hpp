@@ -3,6 +3,7 @@
 /// energies one at a time (the solvers assemble sums of energies themselves).
 #include <vector>
 
+#include "support/element_triplets.hpp"
 #include "tightfit/physics/assembly.hpp"
 #include "tightfit/physics/energy.hpp"
 
@@ -35,15 +36,8 @@ inline SparseMatrix energy_hessian(const Energy& energy, const VecX& x, bool pro
 inline MatX element_hessian_sum(const Energy& energy, const VecX& x, bool project_psd = false) {
   std::vector<ElementMatrices> parts;
   if (!energy.add_element_hessians(x, parts, project_psd)) return MatX();
-  MatX sum = MatX::Zero(x.size(), x.size());
-  for (const ElementMatrices& m : parts) {
-    const int k = m.vertices_per_element(), size = m.matrix_size();
-    for (std::int64_t e = 0; e < m.num_elements(); ++e)
-      for (int c = 0; c < size; ++c)
-        for (int r = 0; r < size; ++r)
-          sum(3 * m.vertices()[k * e + r / 3] + r % 3, 3 * m.vertices()[k * e + c / 3] + c % 3) +=
-              m.matrix(e)[c * size + r];
-  }
-  return sum;
+  std::vector<Triplet> t;
+  for (const ElementMatrices& m : parts) append_element_triplets(m, t);
+  return MatX(sparse_from_triplets(x.size(), x.size(), t));
 }
 }  // namespace tightfit::test
