@@ -12,8 +12,8 @@
 namespace tightfit {
 namespace {
 
-/// A search compresses the pattern when its supervariables are at most this fraction of
-/// the columns (below, ordering the compressed graph saves too little).
+/// A search orders the graph of supervariables when there are at most this fraction of
+/// the columns of them (with more, the smaller graph would save too little).
 constexpr double kCompressionWorthwhile = 0.8;
 
 /// The analysis of a search and the nonzeros of its L.
@@ -34,7 +34,7 @@ Analysis analyze_with(cholmod_sparse& a, std::vector<int>& permutation, cholmod_
 
 /// A fill-reducing ordering searched on the graph of supervariables: runs of
 /// consecutive columns with the same pattern (the 3 DOFs of a body vertex, the 2 of a
-/// garment vertex) become one node, so AMD and METIS see a graph with ~1/9 of the edges
+/// garment vertex) become one node, so AMD and METIS see a graph with ~1/7 of the edges
 /// (CHOLMOD orders the scalar graph: at full-body size its METIS search took as long as
 /// the numeric factorization). CHOLMOD's strategy otherwise: AMD, then METIS when AMD's
 /// ordering fills much (fl/lnz ≥ 500 and lnz/anz ≥ 5), the one with fewer nonzeros in L
