@@ -16,17 +16,39 @@ namespace {
 /// the columns of them (with more, the smaller graph would save too little).
 constexpr double kCompressionWorthwhile = 0.8;
 
+/// CHOLMOD's view of a compressed symmetric matrix stored by its upper triangle (n×n,
+/// `nonzeros` entries; `values` null: the pattern only). Nothing is copied.
+cholmod_sparse upper_triangle_view(std::size_t n, std::size_t nonzeros, int* outer, int* inner,
+                                   double* values) {
+  cholmod_sparse s{};
+  s.nrow = s.ncol = n;
+  s.nzmax = nonzeros;
+  s.p = outer;
+  s.i = inner;
+  s.x = values;
+  s.stype = 1;
+  s.itype = CHOLMOD_INT;
+  s.xtype = values ? CHOLMOD_REAL : CHOLMOD_PATTERN;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
+}
+
 /// The analysis of a search and the nonzeros of its L.
 struct Analysis {
   cholmod_factor* factor = nullptr;
   double factor_nonzeros = 0.0;
 };
 
-/// CHOLMOD's symbolic analysis of `a` with the given permutation (method 0 only).
-Analysis analyze_with(cholmod_sparse& a, std::vector<int>& permutation, cholmod_common& common) {
+/// CHOLMOD's symbolic analysis of `a` with the given permutation (method 0 only; CHOLMOD
+/// reads the permutation and does not write it).
+Analysis analyze_with(cholmod_sparse& a, const std::vector<int>& permutation,
+                      cholmod_common& common) {
   const int methods = common.nmethods;
   common.nmethods = 1;
-  Analysis result{cholmod_analyze_p(&a, permutation.data(), nullptr, 0, &common), 0.0};
+  Analysis result{cholmod_analyze_p(&a, const_cast<int*>(permutation.data()), nullptr, 0, &common),
+                  0.0};
   common.nmethods = methods;
   if (result.factor) result.factor_nonzeros = common.lnz;
   return result;
@@ -77,17 +99,8 @@ Analysis search_ordering(cholmod_sparse& a, cholmod_common& common) {
     cp[static_cast<size_t>(g) + 1] = static_cast<int>(ci.size());
   }
   cholmod_free_sparse(&full, &common);
-  cholmod_sparse graph{};
-  graph.nrow = graph.ncol = static_cast<size_t>(groups);
-  graph.nzmax = ci.size();
-  graph.p = cp.data();
-  graph.i = ci.data();
-  graph.stype = 1;
-  graph.itype = CHOLMOD_INT;
-  graph.xtype = CHOLMOD_PATTERN;
-  graph.dtype = CHOLMOD_DOUBLE;
-  graph.sorted = 1;
-  graph.packed = 1;
+  cholmod_sparse graph =
+      upper_triangle_view(static_cast<size_t>(groups), ci.size(), cp.data(), ci.data(), nullptr);
 
   // A supervariable ordering, expanded to the columns, analysed.
   const auto analyze_order = [&](bool metis) -> Analysis {
@@ -153,22 +166,9 @@ struct SparseCholesky::Impl {
   }
 
   cholmod_sparse view() {
-    cholmod_sparse s{};
-    s.nrow = static_cast<size_t>(upper.rows());
-    s.ncol = static_cast<size_t>(upper.cols());
-    s.nzmax = static_cast<size_t>(upper.nonZeros());
-    s.p = upper.outerIndexPtr();
-    s.i = upper.innerIndexPtr();
-    s.nz = nullptr;
-    s.x = upper.valuePtr();
-    s.z = nullptr;
-    s.stype = 1;  // symmetric, upper triangle stored
-    s.itype = CHOLMOD_INT;
-    s.xtype = CHOLMOD_REAL;
-    s.dtype = CHOLMOD_DOUBLE;
-    s.sorted = 1;
-    s.packed = 1;
-    return s;
+    return upper_triangle_view(static_cast<size_t>(upper.rows()),
+                               static_cast<size_t>(upper.nonZeros()), upper.outerIndexPtr(),
+                               upper.innerIndexPtr(), upper.valuePtr());
   }
 
   bool same_pattern() const {
@@ -226,8 +226,7 @@ bool SparseCholesky::factorize_upper(Eigen::Index n, const CholeskyOrdering* ord
     Analysis analysis;
     if (ordering) {
       // Only the given permutation (CHOLMOD's method 0), then the etree postorder.
-      std::vector<int> permutation = ordering->permutation;
-      analysis = analyze_with(s, permutation, d.common);
+      analysis = analyze_with(s, ordering->permutation, d.common);
       if (analysis.factor &&
           !(analysis.factor_nonzeros <= max_fill_growth * ordering->factor_nonzeros))
         cholmod_free_factor(&analysis.factor, &d.common);
