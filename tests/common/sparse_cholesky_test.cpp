@@ -1,9 +1,6 @@
 #include "tightfit/common/sparse_cholesky.hpp"
 
-#include <cholmod.h>
-
 #include <gtest/gtest.h>
-#include <array>
 
 #include "support/laplacian_1d.hpp"
 #include "tightfit/common/error.hpp"
@@ -109,82 +106,6 @@ TEST(SparseCholesky, SearchesANewOrderingWhenTheGivenOneFillsTooMuch) {
   ASSERT_TRUE(lenient.factorize(grid_laplacian(m, 0.2), &natural, 100.0));
   EXPECT_EQ(lenient.ordering_searches(), 0);
   EXPECT_GT(lenient.ordering().factor_nonzeros, 1.25 * natural.factor_nonzeros);
-}
-
-/// The 7-point Laplacian of an m×m×m grid plus I, each node carrying 3 DOFs coupled by
-/// a dense 3×3 block (a body vertex's DOFs: their columns share one pattern).
-SparseMatrix vertex_block_laplacian(int m) {
-  Eigen::Matrix3d block;
-  block << 2.0, 0.5, 0.25, 0.5, 2.0, 0.5, 0.25, 0.5, 2.0;
-  std::vector<Triplet> t;
-  const auto id = [m](int i, int j, int k) { return (i * m + j) * m + k; };
-  const auto add = [&](int a, int b, double w) {
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) t.emplace_back(3 * a + r, 3 * b + c, w * block(r, c));
-  };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j)
-      for (int k = 0; k < m; ++k) {
-        add(id(i, j, k), id(i, j, k), 7.0);
-        for (const auto& [di, dj, dk] : {std::array{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}) {
-          if (i + di >= m || j + dj >= m || k + dk >= m) continue;
-          add(id(i, j, k), id(i + di, j + dj, k + dk), -1.0);
-          add(id(i + di, j + dj, k + dk), id(i, j, k), -1.0);
-        }
-      }
-  const int n = 3 * m * m * m;
-  SparseMatrix A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
-  return A;
-}
-
-/// nnz(L) of CHOLMOD's own ordering search (AMD, then METIS when AMD fills much).
-double cholmod_search_fill(const SparseMatrix& A) {
-  SparseMatrix upper = A.triangularView<Eigen::Upper>();
-  upper.makeCompressed();
-  cholmod_common common;
-  cholmod_start(&common);
-  common.print = 0;
-  cholmod_sparse s{};
-  s.nrow = s.ncol = static_cast<size_t>(upper.rows());
-  s.nzmax = static_cast<size_t>(upper.nonZeros());
-  s.p = upper.outerIndexPtr();
-  s.i = upper.innerIndexPtr();
-  s.x = upper.valuePtr();
-  s.stype = 1;
-  s.itype = CHOLMOD_INT;
-  s.xtype = CHOLMOD_REAL;
-  s.dtype = CHOLMOD_DOUBLE;
-  s.sorted = 1;
-  s.packed = 1;
-  cholmod_factor* L = cholmod_analyze(&s, &common);
-  const double lnz = L ? common.lnz : 0.0;
-  if (L) cholmod_free_factor(&L, &common);
-  cholmod_finish(&common);
-  return lnz;
-}
-
-TEST(SparseCholesky, SearchesTheOrderingOnTheGraphOfVertexBlocks) {
-  // m = 20: AMD fills enough that METIS is tried too (and kept).
-  for (int m : {6, 20}) {
-    const SparseMatrix A = vertex_block_laplacian(m);
-    SparseCholesky chol;
-    ASSERT_TRUE(chol.factorize(A));
-    EXPECT_EQ(chol.ordering_searches(), 1);
-    const VecX b = VecX::LinSpaced(A.rows(), -1.0, 2.0);
-    EXPECT_LT((A * chol.solve(b) - b).norm(), 1e-12 * b.norm());
-    // The blocks' graph is ordered as well as the scalar graph CHOLMOD orders itself.
-    const double own = cholmod_search_fill(A);
-    ASSERT_GT(own, 0.0);
-    EXPECT_LT(chol.ordering().factor_nonzeros, 1.1 * own) << "m = " << m;
-    // The ordering keeps each vertex's DOFs together.
-    const std::vector<int>& p = chol.ordering().permutation;
-    for (size_t k = 0; k + 2 < p.size(); k += 3) {
-      EXPECT_EQ(p[k] % 3, 0);
-      EXPECT_EQ(p[k + 1], p[k] + 1);
-      EXPECT_EQ(p[k + 2], p[k] + 2);
-    }
-  }
 }
 
 TEST(SparseCholesky, FactorizesAPlusADiagonalBitForBitAsTheSum) {

@@ -2,7 +2,6 @@
 
 #include <cholmod.h>
 
-#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -11,121 +10,6 @@
 
 namespace tightfit {
 namespace {
-
-/// A search orders the graph of supervariables when there are at most this fraction of
-/// the columns of them (with more, the smaller graph would save too little).
-constexpr double kCompressionWorthwhile = 0.8;
-
-/// CHOLMOD's view of a compressed symmetric matrix stored by its upper triangle (n×n,
-/// `nonzeros` entries; `values` null: the pattern only). Nothing is copied.
-cholmod_sparse upper_triangle_view(std::size_t n, std::size_t nonzeros, int* outer, int* inner,
-                                   double* values) {
-  cholmod_sparse s{};
-  s.nrow = s.ncol = n;
-  s.nzmax = nonzeros;
-  s.p = outer;
-  s.i = inner;
-  s.x = values;
-  s.stype = 1;
-  s.itype = CHOLMOD_INT;
-  s.xtype = values ? CHOLMOD_REAL : CHOLMOD_PATTERN;
-  s.dtype = CHOLMOD_DOUBLE;
-  s.sorted = 1;
-  s.packed = 1;
-  return s;
-}
-
-/// The analysis of a search and the nonzeros of its L.
-struct Analysis {
-  cholmod_factor* factor = nullptr;
-  double factor_nonzeros = 0.0;
-};
-
-/// CHOLMOD's symbolic analysis of `a` with the given permutation (method 0 only; CHOLMOD
-/// reads the permutation and does not write it).
-Analysis analyze_with(cholmod_sparse& a, const std::vector<int>& permutation,
-                      cholmod_common& common) {
-  const int methods = common.nmethods;
-  common.nmethods = 1;
-  Analysis result{cholmod_analyze_p(&a, const_cast<int*>(permutation.data()), nullptr, 0, &common),
-                  0.0};
-  common.nmethods = methods;
-  if (result.factor) result.factor_nonzeros = common.lnz;
-  return result;
-}
-
-/// A fill-reducing ordering searched on the graph of supervariables: runs of
-/// consecutive columns with the same pattern (the 3 DOFs of a body vertex, the 2 of a
-/// garment vertex) become one node, so AMD and METIS see a graph with ~1/7 of the edges
-/// (CHOLMOD orders the scalar graph: at full-body size its METIS search took as long as
-/// the numeric factorization). CHOLMOD's strategy otherwise: AMD, then METIS when AMD's
-/// ordering fills much (fl/lnz ≥ 500 and lnz/anz ≥ 5), the one with fewer nonzeros in L
-/// kept. Patterns that hardly compress get CHOLMOD's own search.
-Analysis search_ordering(cholmod_sparse& a, cholmod_common& common) {
-  const auto n = static_cast<int>(a.ncol);
-  cholmod_sparse* full = cholmod_copy(&a, 0, 0, &common);  // both triangles, pattern only
-  if (!full) return {};
-  const int* fp = static_cast<const int*>(full->p);
-  const int* fi = static_cast<const int*>(full->i);
-  std::vector<int> first;  // first column of each supervariable, then n
-  std::vector<int> group(static_cast<size_t>(n));
-  for (int j = 0; j < n; ++j) {
-    const bool same = j > 0 && fp[j + 1] - fp[j] == fp[j] - fp[j - 1] &&
-                      std::equal(fi + fp[j], fi + fp[j + 1], fi + fp[j - 1]);
-    if (!same) first.push_back(j);
-    group[static_cast<size_t>(j)] = static_cast<int>(first.size()) - 1;
-  }
-  const int groups = static_cast<int>(first.size());
-  first.push_back(n);
-  if (groups > kCompressionWorthwhile * n) {
-    cholmod_free_sparse(&full, &common);
-    Analysis own{cholmod_analyze(&a, &common), 0.0};
-    if (own.factor) own.factor_nonzeros = common.lnz;
-    return own;
-  }
-  // The upper triangle of the supervariable graph.
-  std::vector<int> cp(static_cast<size_t>(groups) + 1, 0), ci;
-  std::vector<int> seen(static_cast<size_t>(groups), -1);
-  for (int g = 0; g < groups; ++g) {
-    const int j = first[static_cast<size_t>(g)];
-    for (int k = fp[j]; k < fp[j + 1]; ++k) {
-      const int h = group[static_cast<size_t>(fi[k])];
-      if (h <= g && seen[static_cast<size_t>(h)] != g) {
-        seen[static_cast<size_t>(h)] = g;
-        ci.push_back(h);
-      }
-    }
-    std::sort(ci.begin() + cp[static_cast<size_t>(g)], ci.end());
-    cp[static_cast<size_t>(g) + 1] = static_cast<int>(ci.size());
-  }
-  cholmod_free_sparse(&full, &common);
-  cholmod_sparse graph =
-      upper_triangle_view(static_cast<size_t>(groups), ci.size(), cp.data(), ci.data(), nullptr);
-
-  // A supervariable ordering, expanded to the columns, analysed.
-  const auto analyze_order = [&](bool metis) -> Analysis {
-    std::vector<int> order(static_cast<size_t>(groups));
-    const int ok = metis ? cholmod_metis(&graph, nullptr, 0, 0, order.data(), &common)
-                         : cholmod_amd(&graph, nullptr, 0, order.data(), &common);
-    if (!ok) return {};
-    std::vector<int> permutation;
-    permutation.reserve(static_cast<size_t>(n));
-    for (int g : order)
-      for (int j = first[static_cast<size_t>(g)]; j < first[static_cast<size_t>(g) + 1]; ++j)
-        permutation.push_back(j);
-    return analyze_with(a, permutation, common);
-  };
-  Analysis best = analyze_order(false);
-  if (!best.factor) return best;
-  const double flops = common.fl;
-  const double anz = static_cast<double>(a.nzmax);
-  if (flops / best.factor_nonzeros >= 500.0 && best.factor_nonzeros / anz >= 5.0) {
-    Analysis nested = analyze_order(true);
-    if (nested.factor && nested.factor_nonzeros < best.factor_nonzeros) std::swap(best, nested);
-    if (nested.factor) cholmod_free_factor(&nested.factor, &common);
-  }
-  return best;
-}
 
 SparseMatrix diagonal_matrix(const VecX& d) {
   SparseMatrix D(d.size(), d.size());
@@ -166,9 +50,22 @@ struct SparseCholesky::Impl {
   }
 
   cholmod_sparse view() {
-    return upper_triangle_view(static_cast<size_t>(upper.rows()),
-                               static_cast<size_t>(upper.nonZeros()), upper.outerIndexPtr(),
-                               upper.innerIndexPtr(), upper.valuePtr());
+    cholmod_sparse s{};
+    s.nrow = static_cast<size_t>(upper.rows());
+    s.ncol = static_cast<size_t>(upper.cols());
+    s.nzmax = static_cast<size_t>(upper.nonZeros());
+    s.p = upper.outerIndexPtr();
+    s.i = upper.innerIndexPtr();
+    s.nz = nullptr;
+    s.x = upper.valuePtr();
+    s.z = nullptr;
+    s.stype = 1;  // symmetric, upper triangle stored
+    s.itype = CHOLMOD_INT;
+    s.xtype = CHOLMOD_REAL;
+    s.dtype = CHOLMOD_DOUBLE;
+    s.sorted = 1;
+    s.packed = 1;
+    return s;
   }
 
   bool same_pattern() const {
@@ -223,23 +120,24 @@ bool SparseCholesky::factorize_upper(Eigen::Index n, const CholeskyOrdering* ord
   if (!d.same_pattern() || d.requested != wanted) {
     if (d.factor) cholmod_free_factor(&d.factor, &d.common);
     d.requested = wanted;
-    Analysis analysis;
     if (ordering) {
       // Only the given permutation (CHOLMOD's method 0), then the etree postorder.
-      analysis = analyze_with(s, ordering->permutation, d.common);
-      if (analysis.factor &&
-          !(analysis.factor_nonzeros <= max_fill_growth * ordering->factor_nonzeros))
-        cholmod_free_factor(&analysis.factor, &d.common);
+      const int methods = d.common.nmethods;
+      d.common.nmethods = 1;
+      d.factor = cholmod_analyze_p(&s, const_cast<int*>(ordering->permutation.data()), nullptr, 0,
+                                   &d.common);
+      d.common.nmethods = methods;
+      if (d.factor && !(d.common.lnz <= max_fill_growth * ordering->factor_nonzeros))
+        cholmod_free_factor(&d.factor, &d.common);
     }
-    if (!analysis.factor) {
-      analysis = search_ordering(s, d.common);
+    if (!d.factor) {
+      d.factor = cholmod_analyze(&s, &d.common);
       ++d.searches;
     }
-    d.factor = analysis.factor;
     if (!d.factor) throw SolverError("SparseCholesky: symbolic analysis failed");
     d.found.permutation.assign(static_cast<const int*>(d.factor->Perm),
                                static_cast<const int*>(d.factor->Perm) + d.factor->n);
-    d.found.factor_nonzeros = analysis.factor_nonzeros;
+    d.found.factor_nonzeros = d.common.lnz;
     d.pattern_outer.assign(d.upper.outerIndexPtr(), d.upper.outerIndexPtr() + d.upper.cols() + 1);
     d.pattern_inner.assign(d.upper.innerIndexPtr(), d.upper.innerIndexPtr() + d.upper.nonZeros());
     d.n = n;

@@ -4,9 +4,7 @@
 /// ordering, supernode structure) is reused while the sparsity pattern stays the same.
 /// A matrix whose pattern differs only a little from one already analysed (a Newton
 /// Hessian after garment vertices slid onto other faces) can be analysed with that
-/// analysis' ordering instead of a new one (METIS and AMD are the costly part). A new
-/// ordering is searched on the graph of supervariables (runs of columns with one
-/// pattern: the DOFs of a vertex), with CHOLMOD's AMD-then-METIS strategy.
+/// analysis' ordering instead of a new one (METIS and AMD are the costly part).
 #include <cstdint>
 #include <memory>
 #include <optional>
