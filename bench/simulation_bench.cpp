@@ -6,9 +6,15 @@
 /// solve: 1 the default (each factorization reused for Newton–Krylov chord steps), 0 plain
 /// Newton (a factorization per step); the two run one after the other at each
 /// resolution, so their ratio is of one run.
+///
+/// BM_SleeveFactorSolve: at the equilibrium, one application of the Hessian's
+/// factorization in double precision (SparseCholesky::solve) and with the factor rounded
+/// to single precision (solve_preconditioner, what the Krylov solves use), alternately,
+/// each as a fraction of one numeric factorization of the same matrix.
 #include <benchmark/benchmark.h>
 
 #include "tightfit/body/body_builder.hpp"
+#include "tightfit/common/stopwatch.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
@@ -96,6 +102,44 @@ void BM_SleeveWarmStart(benchmark::State& state) {
   report(state, s, r);
 }
 
+void BM_SleeveFactorSolve(benchmark::State& state) {
+  const SleeveScene s = make_scene(static_cast<double>(state.range(0)) * 1e-4);
+  GarmentSimulation sim(s.body, *s.surface, s.garment, SimulationMaterials{});
+  sim.solve();
+  const SparseMatrix H = sim.problem().hessian();
+  SparseCholesky cholesky;
+  if (!cholesky.factorize(H)) {
+    state.SkipWithError("the equilibrium Hessian is not positive definite");
+    return;
+  }
+  const VecX b = sim.problem().gradient() + VecX::Ones(H.rows());
+  double factorization = 0.0, exact = 0.0, single = 0.0;
+  int rounds = 0;
+  for (auto _ : state) {
+    auto t0 = SteadyClock::now();
+    cholesky.factorize(H);
+    factorization += seconds_since(t0);
+    t0 = SteadyClock::now();
+    benchmark::DoNotOptimize(cholesky.solve_preconditioner(b));  // includes the rounding
+    for (int k = 0; k < 20; ++k) {
+      auto t1 = SteadyClock::now();
+      benchmark::DoNotOptimize(cholesky.solve(b));
+      exact += seconds_since(t1);
+      t1 = SteadyClock::now();
+      benchmark::DoNotOptimize(cholesky.solve_preconditioner(b));
+      single += seconds_since(t1);
+    }
+    ++rounds;
+  }
+  const double solves = 20.0 * rounds;
+  state.counters["factor_nnz"] = static_cast<double>(cholesky.factor_nonzeros());
+  state.counters["factorization_ms"] = 1e3 * factorization / rounds;
+  state.counters["solve_ms"] = 1e3 * exact / solves;
+  state.counters["single_solve_ms"] = 1e3 * single / solves;
+  state.counters["single_over_solve"] = single / exact;
+  state.counters["solve_over_factorization"] = (exact / solves) / (factorization / rounds);
+}
+
 // Garment edge length in 0.1 mm: ~2k, 8k and 32k triangles on a 20 cm sleeve.
 /// Both solves at each resolution, one after the other.
 void alternate_solves(benchmark::internal::Benchmark* b) {
@@ -105,6 +149,7 @@ void alternate_solves(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_SleeveColdStart)->Apply(alternate_solves)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_SleeveWarmStart)->Apply(alternate_solves)->Unit(benchmark::kSecond)->Iterations(2);
+BENCHMARK(BM_SleeveFactorSolve)->Arg(79)->Arg(40)->Arg(20)->Unit(benchmark::kSecond)->Iterations(5);
 
 }  // namespace
 }  // namespace tightfit

@@ -3,10 +3,12 @@
 #include <cholmod.h>
 
 #include <cmath>
+#include <mutex>
 #include <vector>
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/lanczos.hpp"
+#include "tightfit/common/single_precision_factor.hpp"
 
 namespace tightfit {
 namespace {
@@ -37,6 +39,10 @@ struct SparseCholesky::Impl {
   // CHOLMOD's permuted supernodal factorization needs tril(PAPᵀ), one transpose away
   // from triu(A) but two from tril(A) (cholmod_factorize.c: "the fastest option").
   SparseMatrix upper;
+  // The factor rounded to single precision (solve_preconditioner), made when first asked
+  // for after a factorization.
+  mutable std::mutex single_mutex;
+  mutable std::unique_ptr<SinglePrecisionFactor> single;
 
   Impl() {
     cholmod_start(&common);
@@ -113,6 +119,10 @@ bool SparseCholesky::factorize_plus_diagonal(const SparseMatrix& A, const VecX& 
 bool SparseCholesky::factorize_upper(Eigen::Index n, const CholeskyOrdering* ordering,
                                      double max_fill_growth) {
   auto& d = *impl_;
+  {
+    const std::lock_guard<std::mutex> lock(d.single_mutex);
+    d.single.reset();
+  }
   cholmod_sparse s = d.view();
   if (ordering && static_cast<Eigen::Index>(ordering->permutation.size()) != n) ordering = nullptr;
   const std::vector<int> no_ordering;
@@ -166,6 +176,32 @@ VecX SparseCholesky::solve(const VecX& b) const {
   VecX out = Eigen::Map<const VecX>(static_cast<const double*>(x->x), b.size());
   cholmod_free_dense(&x, &d.common);
   return out;
+}
+
+VecX SparseCholesky::solve_preconditioner(const VecX& b) const {
+  auto& d = *impl_;
+  if (!d.factor_valid) throw SolverError("SparseCholesky: solve without a valid factorization");
+  if (!d.factor->is_super) return solve(b);
+  if (b.size() != d.n) throw SolverError("SparseCholesky: right-hand side has the wrong size");
+  const SinglePrecisionFactor* single = nullptr;
+  {
+    const std::lock_guard<std::mutex> lock(d.single_mutex);
+    if (!d.single) {
+      const cholmod_factor& f = *d.factor;
+      SupernodalFactorView view;
+      view.n = static_cast<Eigen::Index>(f.n);
+      view.supernodes = static_cast<int>(f.nsuper);
+      view.super = static_cast<const int*>(f.super);
+      view.row_start = static_cast<const int*>(f.pi);
+      view.value_start = static_cast<const int*>(f.px);
+      view.rows = static_cast<const int*>(f.s);
+      view.values = static_cast<const double*>(f.x);
+      view.permutation = static_cast<const int*>(f.Perm);
+      d.single = std::make_unique<SinglePrecisionFactor>(view);
+    }
+    single = d.single.get();
+  }
+  return single->apply(b);
 }
 
 MatX SparseCholesky::solve_columns(const MatX& B) const {

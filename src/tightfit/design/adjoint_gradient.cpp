@@ -214,7 +214,8 @@ AdjointSolve AdjointSolver::solve(GarmentSimulation& sim, const VecX& rhs, bool 
     gmres.max_iterations = max_iterations;
     VecX lambda = newton_factor_.solve(rhs);
     const GmresReport report = preconditioned_gmres(
-        apply_exact, [&](const VecX& v) { return newton_factor_.solve(v); }, rhs, lambda, gmres);
+        apply_exact, [&](const VecX& v) { return newton_factor_.solve_preconditioner(v); }, rhs,
+        lambda, gmres);
     out.krylov_iterations += report.iterations;
     if (!report.converged || !lambda.allFinite()) return false;
     out.lambda = std::move(lambda);

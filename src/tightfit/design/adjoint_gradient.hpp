@@ -29,7 +29,10 @@
 ///    Newton steps before the equilibrium;
 ///  * otherwise the factorization held before (made at an earlier point).
 /// H λ = ∂T/∂q is solved by GMRES preconditioned with it to `iterative_tolerance` in at
-/// most `max_reuse_iterations` (a preconditioner from a nearby state takes a handful).
+/// most `max_reuse_iterations` (a preconditioner from a nearby state takes a handful),
+/// starting from the held factorization's own solution; the preconditioner applies its
+/// factor rounded to single precision (SparseCholesky::solve_preconditioner), GMRES's
+/// residuals are of the exact H.
 /// Only when that fails is H_N factorized at the equilibrium itself (it becomes the held
 /// factorization); then
 ///  * when no element was projected, H_N is the exact H and λ is one direct solve (so

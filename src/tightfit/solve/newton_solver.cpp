@@ -134,8 +134,8 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
       t0 = SteadyClock::now();
       if (H) {
         TruncatedCgReport cg;
-        dq = truncated_cg(*H, [&](const VecX& r) { return factor->solve(r); }, VecX(-g), cg,
-                          {record.krylov_tolerance, options_.krylov_iterations});
+        dq = truncated_cg(*H, [&](const VecX& r) { return factor->solve_preconditioner(r); },
+                          VecX(-g), cg, {record.krylov_tolerance, options_.krylov_iterations});
         record.krylov_iterations = cg.iterations;
         report.krylov_iterations += cg.iterations;
         // The held factorization no longer preconditions well: factorize next time.

@@ -40,7 +40,8 @@ struct NewtonOptions {
   double chord_contraction = 0.25;
   /// Chord steps as Newton–Krylov steps where the problem offers hessian_operator():
   /// the Newton system at the current state solved by conjugate gradients preconditioned
-  /// with the held factorization (truncated_cg.hpp) to `krylov_tolerance` (relative
+  /// with the held factorization, its factor rounded to single precision
+  /// (SparseCholesky::solve_preconditioner; truncated_cg.hpp) to `krylov_tolerance` (relative
   /// residual) in at most `krylov_iterations` products; when CG does not get there the
   /// next step factorizes. false: plain chord steps, dq = −F⁻¹ g.
   bool krylov_chords = true;
