@@ -138,6 +138,7 @@ nlohmann::json newton_report_json(const NewtonReport& r) {
   j["chord_steps"] = r.chord_steps;
   j["factorizations"] = r.factorizations;
   j["krylov_iterations"] = r.krylov_iterations;
+  j["garment_first_iterations"] = r.garment_first_iterations;
   j["final_energy_j"] = r.final_energy;
   j["final_force_residual_n"] = r.final_force_norm;
   j["force_tolerance_n"] = r.tolerance;
@@ -152,6 +153,7 @@ nlohmann::json newton_report_json(const NewtonReport& r) {
                    {"step", it.step_size},
                    {"regularization", it.regularization},
                    {"chord", it.chord},
+                   {"body_held", it.body_held},
                    {"krylov_iterations", it.krylov_iterations}});
     t_asm += it.seconds_assembly;
     t_fact += it.seconds_factorization;

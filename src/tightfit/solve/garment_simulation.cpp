@@ -73,13 +73,13 @@ std::string GarmentSimulation::garment_vertex_piece(int vertex) const {
   return out;
 }
 
-void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
+EmbeddedSystemSetup GarmentSimulation::problem_setup(bool still_body) {
   EmbeddedSystemSetup setup;
   setup.surface = &surface_;
   for (const RestDependentEnergy* e : rest_dependent_energies())
     setup.garment_energies.push_back(e);
   setup.body_energies.push_back(body_energy_.get());
-  if (materials_.rigid_body) {
+  if (materials_.rigid_body || still_body) {
     setup.pinned_body.resize(body_.num_vertices());
     std::iota(setup.pinned_body.begin(), setup.pinned_body.end(), 0);
   } else {
@@ -89,12 +89,54 @@ void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
   setup.force_scale = force_scale_;
   setup.garment_vertex_label = [this](int vertex) { return garment_vertex_piece(vertex); };
   setup.hessian_layouts = hessian_layouts_;
-  problem_ = std::make_unique<EmbeddedEquilibrium>(std::move(setup), state);
+  return setup;
+}
+
+void GarmentSimulation::rebuild_problem(const EmbeddedState& state) {
+  problem_ = std::make_unique<EmbeddedEquilibrium>(problem_setup(false), state);
+}
+
+NewtonReport GarmentSimulation::relax_garment_on_still_body() {
+  EmbeddedEquilibrium still(problem_setup(true), problem_->state());
+  NewtonOptions options = newton_.options();
+  options.relative_force_tolerance =
+      std::max(options.relative_force_tolerance, kGarmentFirstTolerance);
+  options.max_iterations = std::min(options.max_iterations, kGarmentFirstIterations);
+  options.throw_on_failure = false;
+  if (const auto report_step = newton_.options().on_step)
+    options.on_step = [report_step](const NewtonIteration& it, double seconds) {
+      NewtonIteration held = it;
+      held.body_held = true;
+      report_step(held, seconds);
+    };
+  NewtonSolver solver(options);
+  NewtonReport report = solver.solve(still, {nullptr, true});
+  for (NewtonIteration& it : report.history) it.body_held = true;
+  set_state(still.state());
+  return report;
 }
 
 NewtonReport GarmentSimulation::solve(ChordSteps chords) {
+  NewtonReport first;
+  if (garment_first_ && !chords.held && !materials_.rigid_body) {
+    try {
+      first = relax_garment_on_still_body();
+    } catch (const SolverError&) {
+      first = NewtonReport{};  // the coupled solve starts from the state as it was
+    }
+  }
   NewtonReport report = newton_.solve(*problem_, chords);
   garment_.embedding = problem_->state().garment;
+  if (first.iterations > 0) {
+    report.garment_first_iterations = first.iterations;
+    report.iterations += first.iterations;
+    report.chord_steps += first.chord_steps;
+    report.factorizations += first.factorizations;
+    report.krylov_iterations += first.krylov_iterations;
+    report.force_accepted_steps += first.force_accepted_steps;
+    report.seconds_total += first.seconds_total;
+    report.history.insert(report.history.begin(), first.history.begin(), first.history.end());
+  }
   return report;
 }
 

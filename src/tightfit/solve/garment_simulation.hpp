@@ -51,7 +51,25 @@ class GarmentSimulation {
   /// `chords`: factorizations Newton may reuse for chord steps (NewtonSolver::solve);
   /// by default each Newton step's own (Newton–Krylov chord steps after it while they
   /// contract: the same equilibrium to the tolerance with fewer factorizations).
+  /// Without a held factorization (a cold start: the initial placement, a remeshed
+  /// garment) and with a deformable body, the garment is first relaxed on the body held
+  /// still (relax_garment_on_still_body) when garment_first() is on; the returned report
+  /// counts both stages (NewtonReport::garment_first_iterations).
   NewtonReport solve(ChordSteps chords = {nullptr, true});
+  /// Whether cold solves relax the garment on the still body first (default on).
+  bool garment_first() const { return garment_first_; }
+  void set_garment_first(bool on) { garment_first_ = on; }
+  /// Newton on the garment's surface coordinates alone, every body vertex held at its
+  /// current position, to a relative force tolerance of `kGarmentFirstTolerance` in at
+  /// most `kGarmentFirstIterations` factorizing steps; the state it reaches (never of
+  /// higher energy: the body energy is unchanged and Newton only descends) becomes the
+  /// current state. The system is the garment's (2 DOFs per vertex, a surface mesh's
+  /// sparsity), far cheaper to factorize than the coupled one, and takes the large
+  /// sliding of a cold start, so that the coupled solve starts where only the body's
+  /// response is left.
+  NewtonReport relax_garment_on_still_body();
+  static constexpr double kGarmentFirstTolerance = 1e-6;
+  static constexpr int kGarmentFirstIterations = 30;
 
   const Garment& garment() const { return garment_; }
   const Body& body() const { return body_; }
@@ -98,6 +116,9 @@ class GarmentSimulation {
 
  private:
   void rebuild_problem(const EmbeddedState& state);
+  /// The equilibrium problem's setup for the current garment and materials (all body
+  /// vertices pinned when `still_body`).
+  EmbeddedSystemSetup problem_setup(bool still_body);
   /// Takes `garment` with its rest array and energies; changes nothing if they throw.
   void adopt_garment(Garment garment);
   /// "piece 'NAME'" (or "pieces 'A', 'B'" on a seam) of a garment vertex, for messages.
@@ -115,6 +136,7 @@ class GarmentSimulation {
   // Shared by every problem_ this simulation makes (EmbeddedSystemSetup::hessian_layouts).
   std::shared_ptr<HessianLayouts> hessian_layouts_ = std::make_shared<HessianLayouts>();
   double force_scale_ = 1.0;
+  bool garment_first_ = true;
 };
 
 }  // namespace tightfit

@@ -95,6 +95,8 @@ struct NewtonIteration {
   int krylov_iterations = 0;       ///< of a chord step: conjugate-gradient products
   double krylov_tolerance = 0.0;   ///< of a Newton–Krylov step: the relative residual
                                    ///< CG was asked for (NewtonOptions::krylov_forcing)
+  bool body_held = false;          ///< a step of the first stage on the garment alone, the
+                                   ///< body held still (NewtonReport::garment_first_iterations)
   bool accepted_by_force = false;  ///< accepted by its force decrease, not by the energy
                                    ///< (NewtonOptions::energy_precision)
   double seconds_assembly = 0.0;   ///< gradient + Hessian
@@ -110,6 +112,9 @@ struct NewtonReport {
   int factorizations = 0;        ///< Hessians factorized (shifted retries included)
   int krylov_iterations = 0;     ///< conjugate-gradient products of the chord steps
   int force_accepted_steps = 0;  ///< steps accepted by their force decrease
+  /// Of `iterations`: steps of a first stage on the garment alone, the body held still
+  /// (GarmentSimulation::relax_garment_on_still_body; their records lead `history`).
+  int garment_first_iterations = 0;
   double final_energy = 0.0;
   double final_force_norm = 0.0;  ///< N
   double tolerance = 0.0;         ///< N, the force tolerance that was applied
