@@ -101,6 +101,14 @@ const Kernels& kernels(bool portable) {
 /// Columns of a supernode's block are eliminated in groups of this many.
 constexpr int kGroup = 4;
 
+/// The group of `group` (≤ kGroup) columns from column j0 of a supernode's block of
+/// `rows` rows, each from row `below` on; the kernels' missing columns repeat the last.
+void group_columns(const float* block, int rows, int j0, int group, int below,
+                   const float* (&c)[kGroup]) {
+  for (int g = 0; g < kGroup; ++g)
+    c[g] = block + static_cast<std::ptrdiff_t>(j0 + std::min(g, group - 1)) * rows + below;
+}
+
 /// Forward elimination of one supernode in w (its rows, w[j] for its columns first):
 /// w[j] /= L_jj, then the rows below subtract L_ij w[j], four columns at a time.
 void eliminate_forward(const Kernels& k, const float* block, int rows, int columns, double* w) {
@@ -114,15 +122,11 @@ void eliminate_forward(const Kernels& k, const float* block, int rows, int colum
     }
     // Below the group: all its columns at once (missing ones with zero weight).
     const int below = j0 + group;
-    const float* c[kGroup];
-    double a[kGroup];
-    for (int g = 0; g < kGroup; ++g) {
-      const bool real = g < group;
-      c[g] = real ? block + static_cast<std::ptrdiff_t>(j0 + g) * rows + below : nullptr;
-      a[g] = real ? w[j0 + g] : 0.0;
-    }
     if (below < rows) {
-      for (int g = group; g < kGroup; ++g) c[g] = c[0];
+      const float* c[kGroup];
+      group_columns(block, rows, j0, group, below, c);
+      double a[kGroup];
+      for (int g = 0; g < kGroup; ++g) a[g] = g < group ? w[j0 + g] : 0.0;
       k.subtract_columns(rows - below, c, a, w + below);
     }
   }
@@ -137,8 +141,7 @@ void eliminate_backward(const Kernels& k, const float* block, int rows, int colu
     double dots[kGroup] = {0.0, 0.0, 0.0, 0.0};
     if (below < rows) {
       const float* c[kGroup];
-      for (int g = 0; g < kGroup; ++g)
-        c[g] = block + static_cast<std::ptrdiff_t>(j0 + std::min(g, group - 1)) * rows + below;
+      group_columns(block, rows, j0, group, below, c);
       k.dot_columns(rows - below, c, w + below, dots);
     }
     for (int j = below - 1; j >= j0; --j) {

@@ -112,7 +112,7 @@ NewtonReport GarmentSimulation::relax_garment_on_still_body() {
   NewtonSolver solver(options);
   NewtonReport report = solver.solve(still, {nullptr, true});
   for (NewtonIteration& it : report.history) it.body_held = true;
-  set_state(still.state());
+  if (report.iterations > 0) set_state(still.state());
   return report;
 }
 
