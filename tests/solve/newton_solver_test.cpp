@@ -148,6 +148,45 @@ TEST(NewtonSolver, SlowChordStepsHandOverToNewton) {
   }
 }
 
+// A warm start asked to stop after a poor predictor: far from the held factorization's
+// equilibrium it stops after that one step (no exception, no factorization) with the
+// state the step reached; near it, the same request changes nothing.
+TEST(NewtonSolver, StopsAfterAPoorPredictorWhenAsked) {
+  ChainProblem far(100);
+  SparseCholesky held;
+  solve_and_factorize(far, held);
+  far.scale_load(3.0);
+  NewtonSolver solver;
+  ChordSteps chords{&held, false};
+  chords.stop_after_poor_predictor = true;
+  const double start_force = far.force_norm(far.gradient());
+  const NewtonReport stopped = solver.solve(far, chords);
+  EXPECT_FALSE(stopped.converged);
+  EXPECT_TRUE(stopped.stopped_after_predictor);
+  EXPECT_EQ(stopped.factorizations, 0);
+  ASSERT_EQ(stopped.history.size(), 1u);
+  EXPECT_TRUE(stopped.history.front().chord);
+  const NewtonIteration& predictor = stopped.history.front();
+  EXPECT_TRUE(predictor.step_size < 1.0 ||
+              stopped.final_force_norm > solver.options().chord_contraction * start_force);
+  EXPECT_NE(stopped.message.find("predictor"), std::string::npos) << stopped.message;
+  // The rest of the solve from there converges as usual.
+  const NewtonReport rest = solver.solve(far, {&held, false});
+  EXPECT_TRUE(rest.converged);
+  EXPECT_FALSE(rest.stopped_after_predictor);
+
+  ChainProblem near(100);
+  SparseCholesky near_held;
+  solve_and_factorize(near, near_held);
+  near.scale_load(1.001);
+  ChordSteps near_chords{&near_held, false};
+  near_chords.stop_after_poor_predictor = true;
+  const NewtonReport r = solver.solve(near, near_chords);
+  EXPECT_TRUE(r.converged);
+  EXPECT_FALSE(r.stopped_after_predictor);
+  EXPECT_EQ(r.factorizations, 0);
+}
+
 TEST(NewtonSolver, ReusingItsOwnFactorizationsSavesFactorizations) {
   ChainProblem plain_problem(200), reuse_problem(200);
   NewtonSolver plain, reuse;

@@ -194,4 +194,51 @@ TEST(SoftCylinderSleeveSlow, AColdStartRelaxesTheGarmentOnTheStillBodyFirst) {
   EXPECT_EQ(on_rigid.solve().garment_first_iterations, 0);
 }
 
+// A warm start after a large change of the rest shape: the predictor step from the held
+// factorization falls short, so the garment is relaxed on the still body before the
+// coupled solve goes on; the same equilibrium as the coupled solve alone.
+TEST(SoftCylinderSleeveSlow, AWarmStartWhosePredictorFallsShortRelaxesTheGarmentFirst) {
+  SoftCylinder c = make_soft_cylinder(0.02);
+  SimulationMaterials m;
+  GarmentSimulation staged(c.body, *c.surface,
+                           make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
+  GarmentSimulation direct(c.body, *c.surface,
+                           make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
+  direct.set_garment_first(false);
+  ASSERT_TRUE(staged.solve().converged);
+  direct.set_state(staged.problem().state());
+  SparseCholesky staged_held, direct_held;
+  ASSERT_TRUE(staged_held.factorize(staged.problem().hessian()));
+  ASSERT_TRUE(direct_held.factorize(direct.problem().hessian()));
+
+  const Points2 tighter = 0.85 * staged.rest_positions();
+  staged.set_rest_positions(tighter);
+  direct.set_rest_positions(tighter);
+  const NewtonReport s = staged.solve({&staged_held, true});
+  const NewtonReport d = direct.solve({&direct_held, true});
+  ASSERT_TRUE(s.converged);
+  ASSERT_TRUE(d.converged);
+  std::printf("staged: %d steps (%d body held), %d factorizations; direct: %d steps, %d\n",
+              s.iterations, s.garment_first_iterations, s.factorizations, d.iterations,
+              d.factorizations);
+  EXPECT_FALSE(s.stopped_after_predictor);
+  ASSERT_GT(s.garment_first_iterations, 0);
+  EXPECT_EQ(d.garment_first_iterations, 0);
+  // The predictor (coupled, with the held factorization), the garment alone, the rest.
+  ASSERT_GE(s.history.size(), 3u);
+  EXPECT_TRUE(s.history.front().chord);
+  EXPECT_FALSE(s.history.front().body_held);
+  EXPECT_TRUE(s.history[1].body_held);
+  EXPECT_FALSE(s.history.back().body_held);
+  int held_steps = 0;
+  for (const NewtonIteration& it : s.history) held_steps += it.body_held ? 1 : 0;
+  EXPECT_EQ(held_steps, s.garment_first_iterations);
+  const double garment =
+      (staged.garment_positions() - direct.garment_positions()).cwiseAbs().maxCoeff();
+  const double body = (staged.body_positions() - direct.body_positions()).cwiseAbs().maxCoeff();
+  std::printf("largest difference: garment %.3e m, body %.3e m\n", garment, body);
+  EXPECT_LT(garment, 1e-6);
+  EXPECT_LT(body, 1e-6);
+}
+
 }  // namespace tightfit::soft_cylinder_test

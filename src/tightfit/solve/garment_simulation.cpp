@@ -116,27 +116,50 @@ NewtonReport GarmentSimulation::relax_garment_on_still_body() {
   return report;
 }
 
+namespace {
+
+// Appends a solve stage that came before `report`'s: its steps and counts first.
+void prepend_stage(NewtonReport& report, const NewtonReport& stage) {
+  report.iterations += stage.iterations;
+  report.chord_steps += stage.chord_steps;
+  report.factorizations += stage.factorizations;
+  report.krylov_iterations += stage.krylov_iterations;
+  report.force_accepted_steps += stage.force_accepted_steps;
+  report.garment_first_iterations += stage.garment_first_iterations;
+  report.seconds_total += stage.seconds_total;
+  report.history.insert(report.history.begin(), stage.history.begin(), stage.history.end());
+}
+
+}  // namespace
+
+NewtonReport GarmentSimulation::relax_garment_stage() {
+  try {
+    NewtonReport first = relax_garment_on_still_body();
+    first.garment_first_iterations = first.iterations;
+    return first;
+  } catch (const SolverError&) {
+    return NewtonReport{};  // the coupled solve starts from the state as it was
+  }
+}
+
 NewtonReport GarmentSimulation::solve(ChordSteps chords) {
-  NewtonReport first;
-  if (garment_first_ && !chords.held && !materials_.rigid_body) {
-    try {
-      first = relax_garment_on_still_body();
-    } catch (const SolverError&) {
-      first = NewtonReport{};  // the coupled solve starts from the state as it was
+  std::vector<NewtonReport> stages;  // before the final coupled solve, in order
+  if (garment_first_ && !materials_.rigid_body) {
+    if (chords.held) {
+      ChordSteps predictor = chords;
+      predictor.stop_after_poor_predictor = true;
+      NewtonReport predicted = newton_.solve(*problem_, predictor);
+      if (!predicted.stopped_after_predictor) {
+        garment_.embedding = problem_->state().garment;
+        return predicted;
+      }
+      stages.push_back(std::move(predicted));
     }
+    stages.push_back(relax_garment_stage());
   }
   NewtonReport report = newton_.solve(*problem_, chords);
   garment_.embedding = problem_->state().garment;
-  if (first.iterations > 0) {
-    report.garment_first_iterations = first.iterations;
-    report.iterations += first.iterations;
-    report.chord_steps += first.chord_steps;
-    report.factorizations += first.factorizations;
-    report.krylov_iterations += first.krylov_iterations;
-    report.force_accepted_steps += first.force_accepted_steps;
-    report.seconds_total += first.seconds_total;
-    report.history.insert(report.history.begin(), first.history.begin(), first.history.end());
-  }
+  for (auto stage = stages.rbegin(); stage != stages.rend(); ++stage) prepend_stage(report, *stage);
   return report;
 }
 

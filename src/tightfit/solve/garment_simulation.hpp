@@ -51,12 +51,16 @@ class GarmentSimulation {
   /// `chords`: factorizations Newton may reuse for chord steps (NewtonSolver::solve);
   /// by default each Newton step's own (Newton–Krylov chord steps after it while they
   /// contract: the same equilibrium to the tolerance with fewer factorizations).
-  /// Without a held factorization (a cold start: the initial placement, a remeshed
-  /// garment) and with a deformable body, the garment is first relaxed on the body held
-  /// still (relax_garment_on_still_body) when garment_first() is on; the returned report
-  /// counts both stages (NewtonReport::garment_first_iterations).
+  /// With a deformable body and garment_first() on, the garment is first relaxed on the
+  /// body held still (relax_garment_on_still_body) where the coupled Newton would start
+  /// far from its equilibrium: always without a held factorization (a cold start: the
+  /// initial placement, a remeshed garment); with one (a warm start after a design
+  /// step), when its predictor step contracts the force poorly
+  /// (ChordSteps::stop_after_poor_predictor). The returned report counts all stages in
+  /// order (NewtonReport::garment_first_iterations, NewtonIteration::body_held).
   NewtonReport solve(ChordSteps chords = {nullptr, true});
-  /// Whether cold solves relax the garment on the still body first (default on).
+  /// Whether solves relax the garment on the still body first where they start far from
+  /// the equilibrium (default on).
   bool garment_first() const { return garment_first_; }
   void set_garment_first(bool on) { garment_first_ = on; }
   /// Newton on the garment's surface coordinates alone, every body vertex held at its
@@ -116,6 +120,9 @@ class GarmentSimulation {
 
  private:
   void rebuild_problem(const EmbeddedState& state);
+  /// relax_garment_on_still_body() as a stage of solve(): its steps counted as
+  /// garment-first; an empty report (state unchanged) where it threw.
+  NewtonReport relax_garment_stage();
   /// The equilibrium problem's setup for the current garment and materials (all body
   /// vertices pinned when `still_body`).
   EmbeddedSystemSetup problem_setup(bool still_body);

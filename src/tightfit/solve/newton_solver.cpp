@@ -89,6 +89,17 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
       report.message = "converged";
       break;
     }
+    if (chords.stop_after_poor_predictor && report.history.size() == 1 &&
+        report.history.front().chord) {
+      const NewtonIteration& predictor = report.history.front();
+      const double left = record.force_norm / predictor.force_norm;
+      if (predictor.step_size < 1.0 || left > options_.chord_contraction) {
+        report.stopped_after_predictor = true;
+        report.message = "the predictor step (length " + std::to_string(predictor.step_size) +
+                         ") left " + std::to_string(left) + " of the force";
+        break;
+      }
+    }
     // The limit counts steps that factorized a Hessian; chord steps come on top (at most
     // max_chord_steps after each factorization, so the total stays bounded).
     if (it - report.chord_steps - failed_chords >= options_.max_iterations) {
@@ -202,7 +213,7 @@ NewtonReport NewtonSolver::solve(NewtonProblem& problem, ChordSteps chords) {
     if (options_.on_step) options_.on_step(record, seconds_since(t_start));
   }
   report.seconds_total = seconds_since(t_start);
-  if (!report.converged && options_.throw_on_failure) {
+  if (!report.converged && !report.stopped_after_predictor && options_.throw_on_failure) {
     std::ostringstream msg;
     msg << "Newton did not converge: " << report.message << " after " << report.iterations
         << " iterations; force residual " << report.final_force_norm << " N > tolerance "

@@ -112,8 +112,8 @@ struct NewtonReport {
   int factorizations = 0;        ///< Hessians factorized (shifted retries included)
   int krylov_iterations = 0;     ///< conjugate-gradient products of the chord steps
   int force_accepted_steps = 0;  ///< steps accepted by their force decrease
-  /// Of `iterations`: steps of a first stage on the garment alone, the body held still
-  /// (GarmentSimulation::relax_garment_on_still_body; their records lead `history`).
+  /// Of `iterations`: steps of a stage on the garment alone, the body held still
+  /// (GarmentSimulation::relax_garment_on_still_body; their records are marked body_held).
   int garment_first_iterations = 0;
   double final_energy = 0.0;
   double final_force_norm = 0.0;  ///< N
@@ -123,6 +123,8 @@ struct NewtonReport {
   std::int64_t factor_nonzeros = 0;
   double seconds_total = 0.0;
   std::string message;  ///< why it stopped
+  /// Stopped by ChordSteps::stop_after_poor_predictor (not converged, no exception).
+  bool stopped_after_predictor = false;
 };
 
 /// Factorizations a solve may use for chord steps dq = −F⁻¹ g instead of factorizing new
@@ -135,6 +137,13 @@ struct ChordSteps {
   /// Called after each Hessian factorization of the solve, with the problem still at the
   /// state it was assembled at (e.g. to record where factorization() was made).
   std::function<void()> on_factorized = nullptr;
+  /// Stop after the first step when it was a step with `held` (the predictor of a warm
+  /// start) that the line search shortened (or took back), or that left more than
+  /// NewtonOptions::chord_contraction of the force: the start is outside the region where
+  /// the held factorization's linear model holds, and Newton would factorize at once. For callers
+  /// with a cheaper way to get closer first (GarmentSimulation relaxes the garment alone);
+  /// NewtonReport::stopped_after_predictor.
+  bool stop_after_poor_predictor = false;
 };
 
 class NewtonSolver {
