@@ -138,4 +138,29 @@ TEST(SinglePrecisionFactor, PreconditionsLikeTheExactFactor) {
   EXPECT_LT((2.0 * chol.solve_preconditioner(b) - exact).norm(), 1e-5 * exact.norm());
 }
 
+// The sweeps split over threads (subtrees of the elimination tree on their own threads)
+// give the serial sweeps' result up to round-off, and the same bits on every call.
+TEST(SinglePrecisionFactor, ParallelSweepsAgreeWithSerialOnes) {
+  const SparseMatrix A = grid_laplacian_3d(16, 0.5);
+  SparseCholesky chol;
+  ASSERT_TRUE(chol.factorize(A));
+  const VecX b = VecX::LinSpaced(A.rows(), -1.0, 2.0).array().sin();
+  // The view of CHOLMOD's factor, through the preconditioner the factorization made.
+  const VecX reference = chol.solve_preconditioner(b);
+  const SupernodalFactorView view = chol.supernodal_view();
+  ASSERT_GT(view.supernodes, 0);
+  const SinglePrecisionFactor serial(view, FactorKernels::kFastest, 1);
+  const SinglePrecisionFactor parallel(view, FactorKernels::kFastest, 2);
+  EXPECT_TRUE(serial.partition().parts.empty());
+  ASSERT_EQ(parallel.partition().parts.size(), 2u);
+  EXPECT_LT(parallel.partition().critical_fraction, SinglePrecisionFactor::kParallelWorth);
+  const VecX xs = serial.apply(b);
+  const VecX xp = parallel.apply(b);
+  EXPECT_LT((xp - xs).norm(), 1e-13 * xs.norm());
+  EXPECT_LT((reference - xs).norm(), 1e-13 * xs.norm());
+  for (int call = 0; call < 3; ++call) EXPECT_EQ(parallel.apply(b), xp);
+  // The parallel operator solves the rounded system as the serial one does.
+  EXPECT_LT((A * xp - b).norm(), 1e-5 * b.norm());
+}
+
 }  // namespace tightfit::single_precision_factor_test

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "tightfit/common/parallel.hpp"
+
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #define TIGHTFIT_X86_KERNELS 1
@@ -155,7 +157,8 @@ void eliminate_backward(const Kernels& k, const float* block, int rows, int colu
 
 }  // namespace
 
-SinglePrecisionFactor::SinglePrecisionFactor(const SupernodalFactorView& f, FactorKernels kernels)
+SinglePrecisionFactor::SinglePrecisionFactor(const SupernodalFactorView& f, FactorKernels kernels,
+                                             int threads)
     : n_(f.n), portable_(kernels == FactorKernels::kPortable) {
   if (f.n < 0 || f.supernodes < 0 ||
       (f.supernodes > 0 &&
@@ -173,39 +176,100 @@ SinglePrecisionFactor::SinglePrecisionFactor(const SupernodalFactorView& f, Fact
                  [](double v) { return static_cast<float>(v); });
   for (std::size_t s = 0; s < ns; ++s)
     max_rows_ = std::max(max_rows_, row_start_[s + 1] - row_start_[s]);
+  partition_ = partition_supernodes(threads > 0 ? threads : thread_count());
+}
+
+SubtreePartition SinglePrecisionFactor::partition_supernodes(int parts) const {
+  const int supernodes = static_cast<int>(super_.size()) - 1;
+  // The supernode holding each column, then each supernode's parent: the one holding
+  // its first row below its own columns.
+  std::vector<int> supernode_of(static_cast<std::size_t>(n_));
+  for (int s = 0; s < supernodes; ++s)
+    std::fill(supernode_of.begin() + super_[s], supernode_of.begin() + super_[s + 1], s);
+  std::vector<int> parent(static_cast<std::size_t>(supernodes), -1);
+  std::vector<double> work(static_cast<std::size_t>(supernodes));
+  for (int s = 0; s < supernodes; ++s) {
+    const int columns = super_[s + 1] - super_[s];
+    const int rows = row_start_[s + 1] - row_start_[s];
+    if (rows > columns)
+      parent[static_cast<std::size_t>(s)] =
+          supernode_of[static_cast<std::size_t>(rows_[row_start_[s] + columns])];
+    // Both sweeps read the block and its row indices once.
+    work[static_cast<std::size_t>(s)] =
+        static_cast<double>(value_start_[s + 1] - value_start_[s]) + static_cast<double>(rows);
+  }
+  return partition_subtrees(parent, work, parts, kParallelMinimumValues, kParallelWorth);
+}
+
+int SinglePrecisionFactor::forward_supernode(int s, VecX& y, double* w) const {
+  const Kernels& k = kernels(portable_);
+  const int first = super_[s], columns = super_[s + 1] - first;
+  const int rows = row_start_[s + 1] - row_start_[s];
+  std::copy(y.data() + first, y.data() + first + columns, w);
+  std::fill(w + columns, w + rows, 0.0);
+  eliminate_forward(k, values_.data() + value_start_[s], rows, columns, w);
+  std::copy(w, w + columns, y.data() + first);
+  return columns;
+}
+
+void SinglePrecisionFactor::backward_supernode(int s, VecX& y, double* w) const {
+  const Kernels& k = kernels(portable_);
+  const int first = super_[s], columns = super_[s + 1] - first;
+  const int* row = rows_.data() + row_start_[s];
+  const int rows = row_start_[s + 1] - row_start_[s];
+  std::copy(y.data() + first, y.data() + first + columns, w);
+  for (int i = columns; i < rows; ++i) w[i] = y[row[i]];
+  eliminate_backward(k, values_.data() + value_start_[s], rows, columns, w);
+  std::copy(w, w + columns, y.data() + first);
 }
 
 VecX SinglePrecisionFactor::apply(const VecX& b) const {
   if (b.size() != n_) throw std::invalid_argument("SinglePrecisionFactor: wrong right-hand side");
-  const Kernels& k = kernels(portable_);
   VecX y(n_);
   for (Eigen::Index i = 0; i < n_; ++i) y[i] = b[permutation_[static_cast<std::size_t>(i)]];
   std::vector<double> w(static_cast<std::size_t>(max_rows_));
-  const int supernodes = static_cast<int>(super_.size()) - 1;
+  const auto& parts = partition_.parts;
+  const int part_count = static_cast<int>(parts.size());
   // Forward substitution L̃ z = y, supernode by supernode: the dense block's columns
-  // eliminate into a local copy w of the supernode's rows, scattered back at the end.
-  for (int s = 0; s < supernodes; ++s) {
-    const int first = super_[s], columns = super_[s + 1] - first;
+  // eliminate into a local copy w of the supernode's rows, added back at the end. The
+  // parts' subtrees first, each part on its own thread; what they add to rows of the top
+  // goes to the part's own carry vector, summed into y in part order before the top.
+  std::vector<VecX> carry(static_cast<std::size_t>(part_count));
+  if (part_count > 0)
+    run_on_threads(part_count, [&](int p) {
+      VecX& mine = carry[static_cast<std::size_t>(p)];
+      mine.setZero(n_);
+      std::vector<double> work_rows(static_cast<std::size_t>(max_rows_));
+      for (const SubtreeRange& range : parts[static_cast<std::size_t>(p)]) {
+        const int end_column = super_[range.last + 1];
+        for (int s = range.first; s <= range.last; ++s) {
+          const int columns = forward_supernode(s, y, work_rows.data());
+          const int* row = rows_.data() + row_start_[s];
+          for (int i = columns; i < row_start_[s + 1] - row_start_[s]; ++i)
+            (row[i] < end_column ? y[row[i]] : mine[row[i]]) +=
+                work_rows[static_cast<std::size_t>(i)];
+        }
+      }
+    });
+  for (const int s : partition_.top) {
+    for (const VecX& c : carry)
+      for (int j = super_[s]; j < super_[s + 1]; ++j) y[j] += c[j];
+    const int columns = forward_supernode(s, y, w.data());
     const int* row = rows_.data() + row_start_[s];
-    const int rows = row_start_[s + 1] - row_start_[s];
-    const float* block = values_.data() + value_start_[s];
-    std::copy(y.data() + first, y.data() + first + columns, w.begin());
-    std::fill(w.begin() + columns, w.begin() + rows, 0.0);
-    eliminate_forward(k, block, rows, columns, w.data());
-    std::copy(w.begin(), w.begin() + columns, y.data() + first);
-    for (int i = columns; i < rows; ++i) y[row[i]] += w[i];
+    for (int i = columns; i < row_start_[s + 1] - row_start_[s]; ++i)
+      y[row[i]] += w[static_cast<std::size_t>(i)];
   }
-  // Back substitution L̃' x = z, in reverse.
-  for (int s = supernodes - 1; s >= 0; --s) {
-    const int first = super_[s], columns = super_[s + 1] - first;
-    const int* row = rows_.data() + row_start_[s];
-    const int rows = row_start_[s + 1] - row_start_[s];
-    const float* block = values_.data() + value_start_[s];
-    std::copy(y.data() + first, y.data() + first + columns, w.begin());
-    for (int i = columns; i < rows; ++i) w[i] = y[row[i]];
-    eliminate_backward(k, block, rows, columns, w.data());
-    std::copy(w.begin(), w.begin() + columns, y.data() + first);
-  }
+  // Back substitution L̃' x = z, in reverse: the top, then the parts' subtrees.
+  for (auto s = partition_.top.rbegin(); s != partition_.top.rend(); ++s)
+    backward_supernode(*s, y, w.data());
+  if (part_count > 0)
+    run_on_threads(part_count, [&](int p) {
+      std::vector<double> work_rows(static_cast<std::size_t>(max_rows_));
+      const auto& ranges = parts[static_cast<std::size_t>(p)];
+      for (auto range = ranges.rbegin(); range != ranges.rend(); ++range)
+        for (int s = range->last; s >= range->first; --s)
+          backward_supernode(s, y, work_rows.data());
+    });
   VecX x(n_);
   for (Eigen::Index i = 0; i < n_; ++i) x[permutation_[static_cast<std::size_t>(i)]] = y[i];
   return x;

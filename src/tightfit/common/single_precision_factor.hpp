@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "tightfit/common/subtree_partition.hpp"
 #include "tightfit/common/types.hpp"
 
 namespace tightfit {
@@ -37,12 +38,21 @@ enum class FactorKernels { kFastest, kPortable };
 class SinglePrecisionFactor {
  public:
   SinglePrecisionFactor() = default;
-  /// Copies the structure and rounds the values of `factor`.
+  /// Copies the structure and rounds the values of `factor`. With `threads` > 1 (0:
+  /// thread_count()) and a factor of at least kParallelMinimumValues values, the
+  /// supernodal elimination tree is split into that many parts of independent subtrees
+  /// (partition_subtrees) where that shortens the sweeps' critical path to at most
+  /// kParallelWorth of the work; apply() then runs the parts on their own threads.
   explicit SinglePrecisionFactor(const SupernodalFactorView& factor,
-                                 FactorKernels kernels = FactorKernels::kFastest);
+                                 FactorKernels kernels = FactorKernels::kFastest, int threads = 0);
 
-  /// x = P'(L̃L̃')⁻¹P b. `b` has n() rows.
+  /// x = P'(L̃L̃')⁻¹P b. `b` has n() rows. The result is a function of b and of the
+  /// partition made at construction (the same bits on every call, whatever the load).
   VecX apply(const VecX& b) const;
+  /// The subtrees apply() runs in parallel (no parts: serial sweeps).
+  const SubtreePartition& partition() const { return partition_; }
+  static constexpr double kParallelMinimumValues = 262144;
+  static constexpr double kParallelWorth = 0.8;
   Eigen::Index n() const { return n_; }
   /// Stored single-precision values (the supernodes' dense blocks).
   std::int64_t stored_values() const { return static_cast<std::int64_t>(values_.size()); }
@@ -51,8 +61,17 @@ class SinglePrecisionFactor {
   Eigen::Index n_ = 0;
   std::vector<int> super_, row_start_, value_start_, rows_, permutation_;
   std::vector<float> values_;
+  /// The parts of the supernodal elimination tree for parallel sweeps.
+  SubtreePartition partition_supernodes(int parts) const;
+  /// Eliminates supernode s forward in y with workspace w (its row count); returns its
+  /// column count. w then holds, after the columns, what the rows below receive.
+  int forward_supernode(int s, VecX& y, double* w) const;
+  /// Back substitution of supernode s in y (its rows below already solved).
+  void backward_supernode(int s, VecX& y, double* w) const;
+
   int max_rows_ = 0;  // the largest supernode's row count (workspace size)
   bool portable_ = false;
+  SubtreePartition partition_;
 };
 
 }  // namespace tightfit

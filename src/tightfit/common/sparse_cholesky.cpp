@@ -186,22 +186,26 @@ VecX SparseCholesky::solve_preconditioner(const VecX& b) const {
   const SinglePrecisionFactor* single = nullptr;
   {
     const std::lock_guard<std::mutex> lock(d.single_mutex);
-    if (!d.single) {
-      const cholmod_factor& f = *d.factor;
-      SupernodalFactorView view;
-      view.n = static_cast<Eigen::Index>(f.n);
-      view.supernodes = static_cast<int>(f.nsuper);
-      view.super = static_cast<const int*>(f.super);
-      view.row_start = static_cast<const int*>(f.pi);
-      view.value_start = static_cast<const int*>(f.px);
-      view.rows = static_cast<const int*>(f.s);
-      view.values = static_cast<const double*>(f.x);
-      view.permutation = static_cast<const int*>(f.Perm);
-      d.single = std::make_unique<SinglePrecisionFactor>(view);
-    }
+    if (!d.single) d.single = std::make_unique<SinglePrecisionFactor>(supernodal_view());
     single = d.single.get();
   }
   return single->apply(b);
+}
+
+SupernodalFactorView SparseCholesky::supernodal_view() const {
+  const auto& d = *impl_;
+  SupernodalFactorView view;
+  if (!d.factor_valid || !d.factor->is_super) return view;
+  const cholmod_factor& f = *d.factor;
+  view.n = static_cast<Eigen::Index>(f.n);
+  view.supernodes = static_cast<int>(f.nsuper);
+  view.super = static_cast<const int*>(f.super);
+  view.row_start = static_cast<const int*>(f.pi);
+  view.value_start = static_cast<const int*>(f.px);
+  view.rows = static_cast<const int*>(f.s);
+  view.values = static_cast<const double*>(f.x);
+  view.permutation = static_cast<const int*>(f.Perm);
+  return view;
 }
 
 MatX SparseCholesky::solve_columns(const MatX& B) const {

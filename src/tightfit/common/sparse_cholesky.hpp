@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "tightfit/common/single_precision_factor.hpp"
 #include "tightfit/common/types.hpp"
 
 namespace tightfit {
@@ -55,6 +56,9 @@ class SparseCholesky {
   /// factor (small matrices). Made on the first call after a factorization; safe to call
   /// from several threads.
   VecX solve_preconditioner(const VecX& b) const;
+  /// The arrays of the last successful factorization's supernodal factor, valid until
+  /// the next factorization (empty: none, or CHOLMOD chose a simplicial factor).
+  SupernodalFactorView supernodal_view() const;
   /// Solves A X = B column by column.
   MatX solve_columns(const MatX& B) const;
 
