@@ -334,6 +334,20 @@ TEST(ClothEnergy, ProjectedHessianIsPositiveSemiDefinite) {
   EXPECT_GT(projected.eigenvalues().minCoeff(), -1e-9 * projected.eigenvalues().maxCoeff());
 }
 
+// A taut element's Hessian is a sum of PSD terms (the metric Hessian and the tensile
+// stress): the projection leaves it exactly as it is (no eigen-decomposition round-off).
+TEST(ClothEnergy, ATautElementsHessianIsNotProjected) {
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    const Triangle t = stretched_triangle(1.25, 1.1, seed);
+    const ClothEnergy e = single(t);
+    const MatX raw = MatX(test::energy_hessian(e, t.x));
+    const MatX projected = MatX(test::energy_hessian(e, t.x, true));
+    EXPECT_EQ(raw, projected) << "seed " << seed;
+    Eigen::SelfAdjointEigenSolver<MatX> eig(raw);
+    EXPECT_GT(eig.eigenvalues().minCoeff(), -1e-12 * eig.eigenvalues().maxCoeff());
+  }
+}
+
 TEST(ClothEnergy, RejectsBadInput) {
   Points2 rest(3, 2);
   rest << 0, 0, 1, 0, 2, 0;  // collinear

@@ -201,14 +201,29 @@ ClothElement gather_element(const Triangles& triangles, const Points2& rest,
   return el;
 }
 
+/// True when the element Hessian t·(Jᵀ Φ_GG J + K(w) ⊗ I₃) is positive semi-definite by
+/// construction: Φ_GG, the 3×3 Hessian in the deformed metric, has no negative principal
+/// minor (Sylvester), and so has the stress W = [[2w₀, w₂], [w₂, 2w₁]], w = ∂Φ/∂G, of
+/// which K = [s₁ s₂] W [s₁ s₂]ᵀ (metric_curvature). A sum of PSD terms needs no projection.
+bool psd_by_construction(const Phi& phi) {
+  const Vec3 w = phi.gradient.head<3>();
+  if (!(w[0] >= 0.0 && w[1] >= 0.0 && 4.0 * w[0] * w[1] - w[2] * w[2] >= 0.0)) return false;
+  const Mat3 h = phi.hessian.topLeftCorner<3, 3>();
+  return h(0, 0) >= 0.0 && h(1, 1) >= 0.0 && h(2, 2) >= 0.0 &&
+         h(0, 0) * h(1, 1) - h(0, 1) * h(0, 1) >= 0.0 &&
+         h(0, 0) * h(2, 2) - h(0, 2) * h(0, 2) >= 0.0 &&
+         h(1, 1) * h(2, 2) - h(1, 2) * h(1, 2) >= 0.0 && h.determinant() >= 0.0;
+}
+
 /// The element's 9×9 Hessian (over its three garment vertices), projected onto the PSD
-/// cone with `project_psd`.
+/// cone with `project_psd` (an eigen-decomposition, skipped where the Hessian is PSD by
+/// construction).
 Mat9 cloth_element_hessian(const ClothElement& el, const RelaxedStVK& law, bool project_psd) {
   const Phi phi = element_phi(el.deformed.value, el.rest.value, law, 2);
   const Mat3x9& j = el.deformed.jacobian;
   Mat9 local = law.material().thickness * (j.transpose() * phi.hessian.topLeftCorner<3, 3>() * j +
                                            metric_curvature<3>(phi.gradient.head<3>()));
-  if (project_psd) tightfit::project_psd(local);
+  if (project_psd && !psd_by_construction(phi)) tightfit::project_psd(local);
   return local;
 }
 

@@ -118,7 +118,7 @@ NewtonReport GarmentSimulation::relax_garment_on_still_body() {
 
 namespace {
 
-// Appends a solve stage that came before `report`'s: its steps and counts first.
+// Adds a stage that ran before `report`'s solve: its counts, and its steps in front.
 void prepend_stage(NewtonReport& report, const NewtonReport& stage) {
   report.iterations += stage.iterations;
   report.chord_steps += stage.chord_steps;
