@@ -51,12 +51,16 @@ SleeveParams covering_sleeve(const SoftCylinder& c) {
   return s;
 }
 
+/// The covering sleeve as a garment on the cylinder.
+Garment covering_garment(const SoftCylinder& c) {
+  return make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices);
+}
+
 TEST(SoftCylinderSleeveSlow, RadialCompressionFollowsLame) {
   SoftCylinder c = make_soft_cylinder(0.008);
   SimulationMaterials m;
   m.body.poisson_ratio = 0.3;  // linear tets lock as ν → 0.5; the check is on elasticity
-  GarmentSimulation sim(c.body, *c.surface,
-                        make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
+  GarmentSimulation sim(c.body, *c.surface, covering_garment(c), m);
   const NewtonReport report = sim.solve();
   ASSERT_TRUE(report.converged);
   const FitAnalysis fit = sim.analyze();
@@ -107,8 +111,7 @@ TEST(SoftCylinderSleeveSlow, RadialCompressionFollowsLame) {
 TEST(SoftCylinderSleeveSlow, NewtonConvergesQuadratically) {
   SoftCylinder c = make_soft_cylinder(0.012);
   SimulationMaterials m;
-  GarmentSimulation sim(c.body, *c.surface,
-                        make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
+  GarmentSimulation sim(c.body, *c.surface, covering_garment(c), m);
   const NewtonReport r = sim.solve(ChordSteps{});  // plain Newton: every step factorizes
   ASSERT_TRUE(r.converged);
   // Once the residual is small, each step of the coupled solve squares it (up to a
@@ -129,10 +132,8 @@ TEST(SoftCylinderSleeveSlow, NewtonConvergesQuadratically) {
 TEST(SoftCylinderSleeveSlow, TheDefaultSolveReusesFactorizationsForTheSameEquilibrium) {
   SoftCylinder c = make_soft_cylinder(0.02);
   SimulationMaterials m;
-  GarmentSimulation plain(c.body, *c.surface,
-                          make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
-  GarmentSimulation reusing(
-      c.body, *c.surface, make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
+  GarmentSimulation plain(c.body, *c.surface, covering_garment(c), m);
+  GarmentSimulation reusing(c.body, *c.surface, covering_garment(c), m);
   const NewtonReport p = plain.solve(ChordSteps{});
   const NewtonReport r = reusing.solve();
   ASSERT_TRUE(p.converged);
@@ -155,10 +156,8 @@ TEST(SoftCylinderSleeveSlow, TheDefaultSolveReusesFactorizationsForTheSameEquili
 TEST(SoftCylinderSleeveSlow, AColdStartRelaxesTheGarmentOnTheStillBodyFirst) {
   SoftCylinder c = make_soft_cylinder(0.02);
   SimulationMaterials m;
-  GarmentSimulation staged(c.body, *c.surface,
-                           make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
-  GarmentSimulation direct(c.body, *c.surface,
-                           make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
+  GarmentSimulation staged(c.body, *c.surface, covering_garment(c), m);
+  GarmentSimulation direct(c.body, *c.surface, covering_garment(c), m);
   ASSERT_TRUE(staged.garment_first());
   direct.set_garment_first(false);
   const NewtonReport s = staged.solve();
@@ -188,9 +187,7 @@ TEST(SoftCylinderSleeveSlow, AColdStartRelaxesTheGarmentOnTheStillBodyFirst) {
 
   SimulationMaterials rigid = m;
   rigid.rigid_body = true;
-  GarmentSimulation on_rigid(c.body, *c.surface,
-                             make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices),
-                             rigid);
+  GarmentSimulation on_rigid(c.body, *c.surface, covering_garment(c), rigid);
   EXPECT_EQ(on_rigid.solve().garment_first_iterations, 0);
 }
 
@@ -200,10 +197,8 @@ TEST(SoftCylinderSleeveSlow, AColdStartRelaxesTheGarmentOnTheStillBodyFirst) {
 TEST(SoftCylinderSleeveSlow, AWarmStartWhosePredictorFallsShortRelaxesTheGarmentFirst) {
   SoftCylinder c = make_soft_cylinder(0.02);
   SimulationMaterials m;
-  GarmentSimulation staged(c.body, *c.surface,
-                           make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
-  GarmentSimulation direct(c.body, *c.surface,
-                           make_sleeve(covering_sleeve(c), *c.surface, c.body.surface.vertices), m);
+  GarmentSimulation staged(c.body, *c.surface, covering_garment(c), m);
+  GarmentSimulation direct(c.body, *c.surface, covering_garment(c), m);
   direct.set_garment_first(false);
   ASSERT_TRUE(staged.solve().converged);
   direct.set_state(staged.problem().state());

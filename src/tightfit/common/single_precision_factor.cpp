@@ -201,15 +201,17 @@ SubtreePartition SinglePrecisionFactor::partition_supernodes(int parts) const {
   return partition_subtrees(parent, work, parts, kParallelMinimumValues, kParallelWorth);
 }
 
-int SinglePrecisionFactor::forward_supernode(int s, VecX& y, double* w) const {
+void SinglePrecisionFactor::forward_supernode(int s, VecX& y, double* w, int end_column,
+                                              VecX& beyond) const {
   const Kernels& k = kernels(portable_);
   const int first = super_[s], columns = super_[s + 1] - first;
+  const int* row = rows_.data() + row_start_[s];
   const int rows = row_start_[s + 1] - row_start_[s];
   std::copy(y.data() + first, y.data() + first + columns, w);
   std::fill(w + columns, w + rows, 0.0);
   eliminate_forward(k, values_.data() + value_start_[s], rows, columns, w);
   std::copy(w, w + columns, y.data() + first);
-  return columns;
+  for (int i = columns; i < rows; ++i) (row[i] < end_column ? y : beyond)[row[i]] += w[i];
 }
 
 void SinglePrecisionFactor::backward_supernode(int s, VecX& y, double* w) const {
@@ -242,22 +244,14 @@ VecX SinglePrecisionFactor::apply(const VecX& b) const {
       std::vector<double> work_rows(static_cast<std::size_t>(max_rows_));
       for (const SubtreeRange& range : parts[static_cast<std::size_t>(p)]) {
         const int end_column = super_[range.last + 1];
-        for (int s = range.first; s <= range.last; ++s) {
-          const int columns = forward_supernode(s, y, work_rows.data());
-          const int* row = rows_.data() + row_start_[s];
-          for (int i = columns; i < row_start_[s + 1] - row_start_[s]; ++i)
-            (row[i] < end_column ? y[row[i]] : mine[row[i]]) +=
-                work_rows[static_cast<std::size_t>(i)];
-        }
+        for (int s = range.first; s <= range.last; ++s)
+          forward_supernode(s, y, work_rows.data(), end_column, mine);
       }
     });
   for (const int s : partition_.top) {
     for (const VecX& c : carry)
       for (int j = super_[s]; j < super_[s + 1]; ++j) y[j] += c[j];
-    const int columns = forward_supernode(s, y, w.data());
-    const int* row = rows_.data() + row_start_[s];
-    for (int i = columns; i < row_start_[s + 1] - row_start_[s]; ++i)
-      y[row[i]] += w[static_cast<std::size_t>(i)];
+    forward_supernode(s, y, w.data(), static_cast<int>(n_), y);
   }
   // Back substitution L̃' x = z, in reverse: the top, then the parts' subtrees.
   for (auto s = partition_.top.rbegin(); s != partition_.top.rend(); ++s)

@@ -63,9 +63,9 @@ class SinglePrecisionFactor {
   std::vector<float> values_;
   /// The parts of the supernodal elimination tree for parallel sweeps.
   SubtreePartition partition_supernodes(int parts) const;
-  /// Eliminates supernode s forward in y with workspace w (its row count); returns its
-  /// column count. w then holds, after the columns, what the rows below receive.
-  int forward_supernode(int s, VecX& y, double* w) const;
+  /// Eliminates supernode s forward in y with workspace w (its row count) and adds what
+  /// the rows below receive: to y for rows before `end_column`, else to `beyond`.
+  void forward_supernode(int s, VecX& y, double* w, int end_column, VecX& beyond) const;
   /// Back substitution of supernode s in y (its rows below already solved).
   void backward_supernode(int s, VecX& y, double* w) const;
 

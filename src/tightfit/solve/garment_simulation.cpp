@@ -112,6 +112,7 @@ NewtonReport GarmentSimulation::relax_garment_on_still_body() {
   NewtonSolver solver(options);
   NewtonReport report = solver.solve(still, {nullptr, true});
   for (NewtonIteration& it : report.history) it.body_held = true;
+  report.garment_first_iterations = report.iterations;
   if (report.iterations > 0) set_state(still.state());
   return report;
 }
@@ -134,9 +135,7 @@ void prepend_stage(NewtonReport& report, const NewtonReport& stage) {
 
 NewtonReport GarmentSimulation::relax_garment_stage() {
   try {
-    NewtonReport first = relax_garment_on_still_body();
-    first.garment_first_iterations = first.iterations;
-    return first;
+    return relax_garment_on_still_body();
   } catch (const SolverError&) {
     return NewtonReport{};  // the coupled solve starts from the state as it was
   }

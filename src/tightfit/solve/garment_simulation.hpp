@@ -70,7 +70,8 @@ class GarmentSimulation {
   /// current state. The system is the garment's (2 DOFs per vertex, a surface mesh's
   /// sparsity), far cheaper to factorize than the coupled one, and takes the large
   /// sliding of a cold start, so that the coupled solve starts where only the body's
-  /// response is left.
+  /// response is left. Its report's steps are all body_held (garment_first_iterations =
+  /// iterations).
   NewtonReport relax_garment_on_still_body();
   static constexpr double kGarmentFirstTolerance = 1e-6;
   static constexpr int kGarmentFirstIterations = 30;
@@ -120,8 +121,8 @@ class GarmentSimulation {
 
  private:
   void rebuild_problem(const EmbeddedState& state);
-  /// relax_garment_on_still_body() as a stage of solve(): its steps counted as
-  /// garment-first; an empty report (state unchanged) where it threw.
+  /// relax_garment_on_still_body() as a stage of solve(): an empty report (state
+  /// unchanged) where it threw.
   NewtonReport relax_garment_stage();
   /// The equilibrium problem's setup for the current garment and materials (all body
   /// vertices pinned when `still_body`).
