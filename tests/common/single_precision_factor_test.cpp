@@ -6,9 +6,12 @@
 #include <cmath>
 #include <numeric>
 
+#include "support/grid_laplacian_3d.hpp"
 #include "tightfit/common/sparse_cholesky.hpp"
 
 namespace tightfit::single_precision_factor_test {
+
+using test::grid_laplacian_3d;
 
 /// A hand-made supernodal factor of n = 14 in three supernodes (3, 2 and 9 columns, 11, 4
 /// and 9 rows: block heights that are and are not multiples of the kernels' 8 lanes)
@@ -89,28 +92,6 @@ TEST(SinglePrecisionFactor, SolvesWithARepresentableFactorExactly) {
   EXPECT_THROW(single.apply(VecX::Ones(3)), std::invalid_argument);
   const SinglePrecisionFactor portable(f.view(), FactorKernels::kPortable);
   EXPECT_LT((portable.apply(b) - x).norm(), 1e-14 * x.norm());
-}
-
-/// The 7-point Laplacian of an m×m×m grid plus `shift`·I: large enough for CHOLMOD to
-/// choose a supernodal factor.
-SparseMatrix grid_laplacian_3d(int m, double shift) {
-  std::vector<Triplet> t;
-  auto id = [m](int i, int j, int k) { return (i * m + j) * m + k; };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j)
-      for (int k = 0; k < m; ++k) {
-        t.emplace_back(id(i, j, k), id(i, j, k), 6.0 + shift);
-        const int here = id(i, j, k);
-        for (const int there : {i + 1 < m ? id(i + 1, j, k) : -1, j + 1 < m ? id(i, j + 1, k) : -1,
-                                k + 1 < m ? id(i, j, k + 1) : -1}) {
-          if (there < 0) continue;
-          t.emplace_back(here, there, -1.0);
-          t.emplace_back(there, here, -1.0);
-        }
-      }
-  SparseMatrix A(m * m * m, m * m * m);
-  A.setFromTriplets(t.begin(), t.end());
-  return A;
 }
 
 TEST(SinglePrecisionFactor, PreconditionsLikeTheExactFactor) {

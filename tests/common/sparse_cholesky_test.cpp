@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include "support/grid_laplacian_3d.hpp"
 #include "support/laplacian_1d.hpp"
 #include "tightfit/common/error.hpp"
 
 namespace tightfit::sparse_cholesky_test {
 
+using test::grid_laplacian_3d;
 using test::laplacian_1d;
 
 /// The 5-point Laplacian of an m×m grid plus `shift`·I, with extra symmetric couplings
@@ -130,6 +132,42 @@ TEST(SparseCholesky, FactorizesAPlusADiagonalBitForBitAsTheSum) {
   ASSERT_TRUE(plus_gap.factorize_plus_diagonal(gap, d, nullptr));
   EXPECT_EQ((sum_gap.solve(b) - plus_gap.solve(b)).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_THROW(plus.factorize_plus_diagonal(A, VecX::Ones(80), nullptr), SolverError);
+}
+
+TEST(SparseCholesky, SupernodalFactorizationsGatherThePermutedMatrixOncePerPattern) {
+  // Large enough for CHOLMOD to choose a supernodal factor, whose permuted lower triangle
+  // tightfit gathers itself from the second factorization of a pattern on: a
+  // refactorization of the same pattern, a fresh one, the upper triangle alone and A plus
+  // a diagonal must all agree bit for bit.
+  const int m = 14, n = m * m * m;
+  const SparseMatrix A = grid_laplacian_3d(m, 0.3);
+  const SparseMatrix B = grid_laplacian_3d(m, 0.7);
+  const VecX b = VecX::LinSpaced(n, -1.0, 2.0);
+  SparseCholesky reused, fresh, upper_only;
+  ASSERT_TRUE(reused.factorize(A));
+  ASSERT_GT(reused.supernodal_view().supernodes, 0);
+  EXPECT_LT((A * reused.solve(b) - b).norm(), 1e-12 * b.norm());
+  ASSERT_TRUE(reused.factorize(B));
+  EXPECT_EQ(reused.symbolic_analyses(), 1);
+  ASSERT_TRUE(fresh.factorize(B));
+  ASSERT_TRUE(upper_only.factorize(SparseMatrix(B.triangularView<Eigen::Upper>())));
+  const VecX x = fresh.solve(b);
+  EXPECT_LT((B * x - b).norm(), 1e-12 * b.norm());
+  EXPECT_EQ((reused.solve(b) - x).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((upper_only.solve(b) - x).cwiseAbs().maxCoeff(), 0.0);
+  // B = A + 0.4 I, bit for bit as factorize_plus_diagonal(A, 0.4): the first
+  // factorization of a pattern (cholmod_factorize) and a later one (gathered).
+  SparseCholesky plus;
+  ASSERT_TRUE(plus.factorize_plus_diagonal(A, VecX::Constant(n, 0.4), nullptr));
+  EXPECT_EQ((plus.solve(b) - x).cwiseAbs().maxCoeff(), 0.0);
+  ASSERT_TRUE(reused.factorize_plus_diagonal(A, VecX::Constant(n, 0.4), nullptr));
+  EXPECT_EQ((reused.solve(b) - x).cwiseAbs().maxCoeff(), 0.0);
+  // After a failed (indefinite) factorization of the same pattern, the next one works.
+  EXPECT_FALSE(plus.factorize(grid_laplacian_3d(m, -6.5)));
+  EXPECT_THROW(plus.solve(b), SolverError);
+  ASSERT_TRUE(plus.factorize(B));
+  EXPECT_EQ((plus.solve(b) - x).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(plus.symbolic_analyses(), 1);
 }
 
 TEST(SparseCholesky, ReportsIndefiniteMatrices) {

@@ -172,8 +172,12 @@ SinglePrecisionFactor::SinglePrecisionFactor(const SupernodalFactorView& f, Fact
   permutation_.assign(f.permutation, f.permutation + f.n);
   // CHOLMOD's value_start[supernodes] is the end of the last block.
   values_.resize(static_cast<std::size_t>(value_start_[ns]));
-  std::transform(f.values, f.values + value_start_[ns], values_.begin(),
-                 [](double v) { return static_cast<float>(v); });
+  parallel_for(
+      static_cast<std::int64_t>(values_.size()),
+      [&](std::int64_t k) {
+        values_[static_cast<std::size_t>(k)] = static_cast<float>(f.values[k]);
+      },
+      static_cast<std::int64_t>(kParallelMinimumValues));
   for (std::size_t s = 0; s < ns; ++s)
     max_rows_ = std::max(max_rows_, row_start_[s + 1] - row_start_[s]);
   partition_ = partition_supernodes(threads > 0 ? threads : thread_count());

@@ -2,16 +2,41 @@
 
 #include <cholmod.h>
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <vector>
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/lanczos.hpp"
+#include "tightfit/common/parallel.hpp"
 #include "tightfit/common/single_precision_factor.hpp"
 
 namespace tightfit {
 namespace {
+
+/// CHOLMOD's view of a compressed symmetric n×n matrix, one triangle stored (stype 1:
+/// upper, −1: lower), its row indices sorted within columns or not.
+cholmod_sparse symmetric_view(Eigen::Index n, std::size_t nonzeros, int* outer, int* inner,
+                              double* values, int stype, bool sorted) {
+  cholmod_sparse s{};
+  s.nrow = static_cast<size_t>(n);
+  s.ncol = static_cast<size_t>(n);
+  s.nzmax = nonzeros;
+  s.p = outer;
+  s.i = inner;
+  s.x = values;
+  s.stype = stype;
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = sorted ? 1 : 0;
+  s.packed = 1;
+  return s;
+}
+
+/// Below this many entries the permuted copy of a matrix is gathered on one thread.
+constexpr std::int64_t kParallelGatherMinimum = 65536;
 
 SparseMatrix diagonal_matrix(const VecX& d) {
   SparseMatrix D(d.size(), d.size());
@@ -25,8 +50,11 @@ SparseMatrix diagonal_matrix(const VecX& d) {
 struct SparseCholesky::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
+  // The pattern of the matrix the current analysis was made for (as given: both
+  // triangles, or one).
   std::vector<int> pattern_outer;
   std::vector<int> pattern_inner;
+  bool full_diagonal = false;  // every diagonal entry is in that pattern
   Eigen::Index n = 0;
   int analyses = 0;
   int searches = 0;
@@ -35,10 +63,19 @@ struct SparseCholesky::Impl {
   std::vector<int> requested;
   CholeskyOrdering found;
   bool factor_valid = false;
-  // Upper triangle of the last matrix, kept alive for CHOLMOD's view. Upper, not lower:
-  // CHOLMOD's permuted supernodal factorization needs tril(PAPᵀ), one transpose away
-  // from triu(A) but two from tril(A) (cholmod_factorize.c: "the fastest option").
+  // Upper triangle of the matrix (the analysis, and the simplicial factorization, read
+  // it). Upper, not lower: CHOLMOD factorizes tril(PAPᵀ), one transpose away from triu(A)
+  // but two from tril(A) (cholmod_factorize.c: "the fastest option").
   SparseMatrix upper;
+  // For a supernodal factor, tril(PAPᵀ) itself (P the analysis' permutation), the matrix
+  // cholmod_factorize would make by a serial permuted transpose on every call: its
+  // pattern is made once per analysis (at its second factorization; empty before), and
+  // its values are gathered from A's in parallel, lower_values[k] =
+  // A.valuePtr()[lower_source[k]]; lower_diagonal[j] is the slot of A's diagonal entry
+  // (j, j) (for factorize_plus_diagonal).
+  std::vector<int> lower_outer, lower_inner, lower_source, lower_diagonal;
+  std::vector<double> lower_values;
+  int factorizations_of_pattern = 0;  // since the current analysis
   // The factor rounded to single precision (solve_preconditioner), made when first asked
   // for after a factorization.
   mutable std::mutex single_mutex;
@@ -55,33 +92,77 @@ struct SparseCholesky::Impl {
     cholmod_finish(&common);
   }
 
-  cholmod_sparse view() {
-    cholmod_sparse s{};
-    s.nrow = static_cast<size_t>(upper.rows());
-    s.ncol = static_cast<size_t>(upper.cols());
-    s.nzmax = static_cast<size_t>(upper.nonZeros());
-    s.p = upper.outerIndexPtr();
-    s.i = upper.innerIndexPtr();
-    s.nz = nullptr;
-    s.x = upper.valuePtr();
-    s.z = nullptr;
-    s.stype = 1;  // symmetric, upper triangle stored
-    s.itype = CHOLMOD_INT;
-    s.xtype = CHOLMOD_REAL;
-    s.dtype = CHOLMOD_DOUBLE;
-    s.sorted = 1;
-    s.packed = 1;
-    return s;
+  cholmod_sparse upper_view() {
+    return symmetric_view(upper.cols(), static_cast<std::size_t>(upper.nonZeros()),
+                          upper.outerIndexPtr(), upper.innerIndexPtr(), upper.valuePtr(), 1, true);
+  }
+  cholmod_sparse lower_view() {
+    return symmetric_view(n, lower_values.size(), lower_outer.data(), lower_inner.data(),
+                          lower_values.data(), -1, false);
   }
 
-  bool same_pattern() const {
-    if (!factor || upper.rows() != n) return false;
-    const auto nnz = static_cast<size_t>(upper.nonZeros());
-    if (pattern_inner.size() != nnz) return false;
-    return std::equal(pattern_outer.begin(), pattern_outer.end(), upper.outerIndexPtr()) &&
-           std::equal(pattern_inner.begin(), pattern_inner.end(), upper.innerIndexPtr());
+  bool same_pattern(const SparseMatrix& A) const {
+    if (!factor || A.rows() != n) return false;
+    if (pattern_inner.size() != static_cast<std::size_t>(A.nonZeros())) return false;
+    return std::equal(pattern_outer.begin(), pattern_outer.end(), A.outerIndexPtr()) &&
+           std::equal(pattern_inner.begin(), pattern_inner.end(), A.innerIndexPtr());
   }
+
+  void build_permuted_lower(const SparseMatrix& A);
+  void gather_permuted_lower(const SparseMatrix& A, const VecX* diagonal);
 };
+
+void SparseCholesky::Impl::build_permuted_lower(const SparseMatrix& A) {
+  const auto* perm = static_cast<const int*>(factor->Perm);
+  std::vector<int> inverse(static_cast<std::size_t>(n));
+  for (int k = 0; k < static_cast<int>(n); ++k) inverse[static_cast<std::size_t>(perm[k])] = k;
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  // A's upper entries (i ≤ j: the first of each sorted column) go to column
+  // min(inverse[i], inverse[j]), row max(…), in the order met (cholmod_super_numeric
+  // assigns each entry to its place in L: the order within a column does not matter).
+  lower_outer.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (int j = 0; j < static_cast<int>(n); ++j) {
+    const int b = inverse[static_cast<std::size_t>(j)];
+    for (int p = outer[j]; p < outer[j + 1] && inner[p] <= j; ++p)
+      ++lower_outer[static_cast<std::size_t>(
+                        std::min(inverse[static_cast<std::size_t>(inner[p])], b)) +
+                    1];
+  }
+  for (std::size_t c = 0; c < static_cast<std::size_t>(n); ++c)
+    lower_outer[c + 1] += lower_outer[c];
+  const auto entries = static_cast<std::size_t>(lower_outer.back());
+  lower_inner.resize(entries);
+  lower_source.resize(entries);
+  lower_values.resize(entries);
+  lower_diagonal.assign(static_cast<std::size_t>(n), -1);
+  std::vector<int> next(lower_outer.begin(), lower_outer.end() - 1);
+  for (int j = 0; j < static_cast<int>(n); ++j) {
+    const int b = inverse[static_cast<std::size_t>(j)];
+    for (int p = outer[j]; p < outer[j + 1] && inner[p] <= j; ++p) {
+      const int a = inverse[static_cast<std::size_t>(inner[p])];
+      const auto slot = static_cast<std::size_t>(next[static_cast<std::size_t>(std::min(a, b))]++);
+      lower_inner[slot] = std::max(a, b);
+      lower_source[slot] = p;
+      if (inner[p] == j) lower_diagonal[static_cast<std::size_t>(j)] = static_cast<int>(slot);
+    }
+  }
+}
+
+void SparseCholesky::Impl::gather_permuted_lower(const SparseMatrix& A, const VecX* diagonal) {
+  const double* values = A.valuePtr();
+  parallel_for(
+      static_cast<std::int64_t>(lower_values.size()),
+      [&](std::int64_t k) {
+        lower_values[static_cast<std::size_t>(k)] =
+            values[lower_source[static_cast<std::size_t>(k)]];
+      },
+      kParallelGatherMinimum);
+  if (diagonal)
+    for (Eigen::Index j = 0; j < n; ++j)
+      lower_values[static_cast<std::size_t>(lower_diagonal[static_cast<std::size_t>(j)])] +=
+          (*diagonal)[j];
+}
 
 SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
 SparseCholesky::~SparseCholesky() = default;
@@ -90,72 +171,114 @@ bool SparseCholesky::factorize(const SparseMatrix& A) { return factorize(A, null
 
 bool SparseCholesky::factorize(const SparseMatrix& A, const CholeskyOrdering* ordering,
                                double max_fill_growth) {
-  if (A.rows() != A.cols()) throw SolverError("SparseCholesky: matrix is not square");
-  impl_->upper = A.triangularView<Eigen::Upper>();
-  impl_->upper.makeCompressed();
-  return factorize_upper(A.rows(), ordering, max_fill_growth);
+  return factorize_matrix(A, nullptr, ordering, max_fill_growth);
 }
 
 bool SparseCholesky::factorize_plus_diagonal(const SparseMatrix& A, const VecX& d,
                                              const CholeskyOrdering* ordering,
                                              double max_fill_growth) {
-  if (A.rows() != A.cols()) throw SolverError("SparseCholesky: matrix is not square");
   if (d.size() != A.rows()) throw SolverError("SparseCholesky: diagonal has the wrong size");
-  SparseMatrix& upper = impl_->upper;
-  upper = A.triangularView<Eigen::Upper>();
-  upper.makeCompressed();
-  // In a compressed upper triangle with sorted rows the diagonal entry ends its column.
-  for (Eigen::Index j = 0; j < upper.cols(); ++j) {
-    const int end = upper.outerIndexPtr()[j + 1];
-    if (end == upper.outerIndexPtr()[j] || upper.innerIndexPtr()[end - 1] != j) {
-      // A diagonal entry is not stored: the sum's pattern has one more entry.
-      return factorize(SparseMatrix(A + diagonal_matrix(d)), ordering, max_fill_growth);
-    }
-    upper.valuePtr()[end - 1] += d[j];
-  }
-  return factorize_upper(A.rows(), ordering, max_fill_growth);
+  return factorize_matrix(A, &d, ordering, max_fill_growth);
 }
 
-bool SparseCholesky::factorize_upper(Eigen::Index n, const CholeskyOrdering* ordering,
-                                     double max_fill_growth) {
+bool SparseCholesky::factorize_matrix(const SparseMatrix& A, const VecX* diagonal,
+                                      const CholeskyOrdering* ordering, double max_fill_growth) {
+  if (A.rows() != A.cols()) throw SolverError("SparseCholesky: matrix is not square");
+  if (!A.isCompressed()) {
+    SparseMatrix compressed = A;
+    compressed.makeCompressed();
+    return factorize_matrix(compressed, diagonal, ordering, max_fill_growth);
+  }
   auto& d = *impl_;
   {
     const std::lock_guard<std::mutex> lock(d.single_mutex);
     d.single.reset();
   }
-  cholmod_sparse s = d.view();
+  d.factor_valid = false;
+  const Eigen::Index n = A.rows();
   if (ordering && static_cast<Eigen::Index>(ordering->permutation.size()) != n) ordering = nullptr;
   const std::vector<int> no_ordering;
   const std::vector<int>& wanted = ordering ? ordering->permutation : no_ordering;
-  if (!d.same_pattern() || d.requested != wanted) {
-    if (d.factor) cholmod_free_factor(&d.factor, &d.common);
-    d.requested = wanted;
-    if (ordering) {
-      // Only the given permutation (CHOLMOD's method 0), then the etree postorder.
-      const int methods = d.common.nmethods;
-      d.common.nmethods = 1;
-      d.factor = cholmod_analyze_p(&s, const_cast<int*>(ordering->permutation.data()), nullptr, 0,
-                                   &d.common);
-      d.common.nmethods = methods;
-      if (d.factor && !(d.common.lnz <= max_fill_growth * ordering->factor_nonzeros))
-        cholmod_free_factor(&d.factor, &d.common);
+  const bool new_pattern = !d.same_pattern(A);
+  bool full_diagonal = d.full_diagonal;
+  if (new_pattern) {
+    full_diagonal = true;
+    for (Eigen::Index j = 0; j < n && full_diagonal; ++j) {
+      const int* first = A.innerIndexPtr() + A.outerIndexPtr()[j];
+      const int* last = A.innerIndexPtr() + A.outerIndexPtr()[j + 1];
+      full_diagonal = std::binary_search(first, last, static_cast<int>(j));
     }
-    if (!d.factor) {
-      d.factor = cholmod_analyze(&s, &d.common);
-      ++d.searches;
-    }
-    if (!d.factor) throw SolverError("SparseCholesky: symbolic analysis failed");
-    d.found.permutation.assign(static_cast<const int*>(d.factor->Perm),
-                               static_cast<const int*>(d.factor->Perm) + d.factor->n);
-    d.found.factor_nonzeros = d.common.lnz;
-    d.pattern_outer.assign(d.upper.outerIndexPtr(), d.upper.outerIndexPtr() + d.upper.cols() + 1);
-    d.pattern_inner.assign(d.upper.innerIndexPtr(), d.upper.innerIndexPtr() + d.upper.nonZeros());
-    d.n = n;
-    ++d.analyses;
   }
-  const int ok = cholmod_factorize(&s, d.factor, &d.common);
+  if (diagonal && !full_diagonal)
+    // A diagonal entry is not stored: the sum's pattern has one more entry.
+    return factorize(SparseMatrix(A + diagonal_matrix(*diagonal)), ordering, max_fill_growth);
+  bool upper_is_a = false;  // d.upper holds triu(A) already
+  if (new_pattern || d.requested != wanted) {
+    d.upper = A.triangularView<Eigen::Upper>();
+    d.upper.makeCompressed();
+    upper_is_a = true;
+    d.requested = wanted;
+    analyze(ordering, max_fill_growth);
+    d.pattern_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
+    d.pattern_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+    d.full_diagonal = full_diagonal;
+    d.n = n;
+    d.lower_outer.clear();
+    d.factorizations_of_pattern = 0;
+  }
+  int ok = 0;
+  // The first factorization of a pattern goes through cholmod_factorize (a pattern is
+  // often factorized once: garment vertices slide onto other faces between Newton
+  // steps); from the second on, a supernodal factorization gathers tril(PAPᵀ) itself.
+  if (d.factor->is_super && d.factorizations_of_pattern > 0) {
+    if (d.lower_outer.empty()) {
+      d.build_permuted_lower(A);
+      d.upper = SparseMatrix();
+    }
+    d.gather_permuted_lower(A, diagonal);
+    cholmod_sparse lower = d.lower_view();
+    double zero[2] = {0.0, 0.0};
+    ok = cholmod_super_numeric(&lower, nullptr, zero, d.factor, &d.common);
+  } else {
+    if (!upper_is_a) {
+      d.upper = A.triangularView<Eigen::Upper>();
+      d.upper.makeCompressed();
+    }
+    if (diagonal)
+      // In a compressed upper triangle with sorted rows the diagonal entry ends its column.
+      for (Eigen::Index j = 0; j < n; ++j)
+        d.upper.valuePtr()[d.upper.outerIndexPtr()[j + 1] - 1] += (*diagonal)[j];
+    cholmod_sparse upper = d.upper_view();
+    ok = cholmod_factorize(&upper, d.factor, &d.common);
+  }
+  ++d.factorizations_of_pattern;
   d.factor_valid = ok && d.common.status == CHOLMOD_OK && d.factor->minor == d.factor->n;
   return d.factor_valid;
+}
+
+void SparseCholesky::analyze(const CholeskyOrdering* ordering, double max_fill_growth) {
+  auto& d = *impl_;
+  cholmod_sparse s = d.upper_view();
+  if (d.factor) cholmod_free_factor(&d.factor, &d.common);
+  if (ordering) {
+    // Only the given permutation (CHOLMOD's method 0), then the etree postorder.
+    const int methods = d.common.nmethods;
+    d.common.nmethods = 1;
+    d.factor = cholmod_analyze_p(&s, const_cast<int*>(ordering->permutation.data()), nullptr, 0,
+                                 &d.common);
+    d.common.nmethods = methods;
+    if (d.factor && !(d.common.lnz <= max_fill_growth * ordering->factor_nonzeros))
+      cholmod_free_factor(&d.factor, &d.common);
+  }
+  if (!d.factor) {
+    d.factor = cholmod_analyze(&s, &d.common);
+    ++d.searches;
+  }
+  if (!d.factor) throw SolverError("SparseCholesky: symbolic analysis failed");
+  d.found.permutation.assign(static_cast<const int*>(d.factor->Perm),
+                             static_cast<const int*>(d.factor->Perm) + d.factor->n);
+  d.found.factor_nonzeros = d.common.lnz;
+  ++d.analyses;
 }
 
 VecX SparseCholesky::solve(const VecX& b) const {

@@ -79,8 +79,11 @@ class SparseCholesky {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 
-  /// The factorization of the upper triangle already in impl_->upper.
-  bool factorize_upper(Eigen::Index n, const CholeskyOrdering* ordering, double max_fill_growth);
+  /// Factorizes A, or A + diag(*diagonal) when `diagonal` is given.
+  bool factorize_matrix(const SparseMatrix& A, const VecX* diagonal,
+                        const CholeskyOrdering* ordering, double max_fill_growth);
+  /// A new symbolic analysis of the pattern of impl_->upper (with `ordering` when given).
+  void analyze(const CholeskyOrdering* ordering, double max_fill_growth);
 };
 
 /// The growing diagonal shifts tried when a matrix is not positive definite:
