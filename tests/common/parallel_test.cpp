@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "tightfit/common/sparse_cholesky.hpp"
@@ -71,6 +73,28 @@ TEST(ParallelFor, NestedLoopsRunSerially) {
     for (double v : inner) sums[static_cast<size_t>(i)] += v;
   });
   EXPECT_DOUBLE_EQ(sums[10], 300.0 * 10 + 299.0 * 300.0 / 2.0);
+}
+
+TEST(RunOnThreads, JobsInQuickSuccessionAndAfterIdlePausesEachRunEveryBodyOnce) {
+  // Workers poll for the next job a short while, then sleep: jobs microseconds apart and
+  // jobs after a pause longer than the polling, with changing body counts, must each run
+  // every body exactly once and show the caller everything the bodies wrote.
+  std::vector<int> slot(3, -1);
+  std::atomic<int> calls{0};
+  for (int job = 0; job < 3000; ++job) {
+    const int count = job % 3 == 0 ? 2 : 3;
+    run_on_threads(count, [&](int t) {
+      slot[static_cast<size_t>(t)] = job;
+      calls.fetch_add(1, std::memory_order_relaxed);
+    });
+    ASSERT_EQ(slot[0], job);
+    ASSERT_EQ(slot[1], job);
+    if (count == 3) {
+      ASSERT_EQ(slot[2], job);
+    }
+    if (job % 1000 == 999) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  EXPECT_EQ(calls.load(), 1000 * 2 + 2000 * 3);
 }
 
 TEST(ThreadCount, RejectsZeroAndReadsTheEnvironment) {

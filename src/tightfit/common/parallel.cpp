@@ -2,6 +2,9 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdlib>
 #include <exception>
@@ -52,7 +55,11 @@ void apply(int n) {
   if (auto levels = loaded_symbol<void (*)(int)>("omp_set_max_active_levels")) levels(0);
 }
 
-/// Worker threads 1 … count−1 of run_on_threads; they sleep between jobs.
+/// Worker threads 1 … count−1 of run_on_threads. Between jobs a worker polls for the
+/// next one for kSpinSeconds, then sleeps on a condition variable; the caller likewise
+/// polls for the workers' end before it sleeps. On a virtual machine a futex wake-up
+/// costs 2–40 µs, as much as a whole parallel Hessian–vector product; the Krylov loops
+/// start a parallel step every 50–300 µs, which a polling worker catches at once.
 class ThreadPool {
  public:
   ~ThreadPool() {
@@ -74,17 +81,17 @@ class ThreadPool {
       }
       body_ = &body;
       errors_ = &errors;
-      count_ = count;
-      pending_ = count - 1;
-      ++job_;
+      count_.store(count, std::memory_order_relaxed);
+      pending_.store(count - 1, std::memory_order_relaxed);
+      job_.fetch_add(1, std::memory_order_release);
     }
     wake_.notify_all();
     run_one(0);
-    {
+    if (!poll([this] { return pending_.load(std::memory_order_acquire) == 0; })) {
       std::unique_lock lock(mutex_);
-      done_.wait(lock, [this] { return pending_ == 0; });
-      body_ = nullptr;
+      done_.wait(lock, [this] { return pending_.load(std::memory_order_acquire) == 0; });
     }
+    body_ = nullptr;
     for (const std::exception_ptr& e : errors)
       if (e) std::rethrow_exception(e);
   }
@@ -92,6 +99,24 @@ class ThreadPool {
   static thread_local bool inside;
 
  private:
+  static constexpr double kSpinSeconds = 200e-6;
+
+  /// Polls `ready` for up to kSpinSeconds; whether it became true.
+  template <typename Ready>
+  static bool poll(Ready ready) {
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 1;; ++k) {
+      if (ready()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#endif
+      if (k % 64 == 0 &&
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+              kSpinSeconds)
+        return ready();
+    }
+  }
+
   void run_one(int index) {
     inside = true;
     try {
@@ -104,17 +129,21 @@ class ThreadPool {
 
   void work(int index) {
     long seen = 0;
+    const auto has_job = [&] {
+      return job_.load(std::memory_order_acquire) != seen &&
+             index < count_.load(std::memory_order_relaxed);
+    };
     for (;;) {
-      {
+      if (!poll(has_job)) {
         std::unique_lock lock(mutex_);
-        wake_.wait(lock, [&] { return stop_ || (job_ != seen && index < count_); });
+        wake_.wait(lock, [&] { return stop_ || has_job(); });
         if (stop_) return;
-        seen = job_;
       }
+      seen = job_.load(std::memory_order_acquire);
       run_one(index);
-      {
-        std::lock_guard lock(mutex_);
-        if (--pending_ == 0) done_.notify_one();
+      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+        std::lock_guard lock(mutex_);  // the caller may be between its test and its wait
+        done_.notify_one();
       }
     }
   }
@@ -124,9 +153,9 @@ class ThreadPool {
   std::vector<std::thread> workers_;
   const std::function<void(int)>* body_ = nullptr;
   std::vector<std::exception_ptr>* errors_ = nullptr;
-  int count_ = 0;
-  int pending_ = 0;
-  long job_ = 0;
+  std::atomic<int> count_{0};
+  std::atomic<int> pending_{0};
+  std::atomic<long> job_{0};
   bool stop_ = false;
 };
 

@@ -2,11 +2,12 @@
 /// Threads: how many tightfit's element loops and the BLAS under CHOLMOD use, and which
 /// BLAS library the process runs on.
 ///
-/// Element loops run on a small pool of std::threads that sleep on a condition variable
-/// between loops. OpenMP is not used by tightfit: Debian's CHOLMOD is built with OpenMP
-/// teams of a fixed 4 threads (CHOLMOD_OMP_NUM_THREADS) for its memory-bound copy loops,
-/// which on a 2-core machine oversubscribe the cores and spend their time in futex
-/// wake-ups and yields (system time); set_thread_count() therefore makes OpenMP
+/// Element loops run on a small pool of std::threads that poll for the next loop for
+/// 0.2 ms after each one (a futex wake-up costs 2–40 µs on a virtual machine, as much as a
+/// small parallel loop), then sleep on a condition variable. OpenMP is not used by tightfit:
+/// Debian's CHOLMOD is built with OpenMP teams of a fixed 4 threads (CHOLMOD_OMP_NUM_THREADS) for
+/// its memory-bound copy loops, which on a 2-core machine oversubscribe the cores and spend their
+/// time in futex wake-ups and yields (system time); set_thread_count() therefore makes OpenMP
 /// regions inactive (omp_set_max_active_levels(0)), and the factorization's dense work
 /// runs on the BLAS threads.
 ///
