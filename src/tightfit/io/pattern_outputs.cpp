@@ -1,5 +1,9 @@
 #include "tightfit/io/pattern_outputs.hpp"
 
+#include <algorithm>
+#include <functional>
+
+#include "tightfit/common/parallel.hpp"
 #include "tightfit/io/pattern_dxf.hpp"
 #include "tightfit/io/pattern_json.hpp"
 #include "tightfit/io/pattern_pdf.hpp"
@@ -10,14 +14,25 @@ namespace tightfit {
 std::vector<std::string> write_pattern_files(const std::filesystem::path& folder,
                                              const Pattern& pattern, PatternExportOptions options,
                                              const std::vector<SeamStatistics>* fit_seams) {
-  write_pattern_svg(pattern, options, folder / "pattern.svg");
-  options.paper = Paper::kA4;
-  write_pattern_pdf_tiled(pattern, options, folder / "pattern_a4.pdf");
-  options.paper = Paper::kLetter;
-  write_pattern_pdf_tiled(pattern, options, folder / "pattern_letter.pdf");
-  write_pattern_pdf_full_size(pattern, options, folder / "pattern_full.pdf");
-  write_pattern_dxf(pattern, options, folder / "pattern.dxf");
-  write_pieces_json(pattern, options, folder / "pieces.json", fit_seams);
+  PatternExportOptions a4 = options, letter = options;
+  a4.paper = Paper::kA4;
+  letter.paper = Paper::kLetter;
+  // Independent files, dealt round-robin to the threads (the two tiled PDFs, the
+  // costliest, first): the same bytes as written one after the other.
+  const std::vector<std::function<void()>> writers = {
+      [&] { write_pattern_pdf_tiled(pattern, a4, folder / "pattern_a4.pdf"); },
+      [&] { write_pattern_pdf_tiled(pattern, letter, folder / "pattern_letter.pdf"); },
+      [&] { write_pattern_dxf(pattern, letter, folder / "pattern.dxf"); },
+      [&] { write_pattern_pdf_full_size(pattern, letter, folder / "pattern_full.pdf"); },
+      [&] { write_pieces_json(pattern, letter, folder / "pieces.json", fit_seams); },
+      [&] { write_pattern_svg(pattern, options, folder / "pattern.svg"); },
+  };
+  const int threads = std::min(thread_count(), static_cast<int>(writers.size()));
+  run_on_threads(threads, [&](int t) {
+    for (std::size_t w = static_cast<std::size_t>(t); w < writers.size();
+         w += static_cast<std::size_t>(threads))
+      writers[w]();
+  });
   return {"pattern.svg",      "pattern_a4.pdf", "pattern_letter.pdf",
           "pattern_full.pdf", "pattern.dxf",    "pieces.json"};
 }
