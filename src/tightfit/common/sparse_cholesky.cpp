@@ -75,7 +75,7 @@ struct SparseCholesky::Impl {
   // (j, j) (for factorize_plus_diagonal).
   std::vector<int> lower_outer, lower_inner, lower_source, lower_diagonal;
   std::vector<double> lower_values;
-  int factorizations_of_pattern = 0;  // since the current analysis
+  bool pattern_factorized = false;  // the current analysis has been factorized before
   // The factor rounded to single precision (solve_preconditioner), made when first asked
   // for after a factorization.
   mutable std::mutex single_mutex;
@@ -212,11 +212,13 @@ bool SparseCholesky::factorize_matrix(const SparseMatrix& A, const VecX* diagona
   if (diagonal && !full_diagonal)
     // A diagonal entry is not stored: the sum's pattern has one more entry.
     return factorize(SparseMatrix(A + diagonal_matrix(*diagonal)), ordering, max_fill_growth);
-  bool upper_is_a = false;  // d.upper holds triu(A) already
-  if (new_pattern || d.requested != wanted) {
+  const auto copy_upper = [&] {
     d.upper = A.triangularView<Eigen::Upper>();
     d.upper.makeCompressed();
-    upper_is_a = true;
+  };
+  const bool analyse = new_pattern || d.requested != wanted;
+  if (analyse) {
+    copy_upper();
     d.requested = wanted;
     analyze(ordering, max_fill_growth);
     d.pattern_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
@@ -224,13 +226,13 @@ bool SparseCholesky::factorize_matrix(const SparseMatrix& A, const VecX* diagona
     d.full_diagonal = full_diagonal;
     d.n = n;
     d.lower_outer.clear();
-    d.factorizations_of_pattern = 0;
+    d.pattern_factorized = false;
   }
   int ok = 0;
   // The first factorization of a pattern goes through cholmod_factorize (a pattern is
   // often factorized once: garment vertices slide onto other faces between Newton
   // steps); from the second on, a supernodal factorization gathers tril(PAPᵀ) itself.
-  if (d.factor->is_super && d.factorizations_of_pattern > 0) {
+  if (d.factor->is_super && d.pattern_factorized) {
     if (d.lower_outer.empty()) {
       d.build_permuted_lower(A);
       d.upper = SparseMatrix();
@@ -240,10 +242,7 @@ bool SparseCholesky::factorize_matrix(const SparseMatrix& A, const VecX* diagona
     double zero[2] = {0.0, 0.0};
     ok = cholmod_super_numeric(&lower, nullptr, zero, d.factor, &d.common);
   } else {
-    if (!upper_is_a) {
-      d.upper = A.triangularView<Eigen::Upper>();
-      d.upper.makeCompressed();
-    }
+    if (!analyse) copy_upper();
     if (diagonal)
       // In a compressed upper triangle with sorted rows the diagonal entry ends its column.
       for (Eigen::Index j = 0; j < n; ++j)
@@ -251,7 +250,7 @@ bool SparseCholesky::factorize_matrix(const SparseMatrix& A, const VecX* diagona
     cholmod_sparse upper = d.upper_view();
     ok = cholmod_factorize(&upper, d.factor, &d.common);
   }
-  ++d.factorizations_of_pattern;
+  d.pattern_factorized = true;
   d.factor_valid = ok && d.common.status == CHOLMOD_OK && d.factor->minor == d.factor->n;
   return d.factor_valid;
 }
