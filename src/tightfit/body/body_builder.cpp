@@ -55,18 +55,17 @@ Body body_from_surface(const TriMesh& surface, const VolumeOptions& options, Bui
 namespace {
 
 template <class Params, class Surface>
-Body generated_body(const Params& params, const VolumeOptions& options, BuildReport* report,
-                    Surface make_surface) {
+TriMesh generated(const Params& params, BuildReport* report, Surface make_surface) {
   Stopwatch clock;
   LimitFitResult fit;
-  const TriMesh surface = make_surface(params, &fit);
+  TriMesh surface = make_surface(params, &fit);
   if (report) {
     record_input(surface, report);
     report->limit_fitted = params.fit_limit;
     report->limit_fit = fit;
     report->add_stage("generate", clock.lap());
   }
-  return body_from_surface(surface, options, report);
+  return surface;
 }
 
 double edge_of(double edge_length, double radius) {
@@ -75,6 +74,14 @@ double edge_of(double edge_length, double radius) {
 
 }  // namespace
 
+TriMesh generated_surface(const CylinderParams& params, BuildReport* report) {
+  return generated(params, report, cylinder_surface);
+}
+
+TriMesh generated_surface(const SphereParams& params, BuildReport* report) {
+  return generated(params, report, sphere_surface);
+}
+
 Body cylinder_body(const CylinderParams& params, BuildReport* report) {
   return cylinder_body(params, default_volume_options(edge_of(params.edge_length, params.radius)),
                        report);
@@ -82,7 +89,7 @@ Body cylinder_body(const CylinderParams& params, BuildReport* report) {
 
 Body cylinder_body(const CylinderParams& params, const VolumeOptions& options,
                    BuildReport* report) {
-  return generated_body(params, options, report, cylinder_surface);
+  return body_from_surface(generated_surface(params, report), options, report);
 }
 
 Body sphere_body(const SphereParams& params, BuildReport* report) {
@@ -91,7 +98,7 @@ Body sphere_body(const SphereParams& params, BuildReport* report) {
 }
 
 Body sphere_body(const SphereParams& params, const VolumeOptions& options, BuildReport* report) {
-  return generated_body(params, options, report, sphere_surface);
+  return body_from_surface(generated_surface(params, report), options, report);
 }
 
 }  // namespace tightfit

@@ -58,6 +58,11 @@ struct BuildReport {
 Body body_from_surface(const TriMesh& surface, const VolumeOptions& options,
                        BuildReport* report = nullptr);
 
+/// The surface of the generated body of `params` (stage "generate" in `report`), before
+/// its volume is meshed: cylinder_body(params, options) is body_from_surface of it.
+TriMesh generated_surface(const CylinderParams& params, BuildReport* report = nullptr);
+TriMesh generated_surface(const SphereParams& params, BuildReport* report = nullptr);
+
 /// The capped cylinder of `params` as a Body, meshed with `options`
 /// (default_volume_options of its edge length when omitted).
 Body cylinder_body(const CylinderParams& params, BuildReport* report = nullptr);

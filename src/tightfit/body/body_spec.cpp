@@ -316,22 +316,43 @@ BodySpec parse_body_spec(JsonFields& fields, const std::filesystem::path& base_d
   return parse_fields(fields, base_dir, rig);
 }
 
-Body build_body(const BodySpec& spec, BuildReport* report) {
+namespace {
+
+/// fn(), with errors about the processed surface (source "surface", e.g. TetGen's)
+/// pointing at the spec as a whole.
+template <typename Fn>
+auto locating_surface_errors(const BodySpec& spec, Fn fn) {
   try {
-    switch (spec.source) {
-      case BodySource::kCylinder:
-        return cylinder_body(spec.cylinder, spec.volume, report);
-      case BodySource::kSphere:
-        return sphere_body(spec.sphere, spec.volume, report);
-      case BodySource::kMesh:
-        return body_from_surface(prepare_mesh(spec, report), spec.volume, report);
-    }
+    return fn();
   } catch (const InputError& e) {
-    // Errors about the processed surface (TetGen) point at the spec as a whole.
     if (e.source() == "surface") throw InputError(spec_location(spec, ""), message_of(e));
     throw;
   }
-  throw std::logic_error("build_body: unknown body source");
+}
+
+}  // namespace
+
+TriMesh build_body_surface(const BodySpec& spec, BuildReport* report) {
+  return locating_surface_errors(spec, [&] {
+    switch (spec.source) {
+      case BodySource::kCylinder:
+        return generated_surface(spec.cylinder, report);
+      case BodySource::kSphere:
+        return generated_surface(spec.sphere, report);
+      case BodySource::kMesh:
+        return prepare_mesh(spec, report);
+    }
+    throw std::logic_error("build_body_surface: unknown body source");
+  });
+}
+
+Body build_body_volume(const BodySpec& spec, const TriMesh& surface, BuildReport* report) {
+  return locating_surface_errors(spec,
+                                 [&] { return body_from_surface(surface, spec.volume, report); });
+}
+
+Body build_body(const BodySpec& spec, BuildReport* report) {
+  return build_body_volume(spec, build_body_surface(spec, report), report);
 }
 
 }  // namespace tightfit

@@ -107,4 +107,13 @@ BodySpec parse_body_spec(JsonFields& fields, const std::filesystem::path& base_d
 /// the input are InputErrors naming the spec file and JSON path (or the mesh file).
 Body build_body(const BodySpec& spec, BuildReport* report = nullptr);
 
+/// The first half of build_body: the body's surface alone (generated, or read + scaled +
+/// validated + cropped + remeshed + limit-fitted), its stages and import warnings in
+/// `report`. What the garment is built on; the volume does not change it.
+TriMesh build_body_surface(const BodySpec& spec, BuildReport* report = nullptr);
+/// The second half of build_body: tetrahedralizes `surface` (build_body_surface of the
+/// same spec) and pins its core (stages "tetrahedralize" and "core" in `report`). Touches
+/// nothing but its arguments, so it may run on a thread of its own.
+Body build_body_volume(const BodySpec& spec, const TriMesh& surface, BuildReport* report = nullptr);
+
 }  // namespace tightfit

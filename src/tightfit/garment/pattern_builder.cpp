@@ -5,11 +5,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <stdexcept>
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/mesh_budget.hpp"
+#include "tightfit/common/parallel.hpp"
 #include "tightfit/common/planar.hpp"
 #include "tightfit/garment/boundary_resampling.hpp"
 #include "tightfit/garment/piece_mesher.hpp"
@@ -152,29 +154,35 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
   PatternBuild out;
   out.maps.resize(np);
 
-  // Flatten and check each panel.
-  for (int p = 0; p < np; ++p) {
-    const LayoutPanel& panel = layout.panels[p];
-    const std::vector<std::vector<int>> loops = panel_loops(panel);
-    Flattening flat = flatten_panel(panel.mesh, loops, options.flatten);
-    const std::string why = find_overlap(panel.mesh, loops, flat.uv);
-    if (!why.empty())
-      throw InputError(layout.source, "panel \"" + panel.name +
-                                          "\" overlaps itself when flattened (" + why +
-                                          "); split it with a divider into less curved panels");
-    if (flat.report.area_error > layout.area_tolerance)
-      throw InputError(layout.source, "panel \"" + panel.name +
-                                          "\" is too curved to flatten: its flat area differs from "
-                                          "its area on the body by " +
-                                          percent(flat.report.area_error) + " (area_tolerance " +
-                                          percent(layout.area_tolerance) +
-                                          "); split it with a divider into less curved panels");
-    PieceMap& map = out.maps[p];
-    map.panel = p;
-    map.flat = std::move(flat.uv);
-    map.distortion = flat.report;
-    map.arap_iterations = flat.iterations;
-  }
+  // Flatten and check each panel (independent: on the threads; the error of the first
+  // failing panel is the one reported).
+  parallel_for(
+      np,
+      [&](std::int64_t i) {
+        const int p = static_cast<int>(i);
+        const LayoutPanel& panel = layout.panels[p];
+        const std::vector<std::vector<int>> loops = panel_loops(panel);
+        Flattening flat = flatten_panel(panel.mesh, loops, options.flatten);
+        const std::string why = find_overlap(panel.mesh, loops, flat.uv);
+        if (!why.empty())
+          throw InputError(layout.source, "panel \"" + panel.name +
+                                              "\" overlaps itself when flattened (" + why +
+                                              "); split it with a divider into less curved panels");
+        if (flat.report.area_error > layout.area_tolerance)
+          throw InputError(layout.source,
+                           "panel \"" + panel.name +
+                               "\" is too curved to flatten: its flat area differs from "
+                               "its area on the body by " +
+                               percent(flat.report.area_error) + " (area_tolerance " +
+                               percent(layout.area_tolerance) +
+                               "); split it with a divider into less curved panels");
+        PieceMap& map = out.maps[p];
+        map.panel = p;
+        map.flat = std::move(flat.uv);
+        map.distortion = flat.report;
+        map.arap_iterations = flat.iterations;
+      },
+      2);
 
   double flat_area = 0.0;
   for (const PieceMap& map : out.maps) flat_area += map.distortion.area_2d;

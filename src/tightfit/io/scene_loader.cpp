@@ -1,49 +1,86 @@
 #include "tightfit/io/scene_loader.hpp"
 
 #include <cstdio>
+#include <exception>
+#include <future>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/parallel.hpp"
 #include "tightfit/common/stopwatch.hpp"
 
 namespace tightfit {
-std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
-  auto scene = std::make_unique<LoadedScene>();
-  scene->spec = std::move(spec);
-  auto t0 = SteadyClock::now();
-  scene->body = build_body(scene->spec.body, &scene->body_report);
-  for (const std::string& w : scene->body_report.warnings)
-    std::fprintf(stderr, "warning: %s\n", w.c_str());
-  scene->stage_seconds.emplace_back("body", seconds_since(t0));
+namespace {
 
-  t0 = SteadyClock::now();
-  scene->surface = std::make_unique<LimitSurface>(scene->body.surface, scene->spec.limit);
-  scene->stage_seconds.emplace_back("limit surface", seconds_since(t0));
-
-  t0 = SteadyClock::now();
-  const Points3& control = scene->body.surface.vertices;
-  const GarmentSpec& g = scene->spec.garment;
+/// The initial garment of the scene on its body surface and limit surface.
+void build_initial_garment(LoadedScene& scene) {
+  const Points3& control = scene.body.surface.vertices;
+  const GarmentSpec& g = scene.spec.garment;
   switch (g.kind) {
     case GarmentKind::kSleeve:
-      scene->garment = make_sleeve(g.sleeve, *scene->surface, control);
+      scene.garment = make_sleeve(g.sleeve, *scene.surface, control);
       break;
     case GarmentKind::kCover:
-      scene->garment = make_cover(*scene->surface, control, g.cover_scale);
+      scene.garment = make_cover(*scene.surface, control, g.cover_scale);
       break;
     case GarmentKind::kLayout: {
       LayoutRig rig;
-      if (const SceneRig* scene_rig = scene->spec.rig.get()) {
+      if (const SceneRig* scene_rig = scene.spec.rig.get()) {
         rig.skeleton = &scene_rig->skeleton;
         rig.weights = &scene_rig->weights;
         rig.source = scene_rig->source;
       }
-      scene->build = build_garment(scene->body.surface, *scene->surface, g.layout, g.pattern, rig);
-      for (const std::string& w : scene->build->layout.warnings)
+      scene.build = build_garment(scene.body.surface, *scene.surface, g.layout, g.pattern, rig);
+      for (const std::string& w : scene.build->layout.warnings)
         std::fprintf(stderr, "warning: %s\n", w.c_str());
-      scene->garment = scene->build->garment;
+      scene.garment = scene.build->garment;
       break;
     }
   }
-  scene->stage_seconds.emplace_back("garment", seconds_since(t0));
+}
+
+}  // namespace
+
+std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
+  auto scene = std::make_unique<LoadedScene>();
+  scene->spec = std::move(spec);
+  const auto start = SteadyClock::now();
+  scene->body.surface = build_body_surface(scene->spec.body, &scene->body_report);
+  for (const std::string& w : scene->body_report.warnings)
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
+
+  // The body's volume (TetGen, the pinned core) and the garment need only the surface: the
+  // volume is meshed on a thread of its own while this one builds the limit surface and
+  // the garment. Its errors come first, as when the stages ran one after the other (they
+  // do with one thread).
+  double body_seconds = 0.0;
+  const bool overlap = thread_count() > 1;
+  std::future<Body> volume = std::async(
+      overlap ? std::launch::async : std::launch::deferred, [&scene, &body_seconds, start] {
+        Body body = build_body_volume(scene->spec.body, scene->body.surface, &scene->body_report);
+        body_seconds = seconds_since(start);
+        return body;
+      });
+  if (!overlap) volume.wait();
+
+  std::exception_ptr garment_error;
+  double limit_seconds = 0.0, garment_seconds = 0.0;
+  try {
+    auto t0 = SteadyClock::now();
+    scene->surface = std::make_unique<LimitSurface>(scene->body.surface, scene->spec.limit);
+    limit_seconds = seconds_since(t0);
+    t0 = SteadyClock::now();
+    build_initial_garment(*scene);
+    garment_seconds = seconds_since(t0);
+  } catch (...) {
+    garment_error = std::current_exception();
+  }
+  Body body = volume.get();
+  if (garment_error) std::rethrow_exception(garment_error);
+  scene->body.volume = std::move(body.volume);
+  scene->body.pinned = std::move(body.pinned);
+  scene->stage_seconds.emplace_back("body", body_seconds);
+  scene->stage_seconds.emplace_back("limit surface", limit_seconds);
+  scene->stage_seconds.emplace_back("garment", garment_seconds);
   return scene;
 }
 

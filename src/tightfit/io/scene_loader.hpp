@@ -18,14 +18,18 @@ struct LoadedScene {
   Garment garment;  ///< the initial garment (embedded)
   /// For layouts: the panels, piece maps and flattening reports the garment came from.
   std::optional<GarmentBuild> build;
-  std::vector<std::pair<std::string, double>> stage_seconds;  ///< load stages (s)
+  /// Load stages (s): "body" (from the start to the end of the volume), "limit surface",
+  /// "garment". The last two run while the body's volume is meshed (2+ threads), so the
+  /// stages may sum to more than the load's wall time.
+  std::vector<std::pair<std::string, double>> stage_seconds;
 
   LoadedScene() = default;
   LoadedScene(const LoadedScene&) = delete;
   LoadedScene& operator=(const LoadedScene&) = delete;
 };
 
-/// Builds the body, its limit surface and the initial garment. The body import's
+/// Builds the body, its limit surface and the initial garment; the body's volume is
+/// meshed on a thread of its own meanwhile when thread_count() > 1. The body import's
 /// warnings (parts left out, units guessed) are printed to stderr as "warning: ...".
 std::unique_ptr<LoadedScene> load_scene(SceneSpec spec);
 
