@@ -1,5 +1,7 @@
 #include "run_outputs.hpp"
 
+#include <future>
+
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/parallel.hpp"
@@ -45,14 +47,21 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   // The ease table: body and pattern circumferences at the measurement levels (in
   // result.json, the report and, per piece, on the piece labels).
   EaseTable ease = fit_ease_table(sim, scene);
+  // The pattern files, most of the writing, are written on a thread of their own (which
+  // shares them out to the pool) while this one computes the fit's statistics and writes
+  // the other files; with one thread, after them.
+  std::vector<SeamStatistics> seams;
+  PatternExportOptions pattern_options;
+  std::future<std::vector<std::string>> pattern_files;
   if (sim.garment().pattern.pieces.size() <= kMaxPatternPieces) {
-    const std::vector<SeamStatistics> seams =
-        fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
-    PatternExportOptions options = scene_pattern_export_options(
-        scene, sim.garment(), sim.garment_positions(), pattern_date(state));
-    options.piece_notes = ease_label_lines(ease);
-    for (const auto& f : write_pattern_files(folder, sim.garment().pattern, options, &seams))
-      files.push_back(f);
+    seams = fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
+    pattern_options = scene_pattern_export_options(scene, sim.garment(), sim.garment_positions(),
+                                                   pattern_date(state));
+    pattern_options.piece_notes = ease_label_lines(ease);
+    pattern_files =
+        std::async(thread_count() > 1 ? std::launch::async : std::launch::deferred, [&] {
+          return write_pattern_files(folder, sim.garment().pattern, pattern_options, &seams);
+        });
   }
   {
     double relaxation = 0.0;
@@ -134,6 +143,10 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
                                                            : "tightfit fit report") +
                        (scene_name.empty() ? "" : " — " + scene_name));
   files.insert(files.end(), {"report.html", "fit.glb"});
+  if (pattern_files.valid()) {
+    const std::vector<std::string> pattern_names = pattern_files.get();
+    files.insert(files.begin() + 2, pattern_names.begin(), pattern_names.end());
+  }
   return files;
 }
 
