@@ -149,14 +149,17 @@ TEST(CoupledHessian, MultiplyIsTheProductWithTheMatrix) {
   EXPECT_LT((h.multiply(v) - Hv).norm(), 1e-12 * Hv.norm());
 }
 
-TEST(CoupledHessian, SameMatrixForEveryThreadCount) {
+TEST(CoupledHessian, SameMatrixAndProductForEveryThreadCount) {
   const int saved = thread_count();
-  const Case c = random_case(300, 200, 3);
+  const Case c = random_case(600, 400, 3);  // enough vertices for the loops to split
   const CoupledHessian h(c.factors);
+  const VecX v = VecX::LinSpaced(c.factors.num_dofs, -1.0, 2.0);
   set_thread_count(1);
   const SparseMatrix one = h.matrix();
+  const VecX one_product = h.multiply(v);
   for (int threads : {2, 3}) {
     set_thread_count(threads);
+    EXPECT_EQ((h.multiply(v) - one_product).cwiseAbs().maxCoeff(), 0.0) << threads << " threads";
     const SparseMatrix other = h.matrix();
     ASSERT_EQ(other.nonZeros(), one.nonZeros());
     EXPECT_TRUE(std::equal(one.valuePtr(), one.valuePtr() + one.nonZeros(), other.valuePtr()));

@@ -1,6 +1,7 @@
 #include "tightfit/solve/coupled_hessian.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 
 #include "tightfit/common/parallel.hpp"
@@ -218,47 +219,60 @@ SparseMatrix CoupledHessian::matrix() const {
 
 VecX CoupledHessian::multiply(const VecX& v) const {
   const int ng = static_cast<int>(f_.garment_dof.size());
-  // x = J v, then y = H_xx x.
-  Points3 x = Points3::Zero(ng, 3), y = Points3::Zero(ng, 3);
-  for (int i = 0; i < ng; ++i) {
+  const int nb = static_cast<int>(f_.body_dof.size());
+  // x = J v, per garment vertex.
+  Points3 x(ng, 3), y(ng, 3);
+  parallel_for(ng, [&](std::int64_t i) {
     Vec3 xi = Vec3::Zero();
     if (const int d = f_.garment_dof[i]; d >= 0) xi += f_.tangents[i] * v.segment<2>(d);
     for (int e = f_.stencil_start[i]; e < f_.stencil_start[i + 1]; ++e)
       if (const int b = f_.body_dof[f_.stencil_vertex[e]]; b >= 0)
         xi += f_.weight[e] * v.segment<3>(b);
     x.row(i) = xi.transpose();
-  }
-  for (int k = 0; k < ng; ++k)
-    for (int kk = f_.garment.column_begin(k); kk < f_.garment.column_end(k); ++kk)
-      y.row(f_.garment.row(kk)) +=
-          (Eigen::Map<const Mat3>(f_.garment.block(kk)) * x.row(k).transpose()).transpose();
-  // Jᵀ y + E v.
+  });
+  // y = H_xx x, each y_k from block column k (H_xx is symmetric: H_kr = H_rkᵀ).
+  parallel_for(ng, [&](std::int64_t k) {
+    Vec3 yk = Vec3::Zero();
+    for (int kk = f_.garment.column_begin(static_cast<int>(k));
+         kk < f_.garment.column_end(static_cast<int>(k)); ++kk)
+      yk += Eigen::Map<const Mat3>(f_.garment.block(kk)).transpose() *
+            x.row(f_.garment.row(kk)).transpose();
+    y.row(k) = yk.transpose();
+  });
   VecX out = VecX::Zero(f_.num_dofs);
-  for (int i = 0; i < ng; ++i) {
-    const Vec3 yi = y.row(i).transpose();
-    const Vec3 g = f_.garment_forces.row(i).transpose();
+  // The garment DOFs: Jᵀ y and the second-derivative terms.
+  parallel_for(ng, [&](std::int64_t i) {
     const int d = f_.garment_dof[i];
-    if (d >= 0)
-      out.segment<2>(d) +=
-          f_.tangents[i].transpose() * yi + f_.curvature_terms[i] * v.segment<2>(d);
-    for (int e = f_.stencil_start[i]; e < f_.stencil_start[i + 1]; ++e) {
-      const int b = f_.body_dof[f_.stencil_vertex[e]];
-      if (b < 0) continue;
-      out.segment<3>(b) += f_.weight[e] * yi;
-      if (d >= 0) {
-        out.segment<2>(d) += Vec2(f_.weight_u[e], f_.weight_v[e]) * g.dot(v.segment<3>(b));
-        out.segment<3>(b) += g * (f_.weight_u[e] * v[d] + f_.weight_v[e] * v[d + 1]);
-      }
+    if (d < 0) return;
+    const Vec3 g = f_.garment_forces.row(i).transpose();
+    Vec2 o =
+        f_.tangents[i].transpose() * y.row(i).transpose() + f_.curvature_terms[i] * v.segment<2>(d);
+    for (int e = f_.stencil_start[i]; e < f_.stencil_start[i + 1]; ++e)
+      if (const int b = f_.body_dof[f_.stencil_vertex[e]]; b >= 0)
+        o += Vec2(f_.weight_u[e], f_.weight_v[e]) * g.dot(v.segment<3>(b));
+    out.segment<2>(d) = o;
+  });
+  // The body DOFs, each gathered from the stencil entries that name its vertex and from
+  // its block column of the (symmetric) body Hessian.
+  parallel_for(nb, [&](std::int64_t a) {
+    const int da = f_.body_dof[a];
+    if (da < 0) return;
+    Vec3 o = Vec3::Zero();
+    for (int j = inverse_start_[a]; j < inverse_start_[a + 1]; ++j) {
+      const int e = inverse_entries_[j];
+      const int i = entry_owner_[e];
+      o += f_.weight[e] * y.row(i).transpose();
+      if (const int d = f_.garment_dof[i]; d >= 0)
+        o += f_.garment_forces.row(i).transpose() *
+             (f_.weight_u[e] * v[d] + f_.weight_v[e] * v[d + 1]);
     }
-  }
-  if (f_.body.layout())
-    for (int a = 0; a < f_.body.num_vertices(); ++a) {
-      const int da = f_.body_dof[a];
-      if (da < 0) continue;
-      for (int kk = f_.body.column_begin(a); kk < f_.body.column_end(a); ++kk)
+    if (f_.body.layout())
+      for (int kk = f_.body.column_begin(static_cast<int>(a));
+           kk < f_.body.column_end(static_cast<int>(a)); ++kk)
         if (const int b = f_.body_dof[f_.body.row(kk)]; b >= 0)
-          out.segment<3>(b) += Eigen::Map<const Mat3>(f_.body.block(kk)) * v.segment<3>(da);
-    }
+          o += Eigen::Map<const Mat3>(f_.body.block(kk)).transpose() * v.segment<3>(b);
+    out.segment<3>(da) = o;
+  });
   return out;
 }
 

@@ -10,8 +10,9 @@
 /// matrix() assembles H as a compressed sparse matrix by a sparse triple product taken
 /// column by column on DOF blocks (Gustavson's method: one dense accumulator per thread,
 /// no triplets, no sort of the result, no intermediate sparse products); multiply()
-/// applies H to a vector from the factors. Both give the same values for every thread
-/// count, bit for bit.
+/// applies H to a vector from the factors, each output entry gathered by one thread (H_xx
+/// and the body Hessian are symmetric: a block column serves as the block row). Both give
+/// the same values for every thread count, bit for bit.
 #include <vector>
 
 #include "tightfit/common/block_sparse_matrix.hpp"
