@@ -50,17 +50,20 @@ std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
 
   // The body's volume (TetGen, the pinned core) and the garment need only the surface: the
   // volume is meshed on a thread of its own while this one builds the limit surface and
-  // the garment. Its errors come first, as when the stages ran one after the other (they
-  // do with one thread).
+  // the garment (with one thread, before them). Its errors come first either way.
   double body_seconds = 0.0;
+  const auto mesh_volume = [&scene, &body_seconds, start] {
+    Body body = build_body_volume(scene->spec.body, scene->body.surface, &scene->body_report);
+    body_seconds = seconds_since(start);
+    return body;
+  };
   const bool overlap = thread_count() > 1;
-  std::future<Body> volume = std::async(
-      overlap ? std::launch::async : std::launch::deferred, [&scene, &body_seconds, start] {
-        Body body = build_body_volume(scene->spec.body, scene->body.surface, &scene->body_report);
-        body_seconds = seconds_since(start);
-        return body;
-      });
-  if (!overlap) volume.wait();
+  Body body;
+  std::future<Body> volume;
+  if (overlap)
+    volume = std::async(std::launch::async, mesh_volume);
+  else
+    body = mesh_volume();
 
   std::exception_ptr garment_error;
   double limit_seconds = 0.0, garment_seconds = 0.0;
@@ -74,7 +77,7 @@ std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
   } catch (...) {
     garment_error = std::current_exception();
   }
-  Body body = volume.get();
+  if (overlap) body = volume.get();
   if (garment_error) std::rethrow_exception(garment_error);
   scene->body.volume = std::move(body.volume);
   scene->body.pinned = std::move(body.pinned);
