@@ -1,7 +1,6 @@
 #include "tightfit/io/scene_loader.hpp"
 
 #include <cstdio>
-#include <exception>
 #include <future>
 
 #include "tightfit/common/error.hpp"
@@ -49,36 +48,33 @@ std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
     std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   // The body's volume (TetGen, the pinned core) and the garment need only the surface: the
-  // volume is meshed on a thread of its own while this one builds the limit surface and
-  // the garment (with one thread, before them). Its errors come first either way.
-  double body_seconds = 0.0;
-  const auto mesh_volume = [&scene, &body_seconds, start] {
-    Body body = build_body_volume(scene->spec.body, scene->body.surface, &scene->body_report);
-    body_seconds = seconds_since(start);
-    return body;
-  };
-  const bool overlap = thread_count() > 1;
-  Body body;
-  std::future<Body> volume;
-  if (overlap)
-    volume = std::async(std::launch::async, mesh_volume);
-  else
-    body = mesh_volume();
-
-  std::exception_ptr garment_error;
+  // limit surface and the garment are built on a thread of their own while this one
+  // meshes the volume (with one thread, after it). The volume stays on this thread so
+  // that its large temporaries are freed into the heap the solves reuse (keep_freed_memory_
+  // for_reuse) rather than into another thread's. The body's errors come first either way.
   double limit_seconds = 0.0, garment_seconds = 0.0;
-  try {
+  const auto build_garment_part = [&scene, &limit_seconds, &garment_seconds] {
     auto t0 = SteadyClock::now();
     scene->surface = std::make_unique<LimitSurface>(scene->body.surface, scene->spec.limit);
     limit_seconds = seconds_since(t0);
     t0 = SteadyClock::now();
     build_initial_garment(*scene);
     garment_seconds = seconds_since(t0);
+  };
+  std::future<void> garment;
+  if (thread_count() > 1) garment = std::async(std::launch::async, build_garment_part);
+  Body body;
+  try {
+    body = build_body_volume(scene->spec.body, scene->body.surface, &scene->body_report);
   } catch (...) {
-    garment_error = std::current_exception();
+    if (garment.valid()) garment.wait();  // it reads the scene: let it end first
+    throw;
   }
-  if (overlap) body = volume.get();
-  if (garment_error) std::rethrow_exception(garment_error);
+  const double body_seconds = seconds_since(start);
+  if (garment.valid())
+    garment.get();
+  else
+    build_garment_part();
   scene->body.volume = std::move(body.volume);
   scene->body.pinned = std::move(body.pinned);
   scene->stage_seconds.emplace_back("body", body_seconds);
