@@ -1,5 +1,5 @@
-/// load_scene meshes the body's volume on a thread of its own while it builds the garment
-/// on the body's surface (and flattens the panels on the threads): the scene must be the
+/// load_scene builds the garment on the body's surface on a thread of its own (flattening
+/// the panels on the threads) while it meshes the body's volume: the scene must be the
 /// same as when the stages run one after the other, and the body's errors must still come
 /// before the garment's.
 #include <gtest/gtest.h>

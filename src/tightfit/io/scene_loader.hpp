@@ -28,8 +28,9 @@ struct LoadedScene {
   LoadedScene& operator=(const LoadedScene&) = delete;
 };
 
-/// Builds the body, its limit surface and the initial garment; the body's volume is
-/// meshed on a thread of its own meanwhile when thread_count() > 1. The body import's
+/// Builds the body, its limit surface and the initial garment; once the body's surface is
+/// made, the limit surface and the garment are built on a thread of their own while the
+/// calling thread meshes the volume (when thread_count() > 1). The body import's
 /// warnings (parts left out, units guessed) are printed to stderr as "warning: ...".
 std::unique_ptr<LoadedScene> load_scene(SceneSpec spec);
 
