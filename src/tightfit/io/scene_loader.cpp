@@ -50,8 +50,10 @@ std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
   // The body's volume (TetGen, the pinned core) and the garment need only the surface: the
   // limit surface and the garment are built on a thread of their own while this one
   // meshes the volume (with one thread, after it). The volume stays on this thread so
-  // that its large temporaries are freed into the heap the solves reuse (keep_freed_memory_
-  // for_reuse) rather than into another thread's. The body's errors come first either way.
+  // that its large temporaries are freed into the heap the solves reuse
+  // (common/memory_reuse.hpp) rather than into another thread's. The body's errors come
+  // first either way: when the volume throws, the future's destructor waits for the
+  // garment's thread, and its outcome is dropped.
   double limit_seconds = 0.0, garment_seconds = 0.0;
   const auto build_garment_part = [&scene, &limit_seconds, &garment_seconds] {
     auto t0 = SteadyClock::now();
@@ -63,13 +65,7 @@ std::unique_ptr<LoadedScene> load_scene(SceneSpec spec) {
   };
   std::future<void> garment;
   if (thread_count() > 1) garment = std::async(std::launch::async, build_garment_part);
-  Body body;
-  try {
-    body = build_body_volume(scene->spec.body, scene->body.surface, &scene->body_report);
-  } catch (...) {
-    if (garment.valid()) garment.wait();  // it reads the scene: let it end first
-    throw;
-  }
+  Body body = build_body_volume(scene->spec.body, scene->body.surface, &scene->body_report);
   const double body_seconds = seconds_since(start);
   if (garment.valid())
     garment.get();
