@@ -24,11 +24,11 @@
 #include "tightfit/common/sparse_cholesky.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
 #include "tightfit/garment/primitive_garments.hpp"
-#include "tightfit/io/optimization_setup.hpp"
-#include "tightfit/io/scene_loader.hpp"
 #include "tightfit/objectives/regularizer_edge_lengths.hpp"
 #include "tightfit/objectives/shape_objective.hpp"
 #include "tightfit/objectives/stretch_objective.hpp"
+#include "tightfit/scene/loader.hpp"
+#include "tightfit/scene/optimization_setup.hpp"
 
 namespace tightfit {
 namespace {

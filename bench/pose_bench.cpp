@@ -15,9 +15,9 @@
 #include "tightfit/body/posed_body.hpp"
 #include "tightfit/body/skin_transfer.hpp"
 #include "tightfit/design/adjoint_gradient.hpp"
-#include "tightfit/io/optimization_setup.hpp"
-#include "tightfit/io/scene_loader.hpp"
 #include "tightfit/objectives/sliding_objective.hpp"
+#include "tightfit/scene/loader.hpp"
+#include "tightfit/scene/optimization_setup.hpp"
 
 namespace tightfit {
 namespace {

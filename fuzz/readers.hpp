@@ -1,7 +1,7 @@
 #pragma once
 /// The readers under fuzzing, by name: one place that the libFuzzer targets
 /// (fuzz/*_fuzz.cpp) and the regression test of their findings
-/// (tests/io/fuzz_regression_test.cpp, files in tests/fuzz_regressions/READER/) share.
+/// (tests/app/fuzz_regression_test.cpp, files in tests/fuzz_regressions/READER/) share.
 #include <unistd.h>
 
 #include <cstdlib>
@@ -20,9 +20,9 @@
 #include "tightfit/garment/layout_spec.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
-#include "tightfit/io/pattern_json.hpp"
-#include "tightfit/io/run_state.hpp"
-#include "tightfit/io/scene_spec.hpp"
+#include "tightfit/patterns/json.hpp"
+#include "tightfit/scene/run_state.hpp"
+#include "tightfit/scene/spec.hpp"
 
 namespace tightfit::fuzz {
 

@@ -1,9 +1,9 @@
 // tightfit report viewer: reads the fit data embedded in report.html (see
-// src/tightfit/io/report_data.hpp for its layout) and draws the 3D view (three.js),
+// src/tightfit/report/data.hpp for its layout) and draws the 3D view (three.js),
 // the legend, the pattern pieces, the statistics, the history and the parameters.
 // Exposes window.tightfitReport = {ready, renderCount, background, coloring, setColoring,
 // pose, setPose}
-// for the browser test (tests/io/report_browser_check.mjs).
+// for the browser test (tests/report/report_browser_check.mjs).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
@@ -547,7 +547,7 @@ function drawStats() {
   document.getElementById('stats').appendChild(table);
 }
 
-/// RAL-GZ 387 compression classes (mmHg), as in src/tightfit/io/pressure_statistics.hpp.
+/// RAL-GZ 387 compression classes (mmHg), as in src/tightfit/report/pressure_statistics.hpp.
 const PRESSURE_CLASSES = [
   { label: 'I', lo: 18, hi: 21 }, { label: 'II', lo: 23, hi: 32 },
   { label: 'III', lo: 34, hi: 46 }, { label: 'IV', lo: 49, hi: Infinity },

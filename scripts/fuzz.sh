@@ -6,7 +6,7 @@
 # seconds. Findings (crash-*, timeout-*, oom-*) land in build/fuzz/findings/TARGET/;
 # the script exits 1 when any target found one. Each finding, once fixed, goes into
 # tests/fuzz_regressions/READER/ (READER: the target's name without "_fuzz"), where
-# `make test` reads it again (tests/io/fuzz_regression_test.cpp).
+# `make test` reads it again (tests/app/fuzz_regression_test.cpp).
 # Usage: scripts/fuzz.sh [TARGET...]   (default: all targets)
 set -euo pipefail
 cd "$(dirname "$0")/.."

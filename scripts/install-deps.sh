@@ -13,7 +13,7 @@ BUILD_PKGS=(
 )
 # Clients used by the tests to check exports with real third-party readers, and valgrind
 # (memcheck of the reader and physics tests, scripts/memcheck.sh), and GNU parallel
-# (`tightfit grade` through a batch engine, tests/io/grade_cli_test.cpp), clang-format and
+# (`tightfit grade` through a batch engine, tests/app/grade_cli_test.cpp), clang-format and
 # clang-tidy (make format-check, make check-naming: CONTRIBUTING.md).
 CHECK_PKGS=(
   python3 python3-ezdxf python3-meshio python3-numpy python3-jsonschema librsvg2-bin poppler-utils librecad

@@ -26,10 +26,14 @@ command -v valgrind >/dev/null || { echo "memcheck: valgrind is not installed (s
 # child optimizes for seconds (the pants example, the openings) are left out too, they
 # would only add their run time.
 slow='*Slow*'
-# Longest first (design ≈ 80 s, io ≈ 55 s under memcheck), so that the two jobs end together.
+# Longest first (design ≈ 80 s, the output layers ≈ 55 s together under memcheck), so that the two jobs end together.
 runs=(
   "tightfit_design_tests:*-$slow:AdjointSolve.*:AdjointPipelineSoftBody.*:PatternOptimizer.RecoversTheShapeOfAnotherPattern:*PatternOptimizerResume*soft*:SlidingObjective.PosesPull*:SlidingObjective.AdjointGradient*:AllPosesTerm.*:PinnedTractionRegularizer.*:PantsExampleCli.*:OpeningsCli.*"
-  "tightfit_io_tests:*-$slow:SceneSpec.EveryExampleValidatesAgainstTheSchema:LayoutSceneSimulation.*:PressureRegionStatistics.*:ScenePoses.*:SceneLayoutFileLoad.*:GradeCli.*:GradeInputs.TheGradingExamples*:GradeInputs.JointsOutside*"
+  "tightfit_scene_tests:*-$slow:SceneSpec.EveryExampleValidatesAgainstTheSchema:LayoutSceneSimulation.*:ScenePoses.*:SceneLayoutFileLoad.*"
+  "tightfit_report_tests:*-$slow:PressureRegionStatistics.*"
+  "tightfit_patterns_tests:*-$slow"
+  "tightfit_grade_tests:*-$slow:GradeInputs.TheGradingExamples*:GradeInputs.JointsOutside*"
+  "tightfit_app_tests:*-$slow:GradeCli.*"
   "tightfit_garment_tests:*-$slow:Pants.*:LayoutBoneRegions.*:LayoutAnchorTransfer.*"
   "tightfit_solve_tests:*-$slow:RigidCylinderSleeveSliding.*:RigidCurvedBody.EllipticCylinder*"
   "tightfit_body_tests:*-$slow:BodyAcceptance.*:RemeshIsotropic.*:CropAndCap.*:LocalCrop.*:SurfaceDistance.*:Skinning.*"

@@ -3,7 +3,7 @@
 # commands: runs them (tests/docs/tutorial_test.py --keep), then converts their outputs —
 # pattern.svg with rsvg-convert, a page of pattern_a4.pdf with pdftoppm, and report.html
 # in headless Chromium (Debian's /usr/bin/chromium driven by playwright-core from
-# report/node_modules, as tests/io/report_browser_check.mjs does; no browser download).
+# report/node_modules, as tests/report/report_browser_check.mjs does; no browser download).
 # Usage: scripts/tutorial_pictures.sh [TIGHTFIT_BINARY]   (default build/release/tightfit)
 # Needs: python3, rsvg-convert (librsvg2-bin), pdftoppm (poppler-utils), node, chromium,
 # report/node_modules (scripts/install-deps.sh installs all of them).

@@ -18,8 +18,8 @@
 #include "tightfit/design/adjoint_check.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
-#include "tightfit/io/optimization_setup.hpp"
-#include "tightfit/io/scene_loader.hpp"
+#include "tightfit/scene/loader.hpp"
+#include "tightfit/scene/optimization_setup.hpp"
 
 namespace tightfit::app {
 namespace {

@@ -5,7 +5,7 @@
 /// garment); the saved pattern, garment embedding and body positions are installed in
 /// the simulation and checked against the rebuilt garment (InputError on a mismatch).
 /// The state of a run that remeshed pieces holds its complete pattern: the garment is
-/// welded from it instead of the scene's layout (io/run_state.hpp, run_state_garment).
+/// welded from it instead of the scene's layout (scene/run_state.hpp, run_state_garment).
 /// For equilibrium runs the force residual of the saved state is recomputed and printed.
 /// OUT (default DIR) is replaced as a whole when the export succeeds; when OUT is DIR,
 /// files that export does not regenerate (e.g. checkpoint.json) are kept.
@@ -17,8 +17,8 @@
 #include "run_outputs.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/output_directory.hpp"
-#include "tightfit/io/run_state.hpp"
-#include "tightfit/io/scene_loader.hpp"
+#include "tightfit/scene/loader.hpp"
+#include "tightfit/scene/run_state.hpp"
 
 namespace tightfit::app {
 namespace {

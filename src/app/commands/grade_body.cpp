@@ -15,9 +15,9 @@
 #include "tightfit/common/output_directory.hpp"
 #include "tightfit/common/stopwatch.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
-#include "tightfit/io/grade_status.hpp"
-#include "tightfit/io/grade_summary.hpp"
-#include "tightfit/io/skeleton_fit.hpp"
+#include "tightfit/grade/status.hpp"
+#include "tightfit/grade/summary.hpp"
+#include "tightfit/scene/skeleton_fit.hpp"
 
 namespace tightfit::app {
 namespace {

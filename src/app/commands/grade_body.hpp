@@ -5,7 +5,7 @@
 /// DIR/bodies/NAME/ belongs to tightfit grade. It holds scene.json (the design scene
 /// with this body's mesh and rig, paths relative to the folder, so that `tightfit
 /// optimize DIR/bodies/NAME/scene.json` reproduces the run), grade_body.json (the status,
-/// io/grade_status.hpp) and, once the body is done, the outputs of `tightfit optimize`.
+/// grade/status.hpp) and, once the body is done, the outputs of `tightfit optimize`.
 ///  * A body whose status is "done" for the same inputs (the fingerprint of scene.json,
 ///    of every file it names and of --max-iterations) is skipped.
 ///  * A body left "running" (killed) with the same inputs resumes from its
@@ -19,8 +19,8 @@
 #include <filesystem>
 #include <string>
 
-#include "tightfit/io/grade_bodies.hpp"
-#include "tightfit/io/grade_scene.hpp"
+#include "tightfit/grade/bodies.hpp"
+#include "tightfit/grade/scene.hpp"
 
 namespace tightfit::app {
 

@@ -1,9 +1,9 @@
 /// `tightfit grade DESIGN BODIES --out DIR [--jobs N | --body NAME | --gather]`: one
 /// design optimized on every body of a population (grading), each body in its own
 /// folder DIR/bodies/NAME (app/commands/grade_body.hpp: one idempotent, resumable
-/// invocation per body), then gathered into DIR/grade.json (io/grade_summary.hpp),
-/// DIR/grade.html (io/grade_report.hpp) and the nest of the graded pieces as
-/// DIR/nest.svg, nest.pdf and nest.dxf (io/pattern_nest.hpp).
+/// invocation per body), then gathered into DIR/grade.json (grade/summary.hpp),
+/// DIR/grade.html (grade/report.hpp) and the nest of the graded pieces as
+/// DIR/nest.svg, nest.pdf and nest.dxf (patterns/nest.hpp).
 ///
 ///  * no --body, no --gather: every body, --jobs N at a time as processes of this binary
 ///    (grade_jobs.hpp; logs in DIR/logs/NAME.log), then the gathering;
@@ -32,9 +32,9 @@
 #include "tightfit/common/nearest_word.hpp"
 #include "tightfit/common/output_directory.hpp"
 #include "tightfit/common/parallel.hpp"
-#include "tightfit/io/grade_report.hpp"
-#include "tightfit/io/grade_summary.hpp"
-#include "tightfit/io/pattern_nest.hpp"
+#include "tightfit/grade/report.hpp"
+#include "tightfit/grade/summary.hpp"
+#include "tightfit/patterns/nest.hpp"
 
 namespace tightfit::app {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tightfit/io/scene_loader.hpp"
+#include "tightfit/scene/loader.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit::app {

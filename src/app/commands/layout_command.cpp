@@ -5,8 +5,8 @@
 #include "command_registry.hpp"
 #include "run_outputs.hpp"
 #include "tightfit/common/output_directory.hpp"
-#include "tightfit/io/pattern_outputs.hpp"
-#include "tightfit/io/scene_loader.hpp"
+#include "tightfit/patterns/outputs.hpp"
+#include "tightfit/scene/loader.hpp"
 
 namespace tightfit::app {
 namespace {

@@ -17,7 +17,7 @@
 #include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/output_directory.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
-#include "tightfit/io/scene_spec.hpp"
+#include "tightfit/scene/spec.hpp"
 
 namespace tightfit::app {
 namespace {

@@ -1,15 +1,15 @@
 #pragma once
 /// The output files of a run, written the same way by the command that ran it
 /// (`simulate`, `optimize`, `layout`) and by `tightfit export`, which regenerates them
-/// from the run's state.json (io/run_state.hpp).
+/// from the run's state.json (scene/run_state.hpp).
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "tightfit/io/run_state.hpp"
-#include "tightfit/io/simulation_outputs.hpp"
+#include "tightfit/report/simulation_outputs.hpp"
+#include "tightfit/scene/run_state.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
@@ -22,7 +22,7 @@ constexpr size_t kMaxPatternPieces = kMaxReportedPieces;
 /// Writes the outputs of a run that ended at an equilibrium into `folder`, in this
 /// order (each file atomically; the report comes last because it needs the viewer's
 /// npm packages and its failure must not cost the rest): garment.ply, body.ply, the
-/// pattern files, garment_pose_NAME.ply per pose of the scene (io/pose_outputs.hpp),
+/// pattern files, garment_pose_NAME.ply per pose of the scene (report/pose_outputs.hpp),
 /// result.json (`state.result` with "fit" set to the fit statistics and "poses" to the
 /// per-pose statistics when the scene has poses),
 /// scene.json, history.json (optimize runs), state.json, report.html (with the

@@ -12,8 +12,8 @@
 #include "tightfit/common/output_directory.hpp"
 #include "tightfit/common/stopwatch.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
-#include "tightfit/io/scene_loader.hpp"
-#include "tightfit/io/simulation_outputs.hpp"
+#include "tightfit/report/simulation_outputs.hpp"
+#include "tightfit/scene/loader.hpp"
 
 namespace tightfit::app {
 namespace {

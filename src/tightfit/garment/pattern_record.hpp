@@ -10,7 +10,7 @@
 ///  "pinned": [{"name", "piece", "vertices": [v, ...]}]}
 /// Piece references are indices into "pieces", vertices piece-local. Doubles are written
 /// in round-trip form, so a read pattern is bit-identical to the written one. It is also
-/// the core of pieces.json (io/pattern_json.hpp), which adds derived keys beside these.
+/// the core of pieces.json (patterns/json.hpp), which adds derived keys beside these.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>

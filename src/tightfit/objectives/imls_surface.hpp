@@ -10,7 +10,7 @@
 /// a sphere): that bias is the floor of a shape fit, so choose h small against the
 /// target's radii of curvature, yet larger than the distances the garment starts at
 /// (beyond h the fallback below takes over), and the target points a few to a radius
-/// (io/optimization_setup.hpp samples a target mesh at h/2). f is C³ wherever some
+/// (scene/optimization_setup.hpp samples a target mesh at h/2). f is C³ wherever some
 /// target point lies within h (φ is C³ at r = h).
 ///
 /// Fallback: where no target point lies within h, f(x) = n_k·(x − c_k) for the NEAREST

@@ -1,0 +1,103 @@
+#include "tightfit/scene/spec.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "tightfit/common/error.hpp"
+
+namespace tightfit::scene_spec_test {
+
+const std::filesystem::path kExamples = std::filesystem::path(TIGHTFIT_SOURCE_DIR) / "examples";
+
+std::vector<std::filesystem::path> example_scenes() {
+  std::vector<std::filesystem::path> out;
+  for (const auto& e : std::filesystem::directory_iterator(kExamples))
+    if (e.path().extension() == ".json") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(SceneSpec, EveryExampleParses) {
+  const auto scenes = example_scenes();
+  ASSERT_GE(scenes.size(), 3u);
+  for (const auto& file : scenes) EXPECT_NO_THROW(read_scene(file)) << file;
+}
+
+TEST(SceneSpec, EveryExampleValidatesAgainstTheSchema) {
+  const std::string schema = std::string(TIGHTFIT_SOURCE_DIR) + "/schema/scene.schema.json";
+  for (const auto& file : example_scenes()) {
+    const std::string cmd =
+        "/usr/bin/python3 -c \"import json,sys,jsonschema; "
+        "jsonschema.validate(json.load(open(sys.argv[2])), json.load(open(sys.argv[1])))\" '" +
+        schema + "' '" + file.string() + "'";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << file;
+  }
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_scene(nlohmann::json::parse(text), "bad.json", ".");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kGood =
+    R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {"scale": 0.9}}})";
+
+TEST(SceneSpec, ASleeveEdgeTooShortToMeshIsAnErrorBeforeMeshing) {
+  const std::string e =
+      error_of(R"({"body": {"generator": "cylinder", "radius": 0.05, "length": 0.3},
+                                    "garment": {"sleeve": {"edge_length": 0.00001}}})");
+  EXPECT_NE(
+      e.find(
+          "bad.json: /garment/sleeve/edge_length: an edge length of 1e-05 m would mesh the sleeve"),
+      std::string::npos)
+      << e;
+}
+
+TEST(SceneSpec, ReadsMaterialsAndDefaults) {
+  auto j = nlohmann::json::parse(kGood);
+  j["fabric"] = {{"youngs_modulus", 30e6}, {"thickness", 2e-4}};
+  j["body_material"] = {{"rigid", true}};
+  j["pressure"] = {{"shape_operator", "limit_surface"}};
+  const SceneSpec s = parse_scene(j, "s.json", ".");
+  EXPECT_EQ(s.garment.kind, GarmentKind::kCover);
+  EXPECT_DOUBLE_EQ(s.materials.fabric.youngs_modulus, 30e6);
+  EXPECT_DOUBLE_EQ(s.materials.fabric.poisson_ratio, 0.33);
+  EXPECT_TRUE(s.materials.rigid_body);
+  EXPECT_EQ(s.pressure_operator, ShapeOperatorKind::kLimitSurface);
+}
+
+TEST(SceneSpec, ErrorsNameTheFileAndJsonPath) {
+  auto with = [](const std::string& key, const nlohmann::json& value) {
+    auto j = nlohmann::json::parse(kGood);
+    j[key] = value;
+    return j.dump();
+  };
+  EXPECT_EQ(error_of(with("fabric", {{"youngs_modulus", "stiff"}})),
+            "bad.json: /fabric/youngs_modulus: expected a number, got string");
+  EXPECT_EQ(error_of(with("fabrik", nlohmann::json::object())),
+            "bad.json: /fabrik: unknown key \"fabrik\"");
+  EXPECT_NE(error_of(with("fabric", {{"poisson_ratio", 1.5}})).find("/fabric/poisson_ratio"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {}})")
+                .find("/garment"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"garment": {"cover": {}}})").find("/body: missing"), std::string::npos);
+  EXPECT_NE(
+      error_of(
+          R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}, "sleeve": {}}})")
+          .find("exactly one"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of(
+          R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"sleeve": {"radius": -1}}})")
+          .find("/garment/sleeve/radius"),
+      std::string::npos);
+}
+
+}  // namespace tightfit::scene_spec_test
