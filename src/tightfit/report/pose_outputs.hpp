@@ -1,5 +1,5 @@
 #pragma once
-/// Outputs of a fit in the scene's poses (body/posed_body.hpp, objectives/sliding_objective.hpp):
+/// Outputs of a fit in the scene's poses (scene/pose_fit.hpp computes the fit there):
 /// for each pose, the garment carried there with its neutral embedding, and the forces
 /// the sliding objective looks at.
 ///
@@ -30,10 +30,6 @@ struct PoseOutputs {
   /// fit_fields::kSlidingExcess.
   VecX worst_excess;
 };
-
-/// The friction coefficient of the scene's sliding objective
-/// (optimize.objectives.sliding.friction), else 0.3 (the paper's).
-double scene_friction(const SceneSpec& scene);
 
 /// Writes the per-pose files of the simulation's current state into `folder` and
 /// returns their statistics; nothing when the scene has no poses.

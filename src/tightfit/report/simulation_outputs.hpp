@@ -46,14 +46,14 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
 /// JSON of a Newton report (iterations, residuals, time split).
 nlohmann::json newton_report_json(const NewtonReport& report);
 
-/// The fit as the report and glTF writers see it: deformed body, garment with the
-/// standard face fields (fit_view.hpp), the pattern, the scene parameters and an
-/// optimization history (may be an empty array).
 /// The limit-surface positions of the body's surface vertices (ns×3, m) for body
 /// positions `y` (n_b×3): what the report draws, so that the garment lying on the limit
 /// surface is not pierced by the control mesh.
 Points3 body_limit_positions(const Body& body, const LimitSurface& surface, const Points3& y);
 
+/// The fit as the report and glTF writers see it: deformed body, garment with the
+/// standard face fields (fit_view.hpp), the pattern, the scene parameters and an
+/// optimization history (may be an empty array).
 FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit,
                       ShapeOperatorKind pressure_operator, const nlohmann::json& parameters,
                       const nlohmann::json& history = nlohmann::json::array());
