@@ -28,12 +28,12 @@ command -v valgrind >/dev/null || { echo "memcheck: valgrind is not installed (s
 slow='*Slow*'
 # Longest first (design ≈ 80 s, the output layers ≈ 55 s together under memcheck), so that the two jobs end together.
 runs=(
-  "tightfit_design_tests:*-$slow:AdjointSolve.*:AdjointPipelineSoftBody.*:PatternOptimizer.RecoversTheShapeOfAnotherPattern:*PatternOptimizerResume*soft*:SlidingObjective.PosesPull*:SlidingObjective.AdjointGradient*:AllPosesTerm.*:PinnedTractionRegularizer.*:PantsExampleCli.*:OpeningsCli.*"
+  "tightfit_design_tests:*-$slow:AdjointSolve.*:AdjointPipelineSoftBody.*:PatternOptimizer.RecoversTheShapeOfAnotherPattern:*PatternOptimizerResume*soft*:SlidingObjective.PosesPull*:SlidingObjective.AdjointGradient*:AllPosesTerm.*:PinnedTractionRegularizer.*"
   "tightfit_scene_tests:*-$slow:SceneSpec.EveryExampleValidatesAgainstTheSchema:LayoutSceneSimulation.*:ScenePoses.*:SceneLayoutFileLoad.*"
   "tightfit_report_tests:*-$slow:PressureRegionStatistics.*"
   "tightfit_patterns_tests:*-$slow"
   "tightfit_grade_tests:*-$slow:GradeInputs.TheGradingExamples*:GradeInputs.JointsOutside*"
-  "tightfit_app_tests:*-$slow:GradeCli.*"
+  "tightfit_app_tests:*-$slow:GradeCli.*:PantsExampleCli.*:OpeningsCli.*"
   "tightfit_garment_tests:*-$slow:Pants.*:LayoutBoneRegions.*:LayoutAnchorTransfer.*"
   "tightfit_solve_tests:*-$slow:RigidCylinderSleeveSliding.*:RigidCurvedBody.EllipticCylinder*"
   "tightfit_body_tests:*-$slow:BodyAcceptance.*:RemeshIsotropic.*:CropAndCap.*:LocalCrop.*:SurfaceDistance.*:Skinning.*"
