@@ -102,4 +102,33 @@ TEST(OnePieceTopology, WeldsTheRawArraysAndNamesItsSourceInEveryError) {
   EXPECT_NE(seam.find("seam edge 0 has pattern vertex -1"), std::string::npos) << seam;
 }
 
+TEST(WeldPattern, RefusesPiecesJoinedAlongTheSamePairOfSeamVerticesTwice) {
+  // Two squares sewn along their corners 0, 1, 2: each square's triangle (0, 1, 2) has
+  // only seam vertices, so both become the same garment triangle and the diagonal 0-2
+  // carries four triangles.
+  Pattern pattern;
+  pattern.pieces = {square("front", 0), square("back", 2)};
+  pattern.seams.push_back({"side", {0, {0, 1, 2}}, {1, {0, 1, 2}}});
+  try {
+    weld_pattern(pattern);
+    FAIL() << "a doubled triangle was welded";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("more than two triangles"), std::string::npos) << what;
+    EXPECT_NE(what.find("back, front"), std::string::npos) << what;
+  }
+}
+
+TEST(WeldPattern, RefusesASeamThatWeldsTwoCornersOfATriangle) {
+  Pattern pattern;
+  pattern.pieces = {square("only", 0)};
+  pattern.seams.push_back({"fold", {0, {0, 1}}, {0, {1, 2}}});
+  try {
+    weld_pattern(pattern);
+    FAIL() << "a triangle with two corners welded together was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("piece only"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace tightfit::garment_weld_test

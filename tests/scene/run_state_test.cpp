@@ -94,21 +94,41 @@ std::string read_error(const nlohmann::json& j);
 
 /// The sample state with a complete (remeshed) pattern of its one piece: a square with
 /// a seam joining its left and right edges and a pinned bottom edge.
+/// A strip of three unit squares, bottom 0-1-2-3, top 4-5-6-7 (right to left).
+/// `flipped` picks the other diagonal in every square.
+Triangles strip_triangles(bool flipped) {
+  Triangles t(6, 3);
+  for (int c = 0; c < 3; ++c) {
+    const int b0 = c, b1 = c + 1, t0 = 7 - c, t1 = 6 - c;
+    if (flipped)
+      t.block<2, 3>(2 * c, 0) << b0, b1, t0, b1, t1, t0;
+    else
+      t.block<2, 3>(2 * c, 0) << b0, b1, t1, b0, t1, t0;
+  }
+  return t;
+}
+
 RunState remeshed_state() {
   RunState s = sample_state("optimize");
   Pattern p;
   PatternPiece piece;
   piece.name = "front";
-  piece.rest = s.pieces[0].rest;
-  piece.triangles = s.pieces[0].triangles;
-  piece.boundary = {0, 1, 2, 3};
-  piece.corners = {0, 2};
+  piece.rest.resize(8, 2);
+  for (int c = 0; c <= 3; ++c) {
+    piece.rest.row(c) << c * kAwkward[0], 0.0;
+    piece.rest.row(7 - c) << c * kAwkward[0], kAwkward[1];
+  }
+  piece.triangles = strip_triangles(false);
+  piece.boundary = {0, 1, 2, 3, 4, 5, 6, 7};
+  piece.corners = {0, 3, 4, 7};
   piece.grain = Vec2(kAwkward[0], kAwkward[1]);
   p.pieces.push_back(piece);
-  p.seams.push_back({"side", {0, {0, 3}}, {0, {1, 2}}});
+  // The strip's ends sewn together: a tube three squares round.
+  p.seams.push_back({"side", {0, {0, 7}}, {0, {3, 4}}});
   p.pinned.push_back({"hem", 0, {0, 1}});
   s.pattern = p;
-  s.state.garment.resize(2);  // the seam welds 4 pattern vertices into 2
+  s.state.garment.clear();  // the seam welds 8 pattern vertices into 6
+  for (int i = 0; i < 6; ++i) s.state.garment.push_back({i + 3, 0.125 * (i % 3), 0.25});
   return s;
 }
 
@@ -127,8 +147,8 @@ TEST(RunState, RemeshedPatternRoundTripIsBitExact) {
   for (Eigen::Index i = 0; i < a.rest.size(); ++i)
     EXPECT_TRUE(bit_equal(b.rest.data()[i], a.rest.data()[i])) << i;
   ASSERT_EQ(r.pattern->seams.size(), 1u);
-  EXPECT_EQ(r.pattern->seams[0].a.vertices, (std::vector<int>{0, 3}));
-  EXPECT_EQ(r.pattern->seams[0].b.vertices, (std::vector<int>{1, 2}));
+  EXPECT_EQ(r.pattern->seams[0].a.vertices, (std::vector<int>{0, 7}));
+  EXPECT_EQ(r.pattern->seams[0].b.vertices, (std::vector<int>{3, 4}));
   ASSERT_EQ(r.pattern->pinned.size(), 1u);
   EXPECT_EQ(r.pattern->pinned[0].vertices, (std::vector<int>{0, 1}));
   // The short piece list follows the saved pattern.
@@ -143,13 +163,12 @@ TEST(RunState, RemeshedPatternIsWeldedAndCheckedAgainstTheScene) {
   body.volume.vertices = s.state.body;
   // The scene's pattern: the same piece, seam and pinned edge with another mesh.
   Pattern scene = *s.pattern;
-  scene.pieces[0].triangles.resize(2, 3);
-  scene.pieces[0].triangles << 0, 1, 3, 1, 2, 3;
+  scene.pieces[0].triangles = strip_triangles(true);
   const Garment scene_garment = weld_pattern(scene);
   const Garment g = run_state_garment(s, scene_garment, body, 100, "state.json");
-  EXPECT_EQ(g.num_garment_vertices(), 2);
+  EXPECT_EQ(g.num_garment_vertices(), 6);
   EXPECT_EQ(g.pattern.pieces[0].triangles, s.pattern->pieces[0].triangles);
-  EXPECT_EQ(g.embedding.size(), 2u);
+  EXPECT_EQ(g.embedding.size(), 6u);
   auto error = [&](const RunState& state) {
     try {
       run_state_garment(state, scene_garment, body, 100, "state.json");

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/geometry/surface_topology.hpp"
 
 namespace tightfit {
 namespace {
@@ -152,6 +153,45 @@ int GarmentTopology::piece_of(int pattern_vertex) const {
 
 namespace {
 
+/// The pieces (by name, sorted, without repetition) of the triangles `faces`.
+std::string piece_names(const Pattern& pattern, const GarmentTopology& g,
+                        const std::vector<int>& faces) {
+  std::vector<std::string> names;
+  for (int f : faces)
+    names.push_back(
+        pattern.pieces[static_cast<size_t>(g.triangle_piece[static_cast<size_t>(f)])].name);
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+/// Throws InputError (source "pattern") when the seams weld two corners of one triangle
+/// together or give an edge more than two triangles (the welded garment is then no
+/// surface: no shape operator, no pressure), naming the pieces where it happens.
+void check_welded_surface(const Pattern& pattern, const GarmentTopology& g) {
+  for (Eigen::Index f = 0; f < g.garment_triangles.rows(); ++f) {
+    const auto c = g.garment_triangles.row(f);
+    if (c(0) == c(1) || c(1) == c(2) || c(2) == c(0))
+      throw InputError("pattern", "the seams weld two corners of a triangle of piece " +
+                                      piece_names(pattern, g, {static_cast<int>(f)}) +
+                                      " into one garment vertex");
+  }
+  const SurfaceTopology surface(g.garment_triangles, g.num_garment_vertices);
+  const std::vector<int> bad = surface.non_manifold_edges();
+  if (bad.empty()) return;
+  const std::array<int, 2> ends = surface.edge_vertices(bad.front());
+  throw InputError("pattern", "the welded garment has " + std::to_string(bad.size()) +
+                                  " edges with more than two triangles (the first between "
+                                  "garment vertices " +
+                                  std::to_string(ends[0]) + " and " + std::to_string(ends[1]) +
+                                  ", in pieces " +
+                                  piece_names(pattern, g, surface.edge_all_faces(bad.front())) +
+                                  "): two pieces are joined along the same pair of seam "
+                                  "vertices by more than their seam");
+}
+
 /// The topology of a pattern whose seams were checked and whose vertex map is valid.
 GarmentTopology assemble_topology(const Pattern& pattern, std::vector<int> offset,
                                   std::vector<int> pattern_to_garment, int num_garment_vertices) {
@@ -162,6 +202,7 @@ GarmentTopology assemble_topology(const Pattern& pattern, std::vector<int> offse
   collect_triangles(pattern, g);
   collect_seam_edges(pattern, g);
   collect_pinned(pattern, g);
+  check_welded_surface(pattern, g);
   return g;
 }
 

@@ -52,7 +52,9 @@ std::vector<std::array<int, 2>> polyline_edges(const std::vector<std::vector<int
 /// (transitively, so seams meeting at a corner share one vertex) and collects the seam
 /// edges and pinned vertices. Throws InputError (source "pattern") when a seam's sides
 /// differ in vertex count or name an invalid piece or vertex, a triangle has a vertex out
-/// of range, or a pinned boundary names an invalid piece or vertex.
+/// of range, a pinned boundary names an invalid piece or vertex, or the welded triangles
+/// are no surface (two corners of a triangle welded together, an edge with more than two
+/// triangles: pieces joined along the same pair of seam vertices by more than their seam).
 GarmentTopology weld_topology(const Pattern& pattern);
 
 /// The topology of `pattern` with pattern vertices welded by an explicit map instead of

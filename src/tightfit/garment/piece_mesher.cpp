@@ -1,5 +1,7 @@
 #include "tightfit/garment/piece_mesher.hpp"
 
+#include "tightfit/garment/boundary_chords.hpp"
+
 #include "tightfit/common/planar.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -244,6 +246,7 @@ PieceMesh mesh_piece(const Points2& boundary_points, const std::vector<Points2>&
   out.triangles.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (size_t i = 0; i < tris.size(); ++i)
     for (int c = 0; c < 3; ++c) out.triangles(static_cast<Eigen::Index>(i), c) = tris[i][c];
+  split_boundary_chords(out, nb);
   return out;
 }
 

@@ -19,7 +19,9 @@ struct PieceMesh {
 /// are dropped), are connected by a constrained Delaunay triangulation (CGAL), and are
 /// then moved by `smoothing_iterations` steps of optimal-Delaunay smoothing (each
 /// vertex to the area-weighted mean of its triangles' circumcentres, unless that would
-/// fold a triangle), re-triangulating after each step. The result is deterministic: it
+/// fold a triangle), re-triangulating after each step; last, every interior edge between
+/// two boundary vertices is split at its midpoint (boundary_chords.hpp), so that no seam
+/// weld can give an edge more than two faces. The result is deterministic: it
 /// depends only on the input numbers. Throws std::invalid_argument for fewer than 3
 /// boundary vertices or a boundary that is not a simple counter-clockwise polygon.
 PieceMesh mesh_piece(const Points2& boundary, double edge_length, int smoothing_iterations = 10);
