@@ -1,7 +1,7 @@
 #pragma once
 /// The output files of a run, written the same way by the command that ran it
-/// (`simulate`, `optimize`, `layout`) and by `tightfit export`, which regenerates them
-/// from the run's state.json (scene/run_state.hpp).
+/// (`simulate`, `optimize`, `layout`), by `tightfit export`, which regenerates them from
+/// the run's state.json (scene/run_state.hpp), and by the public API (api/tightfit.hpp).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -13,7 +13,7 @@
 #include "tightfit/solve/garment_simulation.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
 
-namespace tightfit::app {
+namespace tightfit::api {
 
 /// Garments with more pieces than this (covers: one piece per triangle) get no pattern
 /// files: there is nothing to cut.
@@ -58,4 +58,4 @@ std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& f
 /// {"name", "library", "config", "threads"}} (common/parallel.hpp).
 nlohmann::json compute_json();
 
-}  // namespace tightfit::app
+}  // namespace tightfit::api
