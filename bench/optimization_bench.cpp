@@ -19,6 +19,7 @@
 #include <limits>
 #include <numbers>
 
+#include "tightfit/api/optimize.hpp"
 #include "tightfit/body/body_builder.hpp"
 #include "tightfit/common/parallel.hpp"
 #include "tightfit/common/sparse_cholesky.hpp"
@@ -27,8 +28,6 @@
 #include "tightfit/objectives/regularizer_edge_lengths.hpp"
 #include "tightfit/objectives/shape_objective.hpp"
 #include "tightfit/objectives/stretch_objective.hpp"
-#include "tightfit/scene/loader.hpp"
-#include "tightfit/scene/optimization_setup.hpp"
 
 namespace tightfit {
 namespace {
@@ -188,20 +187,16 @@ void report(benchmark::State& state, DesignProblem& problem, const PatternOptimi
 }
 
 /// Optimizes an example scene (examples/NAME.json, objective and options exactly as
-/// `tightfit optimize` builds them) for `iterations` L-BFGS iterations.
+/// `tightfit optimize` builds them: the public API) for `iterations` L-BFGS iterations.
 void optimize_example(benchmark::State& state, const std::string& name, int iterations) {
   for (auto _ : state) {
-    OptimizationScene input =
-        read_optimization_scene(std::string(TIGHTFIT_SOURCE_DIR) + "/examples/" + name + ".json");
-    input.optimization.optimizer.max_iterations = iterations;
-    const OptimizationSpec& spec = input.optimization;
-    auto scene = load_scene(input.scene);
-    auto sim = make_simulation(*scene);
-    DesignProblem problem(*sim, build_objective(spec, *sim), spec.problem,
-                          [&spec](const GarmentSimulation& s) { return build_objective(spec, s); });
-    PatternOptimizer optimizer(problem, spec.optimizer);
-    optimizer.run();
-    report(state, problem, optimizer);
+    api::Scene scene =
+        api::Scene::read(std::string(TIGHTFIT_SOURCE_DIR) + "/examples/" + name + ".json");
+    api::OptimizeOptions options;
+    options.max_iterations = iterations;
+    api::Optimization optimization(scene, options);
+    optimization.run();
+    report(state, optimization.problem(), optimization.optimizer());
   }
 }
 

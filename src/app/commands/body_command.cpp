@@ -89,32 +89,29 @@ void run(const BodyOptions& o, const CLI::App& cmd) {
 
 const CommandRegistration kBody{
     "body", [](CLI::App& root) {
-      auto* cmd = root.add_subcommand(
-          "body",
-          "Build a simulation body (surface, tets, pinned core) from a JSON spec and/or flags;\n"
-          "writes OUT/surface.obj, OUT/volume.vtu and OUT/body.json. Units: metres.");
-      cmd->footer(
-          "Examples:\n  tightfit body --generator cylinder --radius 0.05 --length 0.3 --out "
-          "out/cylinder\n  tightfit body --mesh data/bodies/mh_child.obj --units m --edge-length "
-          "0.03 "
-          "--out out/child");
-      auto o = std::make_shared<BodyOptions>();
-      cmd->add_option("spec", o->spec, "JSON body spec (flags below override its keys)");
-      cmd->add_option("--out", o->out, kOutHelp)->required();
-      cmd->add_flag("--force", o->force, kForceHelp);
-      cmd->add_option("--generator", o->generator, "Built-in body: cylinder or sphere");
-      cmd->add_option("--mesh", o->mesh, "Closed surface mesh to import (OBJ, PLY, OFF, STL)");
-      cmd->add_option("--units", o->units,
-                      "Units of the mesh file: m, cm or mm (default: guessed from the body's size, "
-                      "with a warning)");
-      cmd->add_option("--caps", o->caps, "Cylinder caps: round or flat");
-      cmd->add_option("--radius", o->radius, "Generator radius (m)");
-      cmd->add_option("--length", o->length, "Cylinder length without caps (m)");
-      cmd->add_option("--edge-length", o->edge_length, "Surface edge length (m)");
-      cmd->add_option("--soft-tissue", o->soft_tissue, "Pin vertices deeper than this (m)");
-      cmd->add_option("--max-radius-edge", o->max_radius_edge, "TetGen radius-edge bound");
-      cmd->add_option("--min-dihedral", o->min_dihedral, "TetGen min dihedral angle (degrees)");
-      cmd->callback([o, cmd] { run(*o, *cmd); });
+      auto [cmd, o] = add_command<BodyOptions>(
+          root,
+          {"body",
+           "Build a simulation body (surface, tets, pinned core) from a JSON spec and/or flags;\n"
+           "writes OUT/surface.obj, OUT/volume.vtu and OUT/body.json. Units: metres.",
+           "Examples:\n  tightfit body --generator cylinder --radius 0.05 --length 0.3 --out "
+           "out/cylinder\n  tightfit body --mesh data/bodies/mh_child.obj --units m --edge-length "
+           "0.03 --out out/child"},
+          [](const BodyOptions& options, const CLI::App& command) { run(options, command); });
+      cmd.add_option("spec", o.spec, "JSON body spec (flags below override its keys)");
+      add_output_options(cmd, o.out, o.force);
+      cmd.add_option("--generator", o.generator, "Built-in body: cylinder or sphere");
+      cmd.add_option("--mesh", o.mesh, "Closed surface mesh to import (OBJ, PLY, OFF, STL)");
+      cmd.add_option("--units", o.units,
+                     "Units of the mesh file: m, cm or mm (default: guessed from the body's size, "
+                     "with a warning)");
+      cmd.add_option("--caps", o.caps, "Cylinder caps: round or flat");
+      cmd.add_option("--radius", o.radius, "Generator radius (m)");
+      cmd.add_option("--length", o.length, "Cylinder length without caps (m)");
+      cmd.add_option("--edge-length", o.edge_length, "Surface edge length (m)");
+      cmd.add_option("--soft-tissue", o.soft_tissue, "Pin vertices deeper than this (m)");
+      cmd.add_option("--max-radius-edge", o.max_radius_edge, "TetGen radius-edge bound");
+      cmd.add_option("--min-dihedral", o.min_dihedral, "TetGen min dihedral angle (degrees)");
     }};
 
 }  // namespace

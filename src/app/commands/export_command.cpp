@@ -79,24 +79,32 @@ void run_export(const std::string& dir, const std::string& out_option, bool forc
   for (const auto& f : files) std::printf("  %s\n", (out.target() / f).c_str());
 }
 
+/// `tightfit export DIR [--out OUT] [--force]`.
+struct ExportOptions {
+  std::string dir;
+  std::string out;
+  bool force = false;
+};
+
 const CommandRegistration kExport{
     "export", [](CLI::App& root) {
-      auto* cmd = root.add_subcommand(
-          "export",
-          "Regenerate the outputs of a simulate, layout or optimize run from DIR/state.json "
-          "without solving again: the pattern files, and for simulate/optimize runs report.html "
-          "(with the objective history of optimize runs), fit.glb, garment.ply, body.ply, "
-          "result.json; for layout runs garment_embedded.ply and layout.json. Prints the force "
-          "residual of the saved state.");
-      cmd->footer("Example:\n  tightfit export out/pants --out out/pants_again");
-      auto dir = std::make_shared<std::string>();
-      auto out = std::make_shared<std::string>();
-      cmd->add_option("dir", *dir, "Output folder of an earlier run (holds state.json)")
+      auto [cmd, o] = add_command<ExportOptions>(
+          root,
+          {"export",
+           "Regenerate the outputs of a simulate, layout or optimize run from DIR/state.json "
+           "without solving again: the pattern files, and for simulate/optimize runs report.html "
+           "(with the objective history of optimize runs), fit.glb, garment.ply, body.ply, "
+           "result.json; for layout runs garment_embedded.ply and layout.json. Prints the force "
+           "residual of the saved state.",
+           "Example:\n  tightfit export out/pants --out out/pants_again"},
+          [](const ExportOptions& options) {
+            run_export(options.dir, options.out, options.force);
+          });
+      cmd.add_option("dir", o.dir, "Output folder of an earlier run (holds state.json)")
           ->required();
-      auto force = std::make_shared<bool>(false);
-      cmd->add_option("--out", *out, std::string("Default DIR. ") + kOutHelp);
-      cmd->add_flag("--force", *force, kForceHelp);
-      cmd->callback([dir, out, force] { run_export(*dir, *out, *force); });
+      // --out is optional here: DIR itself by default.
+      cmd.add_option("--out", o.out, std::string("Default DIR. ") + kOutHelp);
+      cmd.add_flag("--force", o.force, kForceHelp);
     }};
 
 }  // namespace

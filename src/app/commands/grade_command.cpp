@@ -153,54 +153,50 @@ void run_grade(const GradeOptions& o) {
 
 const CommandRegistration kGrade{
     "grade", [](CLI::App& root) {
-      auto* cmd = root.add_subcommand(
-          "grade",
-          "Grade one design over a population of bodies: optimize the design scene on every body "
-          "of BODIES (its body mesh and rig joints replaced), each in DIR/bodies/NAME (idempotent: "
-          "a "
-          "graded body is skipped, a killed one resumes from its checkpoint), then gather "
-          "DIR/grade.json, the grading report DIR/grade.html and the nest of every size's pieces "
-          "(nest.svg, nest.pdf, nest.dxf). Exit code: 0 all graded, 2 bad input, 10 + the number "
-          "of bodies not graded.");
-      cmd->footer(
-          "Example:\n  tightfit grade examples/optimize_wetsuit_regular.json \\\n"
-          "      examples/grading/bodies_full.json --out out/grade --jobs 2");
-      auto o = std::make_shared<GradeOptions>();
-      cmd->add_option(
-             "design", o->design,
+      auto [cmd, o] = add_command<GradeOptions>(
+          root,
+          {"grade",
+           "Grade one design over a population of bodies: optimize the design scene on every "
+           "body of BODIES (its body mesh and rig joints replaced), each in DIR/bodies/NAME "
+           "(idempotent: a graded body is skipped, a killed one resumes from its checkpoint), "
+           "then gather DIR/grade.json, the grading report DIR/grade.html and the nest of every "
+           "size's pieces (nest.svg, nest.pdf, nest.dxf). Exit code: 0 all graded, 2 bad input, "
+           "10 + the number of bodies not graded.",
+           "Example:\n  tightfit grade examples/optimize_wetsuit_regular.json \\\n"
+           "      examples/grading/bodies_full.json --out out/grade --jobs 2"},
+          [](const GradeOptions& options) { run_grade(options); });
+      cmd.add_option(
+             "design", o.design,
              "Design scene: a scene with \"optimize\" and a \"rig\" {\"mesh\", \"weights\", "
              "\"joints\"}, with a body \"mesh\" (replaced by each body's) or without \"body\"")
           ->required();
-      cmd->add_option("bodies", o->bodies,
-                      "Bodies file: {\"bodies\": [{\"name\", \"mesh\", \"joints\", \"rig_mesh\"}]} "
-                      "(schema/bodies.schema.json)")
+      cmd.add_option("bodies", o.bodies,
+                     "Bodies file: {\"bodies\": [{\"name\", \"mesh\", \"joints\", \"rig_mesh\"}]} "
+                     "(schema/bodies.schema.json)")
           ->required();
-      cmd->add_option("--out", o->out,
-                      std::string(kOutHelp) + "; DIR/bodies/NAME belongs to tightfit grade")
-          ->required();
-      cmd->add_flag("--force", o->force, kForceHelp);
+      add_output_options(cmd, o.out, o.force,
+                         std::string(kOutHelp) + "; DIR/bodies/NAME belongs to tightfit grade");
       auto* body =
-          cmd->add_option("--body", o->body,
-                          "Grade this body only (one idempotent invocation, for GNU parallel "
-                          "or a Slurm array task); no gathering");
-      auto* gather_flag = cmd->add_flag("--gather", o->gather_only,
-                                        "Only gather the bodies graded so far into grade.json, "
-                                        "grade.html and the nest files");
-      cmd->add_option("--jobs", o->jobs,
-                      "Bodies graded at once, each in its own process with --threads / N threads "
-                      "(default 1)")
+          cmd.add_option("--body", o.body,
+                         "Grade this body only (one idempotent invocation, for GNU parallel "
+                         "or a Slurm array task); no gathering");
+      auto* gather_flag = cmd.add_flag("--gather", o.gather_only,
+                                       "Only gather the bodies graded so far into grade.json, "
+                                       "grade.html and the nest files");
+      cmd.add_option("--jobs", o.jobs,
+                     "Bodies graded at once, each in its own process with --threads / N threads "
+                     "(default 1)")
           ->check(CLI::Range(1, 1024))
           ->excludes(body)
           ->excludes(gather_flag);
       body->excludes(gather_flag);
-      cmd->add_option("--max-iterations", o->max_iterations,
-                      "Stop each body after this many L-BFGS iterations (overrides the design's "
-                      "optimize/max_iterations)")
+      cmd.add_option("--max-iterations", o.max_iterations,
+                     "Stop each body after this many L-BFGS iterations (overrides the design's "
+                     "optimize/max_iterations)")
           ->check(non_negative_number());
-      cmd->add_option("--nest-seam", o->nest_seam,
-                      "Align the nest at the start of this seam (where its first notch sits) "
-                      "instead of the pieces' centroids");
-      cmd->callback([o] { run_grade(*o); });
+      cmd.add_option("--nest-seam", o.nest_seam,
+                     "Align the nest at the start of this seam (where its first notch sits) "
+                     "instead of the pieces' centroids");
     }};
 
 }  // namespace

@@ -41,21 +41,18 @@ void run_layout(const std::string& scene_file, const std::string& out_dir, bool 
 
 const CommandRegistration kLayout{
     "layout", [](CLI::App& root) {
-      auto* cmd = root.add_subcommand(
-          "layout",
-          "Flatten the scene's garment layout into pattern pieces (SVG 1:1, tiled and full-size "
-          "PDF, DXF, pieces.json) and embed the garment on the body (garment_embedded.ply), "
-          "without simulating. layout.json reports the flattening distortion per piece; "
-          "state.json is the run state for `tightfit export`.");
-      cmd->footer("Example:\n  tightfit layout examples/pants_legs.json --out out/pants_layout");
-      auto scene = std::make_shared<std::string>();
-      auto out = std::make_shared<std::string>();
-      auto force = std::make_shared<bool>(false);
-      cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")
-          ->required();
-      cmd->add_option("--out", *out, kOutHelp)->required();
-      cmd->add_flag("--force", *force, kForceHelp);
-      cmd->callback([scene, out, force] { run_layout(*scene, *out, *force); });
+      auto [cmd, o] = add_command<SceneRunOptions>(
+          root,
+          {"layout",
+           "Flatten the scene's garment layout into pattern pieces (SVG 1:1, tiled and full-size "
+           "PDF, DXF, pieces.json) and embed the garment on the body (garment_embedded.ply), "
+           "without simulating. layout.json reports the flattening distortion per piece; "
+           "state.json is the run state for `tightfit export`.",
+           "Example:\n  tightfit layout examples/pants_legs.json --out out/pants_layout"},
+          [](const SceneRunOptions& options) {
+            run_layout(options.scene, options.out, options.force);
+          });
+      add_scene_run_options(cmd, o);
     }};
 
 }  // namespace

@@ -88,20 +88,18 @@ void run_pose(const std::string& scene_file, const std::string& out_dir, bool fo
 
 const CommandRegistration kPose{
     "pose", [](CLI::App& root) {
-      auto* cmd = root.add_subcommand(
-          "pose",
-          "The scene's body in each of its poses (\"rig\" and \"poses\" in the scene), to look at "
-          "before optimizing: writes OUT/body_neutral.obj, OUT/body_pose_NAME.obj per pose and "
-          "OUT/poses.json (volume ratios, displacements). A pose that inverts a tet is an error.");
-      cmd->footer("Example:\n  tightfit pose examples/poses_legs_stride.json --out out/poses");
-      auto scene = std::make_shared<std::string>();
-      auto out = std::make_shared<std::string>();
-      auto force = std::make_shared<bool>(false);
-      cmd->add_option("scene", *scene, "Scene file (JSON; schema: schema/scene.schema.json)")
-          ->required();
-      cmd->add_option("--out", *out, kOutHelp)->required();
-      cmd->add_flag("--force", *force, kForceHelp);
-      cmd->callback([scene, out, force] { run_pose(*scene, *out, *force); });
+      auto [cmd, o] = add_command<SceneRunOptions>(
+          root,
+          {"pose",
+           "The scene's body in each of its poses (\"rig\" and \"poses\" in the scene), to look "
+           "at before optimizing: writes OUT/body_neutral.obj, OUT/body_pose_NAME.obj per pose "
+           "and OUT/poses.json (volume ratios, displacements). A pose that inverts a tet is an "
+           "error.",
+           "Example:\n  tightfit pose examples/poses_legs_stride.json --out out/poses"},
+          [](const SceneRunOptions& options) {
+            run_pose(options.scene, options.out, options.force);
+          });
+      add_scene_run_options(cmd, o);
     }};
 
 }  // namespace

@@ -145,17 +145,21 @@ std::vector<std::vector<int>> panel_loops(const LayoutPanel& panel) {
   return loops;
 }
 
-}  // namespace
+/// The boundary runs of the pieces: the layout's boundary segments, open ones further
+/// split at sharp turns of the flattened boundary (piece corners that are not seam ends).
+struct PieceRuns {
+  std::vector<std::vector<BoundarySegment>> runs;  ///< per panel
+  std::vector<std::vector<int>> first_run;         ///< per panel and layout segment: its first run
+  std::vector<std::vector<int>> count;             ///< per panel and run: its edges in the piece
+  /// Per panel and run: the piece boundary vertex it starts at.
+  std::vector<std::vector<int>> run_start;
+};
 
-PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) {
+/// Flattens and checks each panel (independent: on the threads; the error of the first
+/// failing panel is the one reported), then checks the mesh budget of the pieces.
+void flatten_panels(const Layout& layout, const PatternOptions& options, PatternBuild& out) {
   const int np = static_cast<int>(layout.panels.size());
-  const double h = options.edge_length;
-  if (!(h > 0)) throw std::invalid_argument("build_pattern: edge_length must be positive");
-  PatternBuild out;
   out.maps.resize(np);
-
-  // Flatten and check each panel (independent: on the threads; the error of the first
-  // failing panel is the one reported).
   parallel_for(
       np,
       [&](std::int64_t i) {
@@ -183,12 +187,13 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
         map.arap_iterations = flat.iterations;
       },
       2);
-
   double flat_area = 0.0;
   for (const PieceMap& map : out.maps) flat_area += map.distortion.area_2d;
-  check_mesh_budget(flat_area, h, "pattern pieces", layout.source + ": pattern");
+  check_mesh_budget(flat_area, options.edge_length, "pattern pieces", layout.source + ": pattern");
+}
 
-  // Seam sides after flattening, before scaling.
+/// The seam sides after flattening, before scaling (InputError when they differ too much).
+void check_seam_sides(const Layout& layout, double h, PatternBuild& out) {
   for (const LayoutSeam& seam : layout.seams) {
     const LayoutPanel& pa = layout.panels[seam.panel_a];
     const LayoutPanel& pb = layout.panels[seam.panel_b];
@@ -214,9 +219,11 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
               "this seam: add dividers");
     out.seams.push_back(r);
   }
+}
 
-  // Grain frame and scale.
-  for (int p = 0; p < np; ++p) {
+/// Each piece's grain frame and scale: its linear map and offset.
+void place_in_grain_frames(const Layout& layout, const PatternOptions& options, PatternBuild& out) {
+  for (size_t p = 0; p < layout.panels.size(); ++p) {
     PieceMap& map = out.maps[p];
     const Vec2 d = grain_direction(layout.panels[p], map.flat, options);
     Mat2 rot;
@@ -226,19 +233,22 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     const Points2 moved = map.flat * map.linear.transpose();
     map.offset = -moved.colwise().minCoeff().transpose();
   }
+}
 
-  // Runs: the layout's boundary segments, open ones further split at sharp turns of the
-  // flattened boundary (piece corners that are not seam ends). Seams stay whole so that
-  // both sides are sampled alike.
-  std::vector<std::vector<BoundarySegment>> runs(np);
-  std::vector<std::vector<int>> first_run(np);  // per layout segment: index of its first run
-  for (int p = 0; p < np; ++p) {
+/// The runs of PieceRuns (runs, first_run). Seams stay whole so that both sides are
+/// sampled alike.
+void split_into_runs(const Layout& layout, const PatternOptions& options, const PatternBuild& out,
+                     PieceRuns& r) {
+  const size_t np = layout.panels.size();
+  r.runs.resize(np);
+  r.first_run.resize(np);
+  for (size_t p = 0; p < np; ++p) {
     const LayoutPanel& panel = layout.panels[p];
     for (const BoundarySegment& segment : panel.segments) {
-      first_run[p].push_back(static_cast<int>(runs[p].size()));
+      r.first_run[p].push_back(static_cast<int>(r.runs[p].size()));
       BoundarySegment s = segment;
       if (s.seam >= 0) {
-        runs[p].push_back(s);
+        r.runs[p].push_back(s);
         continue;
       }
       auto sharp = [&](int i) {
@@ -250,122 +260,130 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
             s.first += i;
             break;
           }
-      for (const LoopRun& r : cut_run({s.first, s.count}, sharp)) {
+      for (const LoopRun& cut : cut_run({s.first, s.count}, sharp)) {
         BoundarySegment run = s;
-        run.first = r.first;
-        run.count = r.count;
-        runs[p].push_back(run);
+        run.first = cut.first;
+        run.count = cut.count;
+        r.runs[p].push_back(run);
       }
     }
   }
+}
 
-  // Vertex counts per run (edges): seams shared by both sides.
-  std::vector<std::vector<int>> count(np);
-  auto min_count = [&](int p) { return min_edge_count(static_cast<int>(runs[p].size())); };
-  for (int p = 0; p < np; ++p)
-    for (const BoundarySegment& r : runs[p]) {
-      const double len = flat_length(layout.panels[p], r, out.maps[p].flat, out.maps[p].linear);
-      count[p].push_back(edge_count(len, h, min_count(p)));
+/// The edge count of every run at the edge length h: seams shared by both sides (with
+/// their vertex counts in out.seams).
+void count_run_edges(const Layout& layout, double h, PatternBuild& out, PieceRuns& r) {
+  const size_t np = layout.panels.size();
+  r.count.resize(np);
+  auto min_count = [&](int p) { return min_edge_count(static_cast<int>(r.runs[p].size())); };
+  for (size_t p = 0; p < np; ++p)
+    for (const BoundarySegment& run : r.runs[p]) {
+      const double len = flat_length(layout.panels[p], run, out.maps[p].flat, out.maps[p].linear);
+      r.count[p].push_back(edge_count(len, h, min_count(static_cast<int>(p))));
     }
   for (size_t k = 0; k < layout.seams.size(); ++k) {
     const LayoutSeam& seam = layout.seams[k];
-    const int ra = first_run[seam.panel_a][seam.segment_a],
-              rb = first_run[seam.panel_b][seam.segment_b];
-    const double la = flat_length(layout.panels[seam.panel_a], runs[seam.panel_a][ra],
+    const int ra = r.first_run[seam.panel_a][seam.segment_a],
+              rb = r.first_run[seam.panel_b][seam.segment_b];
+    const double la = flat_length(layout.panels[seam.panel_a], r.runs[seam.panel_a][ra],
                                   out.maps[seam.panel_a].flat, out.maps[seam.panel_a].linear);
-    const double lb = flat_length(layout.panels[seam.panel_b], runs[seam.panel_b][rb],
+    const double lb = flat_length(layout.panels[seam.panel_b], r.runs[seam.panel_b][rb],
                                   out.maps[seam.panel_b].flat, out.maps[seam.panel_b].linear);
     const int n = seam_edge_count(la, lb, h, min_count(seam.panel_a), min_count(seam.panel_b));
-    count[seam.panel_a][ra] = count[seam.panel_b][rb] = n;
+    r.count[seam.panel_a][ra] = r.count[seam.panel_b][rb] = n;
     out.seams[k].vertices = n + 1;
   }
+}
 
-  // Resample the boundaries and mesh the pieces.
-  std::vector<std::vector<int>> run_start(np);
-  for (int p = 0; p < np; ++p) {
-    const LayoutPanel& panel = layout.panels[p];
-    PieceMap& map = out.maps[p];
-    const SurfaceTopology topo(panel.mesh.faces, panel.mesh.num_vertices());
-    std::vector<PanelPoint> boundary_location;
-    std::vector<Vec2> boundary_points;
-    // A sample on the panel's boundary edge i → j at parameter t.
-    auto add_sample = [&](int i, int j, double t) {
-      const int f = topo.edge_faces(topo.find_edge(i, j))[0];
-      PanelPoint loc{f, Vec3::Zero()};
-      for (int c = 0; c < 3; ++c) {
-        if (panel.mesh.faces(f, c) == i) loc.weights[c] = 1.0 - t;
-        if (panel.mesh.faces(f, c) == j) loc.weights[c] = t;
-      }
-      boundary_location.push_back(loc);
-      const Vec2 q = (1.0 - t) * map.flat.row(i).transpose() + t * map.flat.row(j).transpose();
-      boundary_points.push_back(map.linear * q + map.offset);
-    };
-    auto polygon_of = [&](size_t from) {
-      return polygon_rows(std::vector<Vec2>(
-          boundary_points.begin() + static_cast<std::ptrdiff_t>(from), boundary_points.end()));
-    };
-    for (size_t ri = 0; ri < runs[p].size(); ++ri) {
-      run_start[p].push_back(static_cast<int>(boundary_points.size()));
-      const BoundarySegment& run = runs[p][ri];
-      for (const ArcPoint& b :
-           sample_arc(cumulative_lengths(panel.mesh.vertices, run_path(panel, run)), count[p][ri]))
-        add_sample(loop_vertex(panel, run.first + b.edge),
-                   loop_vertex(panel, run.first + b.edge + 1), b.t);
+/// The piece of panel p: its boundary resampled run by run (and each hole as one closed
+/// run), meshed in 2D, every vertex located on the panel; run_start[p] filled.
+void mesh_panel_piece(const Layout& layout, int p, const PatternOptions& options, PatternBuild& out,
+                      PieceRuns& r) {
+  const double h = options.edge_length;
+  const LayoutPanel& panel = layout.panels[p];
+  PieceMap& map = out.maps[p];
+  const SurfaceTopology topo(panel.mesh.faces, panel.mesh.num_vertices());
+  std::vector<PanelPoint> boundary_location;
+  std::vector<Vec2> boundary_points;
+  // A sample on the panel's boundary edge i → j at parameter t.
+  auto add_sample = [&](int i, int j, double t) {
+    const int f = topo.edge_faces(topo.find_edge(i, j))[0];
+    PanelPoint loc{f, Vec3::Zero()};
+    for (int c = 0; c < 3; ++c) {
+      if (panel.mesh.faces(f, c) == i) loc.weights[c] = 1.0 - t;
+      if (panel.mesh.faces(f, c) == j) loc.weights[c] = t;
     }
-    const Points2 polygon = polygon_of(0);
-    // Openings: each hole loop resampled as one closed run at the edge length.
-    std::vector<Points2> hole_polygons;
-    std::vector<std::vector<int>> hole_vertices;
-    for (const PanelHole& hole : panel.holes) {
-      const size_t from = boundary_points.size();
-      const int n_hole =
-          edge_count(flat_loop_length(hole.loop, map.flat, map.linear), h, min_edge_count(1));
-      const int m = static_cast<int>(hole.loop.size());
-      for (const ArcPoint& b :
-           sample_arc(cumulative_lengths(panel.mesh.vertices, closed_path(hole.loop)), n_hole))
-        add_sample(hole.loop[b.edge % m], hole.loop[(b.edge + 1) % m], b.t);
-      hole_polygons.push_back(polygon_of(from));
-      std::vector<int> vertices(static_cast<size_t>(n_hole));
-      for (int k = 0; k < n_hole; ++k)
-        vertices[static_cast<size_t>(k)] = static_cast<int>(from) + k;
-      hole_vertices.push_back(std::move(vertices));
-    }
-    PieceMesh mesh;
-    try {
-      mesh = mesh_piece(polygon, hole_polygons, h, options.smoothing_iterations);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(layout.source, "piece \"" + panel.name + "\" cannot be meshed (" + e.what() +
-                                          "); try a smaller edge_length");
-    }
-    PatternPiece piece;
-    piece.name = panel.name;
-    piece.rest = std::move(mesh.vertices);
-    piece.triangles = std::move(mesh.triangles);
-    for (Eigen::Index i = 0; i < polygon.rows(); ++i) piece.boundary.push_back(static_cast<int>(i));
-    piece.holes = hole_vertices;
-    const auto nb = static_cast<Eigen::Index>(boundary_points.size());
-    if (runs[p].size() > 1 || runs[p][0].seam >= 0) piece.corners = run_start[p];
-    piece.grain = Vec2::UnitY();
-    map.location = boundary_location;
-    const TriangleLocator locator(panel.mesh.faces, map.flat);
-    for (Eigen::Index v = nb; v < piece.rest.rows(); ++v)
-      map.location.push_back(locate_in_panel(locator, map, piece.rest.row(v).transpose()));
-    out.pattern.pieces.push_back(std::move(piece));
+    boundary_location.push_back(loc);
+    const Vec2 q = (1.0 - t) * map.flat.row(i).transpose() + t * map.flat.row(j).transpose();
+    boundary_points.push_back(map.linear * q + map.offset);
+  };
+  auto polygon_of = [&](size_t from) {
+    return polygon_rows(std::vector<Vec2>(
+        boundary_points.begin() + static_cast<std::ptrdiff_t>(from), boundary_points.end()));
+  };
+  for (size_t ri = 0; ri < r.runs[p].size(); ++ri) {
+    r.run_start[p].push_back(static_cast<int>(boundary_points.size()));
+    const BoundarySegment& run = r.runs[p][ri];
+    for (const ArcPoint& b :
+         sample_arc(cumulative_lengths(panel.mesh.vertices, run_path(panel, run)), r.count[p][ri]))
+      add_sample(loop_vertex(panel, run.first + b.edge), loop_vertex(panel, run.first + b.edge + 1),
+                 b.t);
   }
+  const Points2 polygon = polygon_of(0);
+  // Openings: each hole loop resampled as one closed run at the edge length.
+  std::vector<Points2> hole_polygons;
+  std::vector<std::vector<int>> hole_vertices;
+  for (const PanelHole& hole : panel.holes) {
+    const size_t from = boundary_points.size();
+    const int n_hole =
+        edge_count(flat_loop_length(hole.loop, map.flat, map.linear), h, min_edge_count(1));
+    const int m = static_cast<int>(hole.loop.size());
+    for (const ArcPoint& b :
+         sample_arc(cumulative_lengths(panel.mesh.vertices, closed_path(hole.loop)), n_hole))
+      add_sample(hole.loop[b.edge % m], hole.loop[(b.edge + 1) % m], b.t);
+    hole_polygons.push_back(polygon_of(from));
+    std::vector<int> vertices(static_cast<size_t>(n_hole));
+    for (int k = 0; k < n_hole; ++k) vertices[static_cast<size_t>(k)] = static_cast<int>(from) + k;
+    hole_vertices.push_back(std::move(vertices));
+  }
+  PieceMesh mesh;
+  try {
+    mesh = mesh_piece(polygon, hole_polygons, h, options.smoothing_iterations);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(layout.source, "piece \"" + panel.name + "\" cannot be meshed (" + e.what() +
+                                        "); try a smaller edge_length");
+  }
+  PatternPiece piece;
+  piece.name = panel.name;
+  piece.rest = std::move(mesh.vertices);
+  piece.triangles = std::move(mesh.triangles);
+  for (Eigen::Index i = 0; i < polygon.rows(); ++i) piece.boundary.push_back(static_cast<int>(i));
+  piece.holes = hole_vertices;
+  const auto nb = static_cast<Eigen::Index>(boundary_points.size());
+  if (r.runs[p].size() > 1 || r.runs[p][0].seam >= 0) piece.corners = r.run_start[p];
+  piece.grain = Vec2::UnitY();
+  map.location = boundary_location;
+  const TriangleLocator locator(panel.mesh.faces, map.flat);
+  for (Eigen::Index v = nb; v < piece.rest.rows(); ++v)
+    map.location.push_back(locate_in_panel(locator, map, piece.rest.row(v).transpose()));
+  out.pattern.pieces.push_back(std::move(piece));
+}
 
-  // Seams and pinned boundaries in piece vertex indices: the boundary vertices of the
-  // runs [r0, r1) of panel p, both ends included.
+/// The pattern's seams and pinned boundaries in piece vertex indices.
+void connect_seams_and_pins(const Layout& layout, const PieceRuns& r, PatternBuild& out) {
+  const int np = static_cast<int>(layout.panels.size());
+  // The boundary vertices of the runs [r0, r1) of panel p, both ends included.
   auto run_vertices = [&](int p, int r0, int r1) {
     int n = 0;
-    for (int r = r0; r < r1; ++r) n += count[p][r];
+    for (int k = r0; k < r1; ++k) n += r.count[p][k];
     const int nb = static_cast<int>(out.pattern.pieces[p].boundary.size());
     std::vector<int> v;
-    for (int k = 0; k <= n; ++k) v.push_back((run_start[p][r0] + k) % nb);
+    for (int k = 0; k <= n; ++k) v.push_back((r.run_start[p][r0] + k) % nb);
     return v;
   };
   for (const LayoutSeam& seam : layout.seams) {
-    const int ra = first_run[seam.panel_a][seam.segment_a],
-              rb = first_run[seam.panel_b][seam.segment_b];
+    const int ra = r.first_run[seam.panel_a][seam.segment_a],
+              rb = r.first_run[seam.panel_b][seam.segment_b];
     Seam s;
     s.name = seam.name;
     s.a = {seam.panel_a, run_vertices(seam.panel_a, ra, ra + 1)};
@@ -377,9 +395,9 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     for (size_t si = 0; si < layout.panels[p].segments.size(); ++si) {
       const BoundarySegment& s = layout.panels[p].segments[si];
       if (s.seam >= 0 || s.pin < 0) continue;
-      const int r1 =
-          si + 1 < first_run[p].size() ? first_run[p][si + 1] : static_cast<int>(runs[p].size());
-      std::vector<int> v = run_vertices(p, first_run[p][si], r1);
+      const int r1 = si + 1 < r.first_run[p].size() ? r.first_run[p][si + 1]
+                                                    : static_cast<int>(r.runs[p].size());
+      std::vector<int> v = run_vertices(p, r.first_run[p][si], r1);
       if (layout.panels[p].segments.size() == 1) v.pop_back();  // whole loop: no repeat
       out.pattern.pinned.push_back({layout.pin_names[s.pin], p, std::move(v)});
     }
@@ -387,6 +405,24 @@ PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) 
     for (size_t k = 0; k < layout.panels[p].holes.size(); ++k)
       if (const int pin = layout.panels[p].holes[k].pin; pin >= 0)
         out.pattern.pinned.push_back({layout.pin_names[pin], p, out.pattern.pieces[p].holes[k]});
+}
+
+}  // namespace
+
+PatternBuild build_pattern(const Layout& layout, const PatternOptions& options) {
+  const double h = options.edge_length;
+  if (!(h > 0)) throw std::invalid_argument("build_pattern: edge_length must be positive");
+  PatternBuild out;
+  flatten_panels(layout, options, out);
+  check_seam_sides(layout, h, out);
+  place_in_grain_frames(layout, options, out);
+  PieceRuns runs;
+  split_into_runs(layout, options, out, runs);
+  count_run_edges(layout, h, out, runs);
+  runs.run_start.resize(layout.panels.size());
+  for (int p = 0; p < static_cast<int>(layout.panels.size()); ++p)
+    mesh_panel_piece(layout, p, options, out, runs);
+  connect_seams_and_pins(layout, runs, out);
   return out;
 }
 

@@ -64,47 +64,52 @@ ImlsSurface read_shape_target(const ShapeObjectiveSpec& spec) {
 OptimizationScene read_optimization_scene(const std::string& file) {
   OptimizationScene s;
   s.scene = read_scene(file);
-  if (s.scene.optimize.is_null())
+  s.optimization = scene_optimization(s.scene);
+  return s;
+}
+
+OptimizationSpec scene_optimization(const SceneSpec& scene) {
+  const std::string& file = scene.file;
+  if (scene.optimize.is_null())
     throw InputError(file, "/optimize: missing (this command needs an \"optimize\" section)");
-  s.optimization = parse_optimization_spec(s.scene.optimize, file, "/optimize", s.scene.base_dir);
-  if (auto& pressure = s.optimization.pressure) {
-    if (pressure->scene_regions && s.scene.pressure_regions.empty())
+  OptimizationSpec o = parse_optimization_spec(scene.optimize, file, "/optimize", scene.base_dir);
+  if (auto& pressure = o.pressure) {
+    if (pressure->scene_regions && scene.pressure_regions.empty())
       throw InputError(file,
                        "/optimize/objectives/pressure: give a range (min_pa/max_pa or "
                        "min_mmhg/max_mmhg) or the targets in /pressure/regions");
-    if (!pressure->scene_regions && !s.scene.pressure_regions.empty())
+    if (!pressure->scene_regions && !scene.pressure_regions.empty())
       throw InputError(file,
                        "/optimize/objectives/pressure: the scene has /pressure/regions; "
                        "give the targets there or here, not both");
-    pressure->regions = s.scene.pressure_regions;
+    pressure->regions = scene.pressure_regions;
     pressure->regions_source = file;
-    pressure->rig = s.scene.pressure_rig;
-    pressure->rig_radius = s.scene.pressure_rig_radius;
+    pressure->rig = scene.pressure_rig;
+    pressure->rig_radius = scene.pressure_rig_radius;
   }
-  OptimizationSpec& o = s.optimization;
   const bool posed_terms = o.sliding || (o.stretch && o.stretch->all_poses) ||
                            (o.directional_stretch && o.directional_stretch->bounds.all_poses) ||
                            (o.pressure && o.pressure->all_poses);
   if (posed_terms) {
-    if (!s.scene.rig || s.scene.poses.empty())
+    if (!scene.rig || scene.poses.empty())
       throw InputError(
           file,
           "/optimize/objectives: a term asks for poses (sliding, or \"poses\": \"all\") "
           "but the scene has none (give \"rig\" and \"poses\")");
-    o.poses.rig = std::shared_ptr<const SkinWeights>(s.scene.rig, &s.scene.rig->weights);
-    o.poses.skinning = s.scene.rig->skinning;
+    o.poses.rig = std::shared_ptr<const SkinWeights>(scene.rig, &scene.rig->weights);
+    o.poses.skinning = scene.rig->skinning;
     o.poses.source = file;
-    for (const ScenePose& p : s.scene.poses)
-      o.poses.bone_motions.emplace_back(
-          p.name, pose_skeleton(s.scene.rig->skeleton, p.rotations, p.origin));
+    for (const ScenePose& p : scene.poses)
+      o.poses.bone_motions.emplace_back(p.name,
+                                        pose_skeleton(scene.rig->skeleton, p.rotations, p.origin));
   }
   if (o.sliding)
     for (const std::string& name : o.sliding->poses)
-      if (std::none_of(s.scene.poses.begin(), s.scene.poses.end(),
+      if (std::none_of(scene.poses.begin(), scene.poses.end(),
                        [&](const ScenePose& p) { return p.name == name; }))
         throw InputError(
             file, "/optimize/objectives/sliding/poses: the scene has no pose \"" + name + "\"");
-  return s;
+  return o;
 }
 
 std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,

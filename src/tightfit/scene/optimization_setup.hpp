@@ -19,8 +19,13 @@ struct OptimizationScene {
 };
 
 /// Reads the scene `file` (read_scene); its "optimize" section is required and parsed
-/// by parse_optimization_spec.
+/// by scene_optimization.
 OptimizationScene read_optimization_scene(const std::string& file);
+
+/// The "optimize" section of `scene` (required) parsed by parse_optimization_spec, with
+/// the scene's pressure regions and rig, and its poses for the terms that ask for them.
+/// InputError naming scene.file and the JSON path when it is missing or invalid.
+OptimizationSpec scene_optimization(const SceneSpec& scene);
 
 /// The shape objective's target surface: the mesh `spec.target` sampled at half the
 /// kernel radius (sample_surface: its vertices, plus points along edges and inside faces

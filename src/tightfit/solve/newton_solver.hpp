@@ -3,6 +3,7 @@
 /// exponentially growing diagonal regularization when the Hessian is not positive
 /// definite (paper Sec. 3.3). Failure is reported as a SolverError naming the residual.
 #include <algorithm>
+#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
@@ -203,6 +204,29 @@ class NewtonSolver {
   /// `previous_force` (0: the first of the solve) that had `previous_tolerance`
   /// (NewtonOptions::krylov_forcing).
   double krylov_tolerance(double force, double previous_force, double previous_tolerance) const;
+
+  /// The state of one solve() between its steps (newton_solver.cpp).
+  struct SolveRun;
+  /// The stop tests before the step of iteration `it` at gradient `g`: converged, a poor
+  /// predictor (ChordSteps::stop_after_poor_predictor), the iteration limit. Fills the
+  /// record's energy and force norm and the report's final values; sets the report's
+  /// message when it stops.
+  bool stops_before_step(SolveRun& run, int it, const VecX& g, NewtonIteration& record) const;
+  /// Chooses the factorization of the step: the current one for a chord step while it
+  /// contracts the force fast enough, else a new one of the Hessian at this state.
+  /// `t0`: when the iteration began (its assembly time counts from there).
+  void prepare_factorization(SolveRun& run, NewtonIteration& record,
+                             std::chrono::steady_clock::time_point t0);
+  /// The step dq: the factorization's solve of −g, or for a Newton–Krylov chord step
+  /// conjugate gradients preconditioned with it.
+  VecX step_direction(SolveRun& run, NewtonIteration& record, const VecX& g);
+  /// Backtracking from the full step dq (Armijo with a round-off allowance, or the
+  /// force test of accept_by_force); true with the record's step size and the run's
+  /// energy set when a step is accepted (the problem then holds it, uncommitted).
+  bool line_search(SolveRun& run, NewtonIteration& record, const VecX& g, const VecX& dq);
+  /// The SolverError of a solve that did not converge, naming where the largest force
+  /// acts at the problem's (last accepted) state.
+  [[noreturn]] void throw_not_converged(NewtonProblem& problem, const NewtonReport& report) const;
 
   NewtonOptions options_;
   SparseCholesky cholesky_;

@@ -1,4 +1,4 @@
-#include "run_outputs.hpp"
+#include "tightfit/api/run_outputs.hpp"
 
 #include <future>
 
@@ -19,7 +19,7 @@
 #include "tightfit/scene/run_state.hpp"
 #include "tightfit/scene/spec.hpp"
 
-namespace tightfit::app {
+namespace tightfit::api {
 namespace {
 
 /// The date on the pattern labels: the run's (result "run"/"date", UTC), so that
@@ -33,6 +33,46 @@ std::string pattern_date(const RunState& state) {
       return date->get<std::string>().substr(0, 10);
   }
   return utc_timestamp().substr(0, 10);
+}
+
+/// result.json's "fabric": the relaxation of the scene's fabric and the Young's moduli
+/// of the simulated (worn) and the new fabric.
+nlohmann::json fabric_json(const GarmentSimulation& sim, const RunState& state) {
+  double relaxation = 0.0;
+  if (state.scene.contains("fabric") && state.scene["fabric"].contains("relaxation"))
+    relaxation = state.scene["fabric"]["relaxation"].get<double>();
+  const double simulated = sim.materials().fabric.youngs_modulus;
+  return {{"relaxation", relaxation},
+          {"youngs_modulus_pa_simulated", simulated},
+          {"youngs_modulus_pa_new", simulated / (1.0 - relaxation)}};
+}
+
+/// The report's per-face field of the unbalanced force (N, the mean of the face's
+/// vertices) at the simulation's state.
+FaceField residual_force_field(const GarmentSimulation& sim) {
+  const VecX residual = sim.problem().garment_residual_forces().rowwise().norm();
+  const Triangles& faces = sim.garment().topology->garment_triangles;
+  MatX per_face(faces.rows(), 1);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    per_face(f, 0) = (residual[faces(f, 0)] + residual[faces(f, 1)] + residual[faces(f, 2)]) / 3.0;
+  return {std::string(fit_fields::kResidualForce), "N", per_face};
+}
+
+/// Per piece of `pattern`: the outline of the piece of the same name in `before` (empty
+/// when there is none), for the report's before/after overlay.
+std::vector<Points2> initial_outlines(const Pattern& pattern, const Pattern& before_pattern) {
+  std::vector<Points2> outlines;
+  for (const PatternPiece& piece : pattern.pieces) {
+    Points2 outline;
+    for (const PatternPiece& before : before_pattern.pieces)
+      if (before.name == piece.name) {
+        outline.resize(static_cast<Eigen::Index>(before.boundary.size()), 2);
+        for (size_t i = 0; i < before.boundary.size(); ++i)
+          outline.row(static_cast<Eigen::Index>(i)) = before.rest.row(before.boundary[i]);
+      }
+    outlines.push_back(std::move(outline));
+  }
+  return outlines;
 }
 
 }  // namespace
@@ -63,15 +103,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
           return write_pattern_files(folder, sim.garment().pattern, pattern_options, &seams);
         });
   }
-  {
-    double relaxation = 0.0;
-    if (state.scene.contains("fabric") && state.scene["fabric"].contains("relaxation"))
-      relaxation = state.scene["fabric"]["relaxation"].get<double>();
-    const double simulated = sim.materials().fabric.youngs_modulus;
-    state.result["fabric"] = {{"relaxation", relaxation},
-                              {"youngs_modulus_pa_simulated", simulated},
-                              {"youngs_modulus_pa_new", simulated / (1.0 - relaxation)}};
-  }
+  state.result["fabric"] = fabric_json(sim, state);
   const std::vector<FitRegion> regions = resolve_fit_regions(
       sim, {scene.pressure_regions, scene.pressure_rig.get(), scene.pressure_rig_radius},
       state.scene_file);
@@ -108,15 +140,8 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   }
   // A state whose solve did not converge (simulate --keep-failed): where it failed.
   if (const auto n = state.result.find("newton");
-      n != state.result.end() && n->is_object() && !n->value("converged", true)) {
-    const VecX residual = sim.problem().garment_residual_forces().rowwise().norm();
-    const Triangles& faces = sim.garment().topology->garment_triangles;
-    MatX per_face(faces.rows(), 1);
-    for (Eigen::Index f = 0; f < faces.rows(); ++f)
-      per_face(f, 0) =
-          (residual[faces(f, 0)] + residual[faces(f, 1)] + residual[faces(f, 2)]) / 3.0;
-    view.garment_fields.push_back({std::string(fit_fields::kResidualForce), "N", per_face});
-  }
+      n != state.result.end() && n->is_object() && !n->value("converged", true))
+    view.garment_fields.push_back(residual_force_field(sim));
   if (shape) {
     view.garment_fields.push_back(
         shape_distance_field(sim.garment().topology->garment_triangles, shape->distance));
@@ -125,18 +150,8 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   }
   view.summary = report_summary(state);
   view.measurements = std::move(ease);
-  if (initial_pattern && state.command == "optimize") {
-    for (const PatternPiece& piece : view.pattern.pieces) {
-      Points2 outline;
-      for (const PatternPiece& before : initial_pattern->pieces)
-        if (before.name == piece.name) {
-          outline.resize(static_cast<Eigen::Index>(before.boundary.size()), 2);
-          for (size_t i = 0; i < before.boundary.size(); ++i)
-            outline.row(static_cast<Eigen::Index>(i)) = before.rest.row(before.boundary[i]);
-        }
-      view.initial_outlines.push_back(std::move(outline));
-    }
-  }
+  if (initial_pattern && state.command == "optimize")
+    view.initial_outlines = initial_outlines(view.pattern, *initial_pattern);
   const std::string scene_name = std::filesystem::path(state.scene_file).stem().string();
   write_fit_report(folder, view,
                    std::string(state.command == "optimize" ? "tightfit optimization report"
@@ -211,4 +226,4 @@ nlohmann::json compute_json() {
             {"thread_timeout", blas.thread_timeout}}}};
 }
 
-}  // namespace tightfit::app
+}  // namespace tightfit::api
