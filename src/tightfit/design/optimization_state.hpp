@@ -81,6 +81,10 @@ struct OptimizationIteration {
   double seconds_factorization = 0.0;
   std::optional<RemeshRecord> remesh;  ///< set when pieces were remeshed after this step
   std::optional<SnapRecord> snap;      ///< set when the line search met a snap-through
+  /// The step of this iteration crossed a snap-through on purpose: after snaps stopped
+  /// several line searches, the run accepted the shortest snapped trial (T rose by the
+  /// jump) and went on from that equilibrium with an empty L-BFGS memory.
+  bool jump = false;
 };
 
 /// L-BFGS curvature pairs, oldest first: s_k = p_{k+1} − p_k (m), y_k = ∇T_{k+1} − ∇T_k.
