@@ -51,14 +51,11 @@ std::string failure_message(const std::string& stage, const std::string& what,
          folder.string();
 }
 
-/// history.json: the history with the best iteration marked ("best_iteration", and
-/// "best": true on its record), the one whose design the run returns.
+/// history.json with the best iteration marked (run_outputs.hpp's mark_best_iteration).
 nlohmann::json marked_history_json(const std::vector<OptimizationIteration>& history,
                                    const std::vector<std::string>& names, int best_iteration) {
   nlohmann::json j = history_json(history, names);
-  j["best_iteration"] = best_iteration;
-  for (nlohmann::json& it : j["iterations"])
-    if (it.value("iteration", -1) == best_iteration) it["best"] = true;
+  mark_best_iteration(j, best_iteration);
   return j;
 }
 
@@ -205,11 +202,7 @@ std::vector<std::string> write_optimize_outputs(const fs::path& out, const Optim
   result_json["seconds"] = seconds;
   std::vector<std::string> files = write_fit_run_outputs(
       out, sim, fit, s.input.scene.pressure_operator, state, &s.scene->garment.pattern);
-  // write_fit_run_outputs writes the plain history; this one marks the returned design.
-  write_json_atomically(out / "history.json",
-                        marked_history_json(history, s.names, result.best_iteration), 2);
   files.push_back("checkpoint.json");
-  files.push_back("history.json");
   return files;
 }
 

@@ -40,6 +40,10 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
 /// result.json's "run": {"command", "version", "date" (UTC, ISO 8601)}.
 nlohmann::json run_identity_json(const std::string& command);
 
+/// Marks iteration `best` of a history.json document: "best_iteration" at the top and
+/// "best": true on its record.
+void mark_best_iteration(nlohmann::json& history, int best);
+
 /// The report's run summary from a fit run's state (command, scene, version, date and,
 /// from its result: status, stop reason, iterations, seconds, force residual,
 /// objective before and after).

@@ -122,7 +122,7 @@ struct OptimizationCheckpoint {
   int iteration = 0;    ///< last accepted iteration
   VecX parameters;      ///< p (m)
   EmbeddedState state;  ///< equilibrium at p
-  LbfgsMemory memory;   ///< pairs since the last remeshing (it clears the memory)
+  LbfgsMemory memory;   ///< on the current parameters (carried across remeshings)
   std::vector<OptimizationIteration> history;
   std::optional<RemeshedDesign> remeshed;  ///< set once a remeshing succeeded
   /// The ordering the held factorization of the accepted point was analysed with

@@ -9,6 +9,7 @@
 #include "tightfit/common/stopwatch.hpp"
 #include "tightfit/design/lbfgs.hpp"
 #include "tightfit/design/line_search.hpp"
+#include "tightfit/design/memory_transfer.hpp"
 
 namespace tightfit {
 namespace {
@@ -229,7 +230,8 @@ void PatternOptimizer::record_point(OptimizationIteration& rec,
   rec.krylov_iterations = current.krylov_iterations;
 }
 
-DesignEvaluation PatternOptimizer::start(double seconds, const IterationCallback& on_iteration) {
+DesignEvaluation PatternOptimizer::start(const std::function<double()>& elapsed,
+                                         const IterationCallback& on_iteration) {
   last_checkpoint_.reset();
   DesignEvaluation current = problem_.evaluate(problem_.accepted_parameters(), true);
   if (!current.ok)
@@ -255,7 +257,7 @@ DesignEvaluation PatternOptimizer::start(double seconds, const IterationCallback
   add_trial_counters(first, current, current.seconds_forward + current.seconds_objective);
   first.factorizations += current.adjoint_factorizations;
   first.seconds_adjoint = current.seconds_adjoint;
-  first.seconds = seconds;
+  first.seconds = elapsed();
   history_.push_back(first);
   note_point(current, false);
   if (on_iteration) on_iteration(first);
@@ -402,6 +404,7 @@ void PatternOptimizer::remesh_if_degraded(VecX& p, DesignEvaluation& current,
   const std::vector<int> degraded = problem_.degraded_pieces();
   if (degraded.empty()) return;
   keep_best_before_rise();
+  const ParameterPoints before = parameter_points(p, parameter_pieces(problem_.coordinates()));
   RemeshOutcome o;
   try {
     o = problem_.remesh(degraded);
@@ -419,7 +422,9 @@ void PatternOptimizer::remesh_if_degraded(VecX& p, DesignEvaluation& current,
   if (o.ok) {
     current = std::move(o.evaluation);
     p = problem_.accepted_parameters();
-    memory_ = {};
+    // The curvature pairs mapped onto the new boundary points (memory_transfer.hpp).
+    memory_ = transfer_memory(memory_, before,
+                              parameter_points(p, parameter_pieces(problem_.coordinates())));
     jump_target_ = VecX();
     note_point(current, true);
   }
@@ -440,7 +445,7 @@ OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
   };
   auto should_stop = [&] { return (stop_requested && stop_requested()) || time_up(); };
   OptimizationResult result;
-  DesignEvaluation current = start(elapsed(), on_iteration);
+  DesignEvaluation current = start(elapsed, on_iteration);
   result.initial_value = history_.front().value;
   VecX p = problem_.accepted_parameters();
   std::ostringstream reason;

@@ -26,10 +26,10 @@
 /// Remeshing: after each accepted step, when the problem has an objective factory and
 /// options().remesh.enabled, pieces whose rest mesh degraded are remeshed
 /// (DesignProblem::remesh); the run continues from the remeshed pattern's equilibrium
-/// with an empty L-BFGS memory. A remeshing that fails is undone and not tried again for
-/// 5 iterations; one that produces a NaN or infinity ends the run with a SolverError
-/// "remeshing after iteration N: …". A checkpoint written after a remeshing carries the
-/// remeshed design; resume() restores it before the parameters.
+/// with its L-BFGS pairs carried onto the new boundary points (memory_transfer.hpp). A remeshing
+/// that fails is undone and not tried again for 5 iterations; one that produces a NaN or infinity
+/// ends the run with a SolverError "remeshing after iteration N: …". A checkpoint written after a
+/// remeshing carries the remeshed design; resume() restores it before the parameters.
 ///
 /// Stopping (StopRule, checked on each accepted point, in this order): ‖∇T‖ ≤
 /// max(gradient_tolerance, relative_gradient_tolerance·‖∇T_0‖) (converged); T ≤
@@ -147,7 +147,8 @@ class PatternOptimizer {
 
  private:
   /// Evaluates the starting point; records iteration 0 on a fresh start.
-  DesignEvaluation start(double seconds, const IterationCallback& on_iteration);
+  DesignEvaluation start(const std::function<double()>& elapsed,
+                         const IterationCallback& on_iteration);
   /// The rule that ends the run at the accepted point `current`, if any.
   std::optional<StopRule> stop_rule(const DesignEvaluation& current, double run_seconds,
                                     const std::function<bool()>& stop_requested,
