@@ -92,6 +92,9 @@ class OptimizeCli : public ::testing::Test {
 TEST_F(OptimizeCli, StretchRunBringsEveryElementIntoRange) {
   nlohmann::json stretch_only = stretch_scene(60);
   stretch_only["optimize"].erase("regularizers");
+  // Run on to the range objective's exact 0 (the target-value rule), past the default
+  // gradient rule (1e-3 of the initial gradient norm).
+  stretch_only["optimize"]["lbfgs"] = {{"relative_gradient_tolerance", 1e-9}};
   const fs::path scene = write_scene("scene.json", stretch_only);
   const fs::path out = dir_ / "out";
   const CliRun r = run_cli("optimize " + scene.string() + " --out " + out.string());

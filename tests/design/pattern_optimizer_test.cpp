@@ -3,7 +3,9 @@
 /// optimized pattern actually reaching the objective's optimum.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -68,15 +70,16 @@ TEST(PatternOptimizer, TargetRunDecreasesMonotonicallyThroughConvergedStates) {
   EXPECT_EQ((sim.garment().rest_positions() - rest).norm(), 0.0);
 }
 
-/// The sleeve pulled towards turned targets with steps of up to 20 boundary edges: the
-/// first trials of an iteration fold the pattern, so line searches backtrack.
+/// The sleeve pulled towards turned targets with steps of up to 20 boundary edges: without
+/// the compression bound the first trials of an iteration fold the pattern, so line
+/// searches backtrack.
 struct FoldingRun {
   std::unique_ptr<test::SleeveScene> scene = make_sleeve_scene();
   GarmentSimulation& sim = *scene->sim;
   std::optional<DesignProblem> problem;
   std::optional<PatternOptimizer> optimizer;
 
-  FoldingRun() {
+  explicit FoldingRun(double max_compression = 0.0) {
     sim.solve();
     auto objective = std::make_shared<DesignTermSum>();
     objective->add(
@@ -85,6 +88,7 @@ struct FoldingRun {
     PatternOptimizerOptions options;
     options.max_iterations = 4;
     options.max_step = 20.0 * problem->mean_boundary_edge();
+    options.max_compression = max_compression;
     optimizer.emplace(*problem, options);
   }
 };
@@ -136,6 +140,69 @@ TEST(PatternOptimizer, BacktracksOverFailedForwardSolvesAndFlippedPatterns) {
   ASSERT_GE(optimizer.history().size(), 3u);
   expect_monotone(optimizer.history());
   expect_equilibrium(sim);
+}
+
+/// Signed areas of the pattern triangles at the simulation's current rest shape.
+VecX pattern_areas(const GarmentSimulation& sim) {
+  const Points2 rest = sim.garment().rest_positions();
+  const Triangles& tri = sim.garment().topology->pattern_triangles;
+  VecX a(tri.rows());
+  for (Eigen::Index t = 0; t < tri.rows(); ++t) {
+    const Eigen::RowVector2d e1 = rest.row(tri(t, 1)) - rest.row(tri(t, 0));
+    const Eigen::RowVector2d e2 = rest.row(tri(t, 2)) - rest.row(tri(t, 0));
+    a[t] = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+  }
+  return a;
+}
+
+TEST(DesignProblem, TheCompressionBoundIsExact) {
+  auto scene = make_sleeve_scene();
+  GarmentSimulation& sim = *scene->sim;
+  sim.solve();
+  DesignProblem problem(sim, std::make_shared<DesignTermSum>());
+  const VecX p = problem.initial_parameters();
+  const Triangles& tri = sim.garment().topology->pattern_triangles;
+  auto areas = [&](const VecX& q) {
+    const Points2 rest = problem.rest_positions(q);
+    VecX a(tri.rows());
+    for (Eigen::Index t = 0; t < tri.rows(); ++t) {
+      const Eigen::RowVector2d e1 = rest.row(tri(t, 1)) - rest.row(tri(t, 0));
+      const Eigen::RowVector2d e2 = rest.row(tri(t, 2)) - rest.row(tri(t, 0));
+      a[t] = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+    }
+    return a;
+  };
+  const VecX a0 = areas(p);
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    std::srand(seed);
+    const VecX d = VecX::Random(p.size()) * problem.mean_boundary_edge();
+    const double alpha = problem.max_step_keeping_areas(p, d, 0.5);
+    ASSERT_TRUE(std::isfinite(alpha) && alpha > 0.0);
+    const VecX at = areas(p + alpha * d).cwiseQuotient(a0);
+    const VecX inside = areas(p + 0.999 * alpha * d).cwiseQuotient(a0);
+    EXPECT_NEAR(at.minCoeff(), 0.5, 1e-9);
+    EXPECT_GT(inside.minCoeff(), 0.5);
+  }
+}
+
+TEST(PatternOptimizer, TheTrustRegionKeepsEveryStepFromCrushingATriangle) {
+  // The folding run's steps of 20 edges: with the compression bound no trial flips or
+  // crushes a triangle, and no accepted step shrinks one below half its area.
+  FoldingRun run(0.5);
+  VecX before = pattern_areas(run.sim);
+  double worst = 1.0;
+  run.optimizer->run([&](const OptimizationIteration&) {
+    const VecX after = pattern_areas(run.sim);
+    worst = std::min(worst, after.cwiseQuotient(before).minCoeff());
+    before = after;
+  });
+  print_history(run.optimizer->history());
+  int failed = 0;
+  for (const OptimizationIteration& it : run.optimizer->history()) failed += it.failed_solves;
+  EXPECT_EQ(failed, 0);
+  EXPECT_GE(worst, 0.5 - 1e-9);
+  ASSERT_GE(run.optimizer->history().size(), 3u);
+  expect_monotone(run.optimizer->history());
 }
 
 TEST(PatternOptimizer, AStopRequestEndsALongLineSearchBetweenTrials) {

@@ -313,7 +313,12 @@ TEST(PatternOptimizerRemesh, ADegradingPieceIsRemeshedAndTheRunGoesOn) {
   ASSERT_TRUE(saved.remeshed.has_value());
   EXPECT_EQ(saved.iteration, history[first].iteration);
   EXPECT_EQ(saved.parameters.size(), history[first].remesh->parameters);
-  EXPECT_TRUE(saved.memory.s.empty());  // cleared by the remeshing
+  // The L-BFGS pairs are carried onto the remeshed parameters (memory_transfer.hpp).
+  ASSERT_FALSE(saved.memory.s.empty());
+  for (size_t k = 0; k < saved.memory.s.size(); ++k) {
+    EXPECT_EQ(saved.memory.s[k].size(), history[first].remesh->parameters);
+    EXPECT_GT(saved.memory.s[k].dot(saved.memory.y[k]), 0.0);
+  }
   auto fresh = make_sleeve_scene(so);
   fresh->sim->solve();
   DesignProblem fresh_problem(*fresh->sim, factory(*fresh->sim), po, factory);

@@ -1,6 +1,7 @@
-/// `tightfit optimize SCENE --out DIR [--resume DIR] [--max-iterations N]`: pattern
-/// optimization (paper Sec. 4) with the scene's "optimize" section
-/// (design/optimization_spec.hpp); --max-iterations overrides its max_iterations.
+/// `tightfit optimize SCENE --out DIR [--resume DIR] [--max-iterations N] [--time-limit S]`:
+/// pattern optimization (paper Sec. 4) with the scene's "optimize" section
+/// (design/optimization_spec.hpp); --max-iterations and --time-limit override its
+/// max_iterations and time_limit.
 ///
 /// Writes DIR as app/commands/optimize_run.hpp describes; `--resume DIR` continues from
 /// DIR/checkpoint.json of an earlier run of the same scene.
@@ -45,6 +46,12 @@ const CommandRegistration kOptimize{
                       "Stop after this many L-BFGS iterations (overrides the scene's "
                       "optimize/max_iterations)")
           ->check(non_negative_number());
+      auto time_limit = std::make_shared<double>(-1.0);
+      cmd->add_option("--time-limit", *time_limit,
+                      "Wall-clock budget of the run in seconds: no new iteration starts after it "
+                      "(overrides the scene's optimize/time_limit); the run then returns its "
+                      "best design")
+          ->check(non_negative_number());
       auto keep_failed = std::make_shared<std::string>();
       cmd->add_option("--keep-failed", *keep_failed,
                       "When the initial equilibrium does not converge, write its last state to "
@@ -53,8 +60,17 @@ const CommandRegistration kOptimize{
       auto terse = std::make_shared<bool>(false);
       cmd->add_flag("--terse", *terse,
                     "Progress: one row per iteration, without the values of the objective's terms");
-      cmd->callback([scene, out, resume, max_iterations, force, keep_failed, terse] {
-        run_optimize({*scene, *out, *resume, *max_iterations, *force, *keep_failed, *terse});
+      cmd->callback([scene, out, resume, max_iterations, time_limit, force, keep_failed, terse] {
+        OptimizeRequest request;
+        request.scene_file = *scene;
+        request.out_dir = *out;
+        request.resume_dir = *resume;
+        request.max_iterations = *max_iterations;
+        request.time_limit = *time_limit;
+        request.force = *force;
+        request.keep_failed = *keep_failed;
+        request.terse = *terse;
+        run_optimize(request);
       });
     }};
 

@@ -58,6 +58,7 @@ std::string OptimizeProgress::row(const OptimizationIteration& it) const {
   if (it.snap)
     text += format("  (snapped trials %d: T +%.2e, garment vertex %d moved %.1f mm)",
                    it.snap->trials, it.snap->rise, it.snap->vertex, 1e3 * it.snap->move);
+  if (it.jump) text += "  (jumped through the snap-through: continuing from that equilibrium)";
   if (it.hessian_shift > 0.0)
     text += format("  [adjoint H shifted by %.1e: inexact]", it.hessian_shift);
   return text + "\n";

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -49,58 +51,197 @@ std::string failure_message(const std::string& stage, const std::string& what,
          folder.string();
 }
 
+/// history.json with the best iteration marked (run_outputs.hpp's mark_best_iteration).
+nlohmann::json marked_history_json(const std::vector<OptimizationIteration>& history,
+                                   const std::vector<std::string>& names, int best_iteration) {
+  nlohmann::json j = history_json(history, names);
+  mark_best_iteration(j, best_iteration);
+  return j;
+}
+
+/// The iteration of the lowest objective in `history` (after remeshings too): the best
+/// design so far while the run goes on.
+int best_iteration_so_far(const std::vector<OptimizationIteration>& history) {
+  int best = 0;
+  double value = std::numeric_limits<double>::infinity();
+  for (const OptimizationIteration& it : history)
+    for (double v :
+         {it.value, it.remesh && it.remesh->failure.empty() ? it.remesh->value : it.value})
+      if (v < value) {
+        value = v;
+        best = it.iteration;
+      }
+  return best;
+}
+
+/// The scene, simulation and objective of a run, loaded and announced.
+struct OptimizeSetup {
+  OptimizationScene input;
+  std::unique_ptr<LoadedScene> scene;
+  std::unique_ptr<GarmentSimulation> sim;
+  std::shared_ptr<const DesignTermSum> objective;
+  std::vector<std::string> names;
+};
+
+OptimizeSetup load_optimize_setup(const OptimizeRequest& request) {
+  OptimizeSetup s;
+  s.input = read_optimization_scene(request.scene_file);
+  check_keep_failed_folder(request.keep_failed, request.out_dir);
+  PatternOptimizerOptions& o = s.input.optimization.optimizer;
+  if (request.max_iterations >= 0) o.max_iterations = request.max_iterations;
+  if (request.time_limit >= 0.0) o.time_limit = request.time_limit;
+  const fs::path out(request.out_dir);
+  prepare_output_folder(out, request.force);
+  mark_output_folder(out, "optimize");
+  s.scene = load_scene(s.input.scene);
+  s.sim = make_simulation(*s.scene);
+  s.objective = build_objective(s.input.optimization, *s.sim);
+  s.names = term_names(*s.objective);
+  std::printf("tightfit optimize: %d garment vertices, %d triangles, %zu pieces; terms:",
+              s.sim->garment().num_garment_vertices(),
+              static_cast<int>(s.sim->garment().topology->garment_triangles.rows()),
+              s.sim->garment().pattern.pieces.size());
+  for (size_t k = 0; k < s.names.size(); ++k)
+    std::printf(" %s (w %g)", s.names[k].c_str(), s.objective->entries()[k].weight);
+  std::printf("\n");
+  return s;
+}
+
+/// Resumes `optimizer` from RESUME/checkpoint.json (errors name that file).
+void resume_from(PatternOptimizer& optimizer, const std::string& resume_dir,
+                 const std::vector<std::string>& names) {
+  const fs::path file = fs::path(resume_dir) / "checkpoint.json";
+  try {
+    optimizer.resume(read_checkpoint(file, names));
+  } catch (const InputError& e) {
+    if (e.source() == file.string()) throw;
+    // e.g. a checkpoint of another garment (source "checkpoint"): name the file instead
+    std::string what = e.what();
+    if (what.starts_with(e.source() + ": ")) what.erase(0, e.source().size() + 2);
+    throw InputError(file.string(), what);
+  }
+  std::printf("  resuming from %s at iteration %d\n", file.c_str(),
+              optimizer.checkpoint().iteration);
+}
+
+/// result.json's "optimization" section: the stop rule in words and by name, and the
+/// objective of the returned (best) design.
+nlohmann::json optimization_json(const OptimizationResult& result,
+                                 const std::vector<OptimizationIteration>& history,
+                                 const std::vector<std::string>& names, int design_parameters,
+                                 double force_residual) {
+  nlohmann::json initial_terms, final_terms;
+  for (size_t k = 0; k < names.size(); ++k) {
+    initial_terms[names[k]] = history.front().term_values[k];
+    if (k < result.final_terms.size()) final_terms[names[k]] = result.final_terms[k];
+  }
+  nlohmann::json j = {{"converged", result.converged},
+                      {"interrupted", result.interrupted},
+                      {"stop_rule", stop_rule_name(result.rule)},
+                      {"stop_reason", result.stop_reason},
+                      {"iterations", result.iterations},
+                      {"best_iteration", result.best_iteration},
+                      {"best_after_remesh", result.best_after_remesh},
+                      {"best_restored", result.best_restored},
+                      {"objective_initial", history.front().value},
+                      {"objective_final", result.final_value},
+                      {"objective_last_iteration", result.last_value},
+                      {"terms_initial", initial_terms},
+                      {"terms_final", final_terms},
+                      {"gradient_norm_initial", history.front().gradient_norm},
+                      {"gradient_norm_final", result.final_gradient_norm},
+                      {"design_parameters", design_parameters},
+                      {"force_residual_n", force_residual},
+                      {"seconds_optimization", history.back().seconds}};
+  if (!result.gradient_check.empty()) {
+    nlohmann::json checks = nlohmann::json::array();
+    for (const DirectionalCheck& c : result.gradient_check)
+      checks.push_back({{"adjoint", c.adjoint},
+                        {"finite_difference", c.finite_difference},
+                        {"relative_error", c.relative_error}});
+    j["gradient_check"] = checks;
+  }
+  return j;
+}
+
+/// The outputs of the returned design (the simulation holds it): result.json, the fit,
+/// the pattern and the report. Returns the files written.
+std::vector<std::string> write_optimize_outputs(const fs::path& out, const OptimizeRequest& request,
+                                                OptimizeSetup& s, const PatternOptimizer& optimizer,
+                                                const OptimizationResult& result,
+                                                const std::optional<TriMesh>& initial_garment,
+                                                int design_parameters,
+                                                SteadyClock::time_point t_start) {
+  const auto t0 = SteadyClock::now();
+  GarmentSimulation& sim = *s.sim;
+  const FitAnalysis fit = sim.analyze();
+  const std::vector<OptimizationIteration>& history = optimizer.history();
+  RunState state = make_run_state("optimize", s.input.scene, sim.garment(), sim.problem().state(),
+                                  &s.scene->garment.pattern);
+  state.term_names = s.names;
+  state.history = history;
+  state.initial_garment = initial_garment;
+  nlohmann::json& result_json = state.result;
+  result_json["run"] = run_identity_json("optimize");
+  result_json["scene"] = request.scene_file;
+  result_json["optimization"] =
+      optimization_json(result, history, s.names, design_parameters,
+                        sim.problem().force_norm(sim.problem().gradient()));
+  result_json["compute"] = compute_json();
+  result_json["counts"] = {{"body_vertices", s.scene->body.num_vertices()},
+                           {"body_tets", s.scene->body.volume.num_tets()},
+                           {"garment_vertices", sim.garment().num_garment_vertices()},
+                           {"garment_triangles", sim.garment().topology->garment_triangles.rows()},
+                           {"pattern_pieces", sim.garment().pattern.pieces.size()},
+                           {"dofs", sim.problem().num_dofs()}};
+  nlohmann::json seconds;
+  for (const auto& [name, value] : s.scene->stage_seconds) seconds[name] = value;
+  seconds["optimization_this_run"] = result.seconds;
+  seconds["analysis"] = seconds_since(t0);
+  seconds["total_this_run"] = seconds_since(t_start);
+  result_json["seconds"] = seconds;
+  std::vector<std::string> files = write_fit_run_outputs(
+      out, sim, fit, s.input.scene.pressure_operator, state, &s.scene->garment.pattern);
+  files.push_back("checkpoint.json");
+  return files;
+}
+
+/// The closing lines: the objective of the returned design, the files, and last the
+/// rule that ended the run, in words.
+void print_summary(const OptimizationResult& result, const std::vector<OptimizationIteration>& h,
+                   const fs::path& out, const std::vector<std::string>& files) {
+  std::printf("  objective %.6e -> %.6e (iteration %d%s) in %d iterations (%.1f s)\n",
+              h.front().value, result.final_value, result.best_iteration,
+              result.best_after_remesh ? ", after its remeshing" : "", result.iterations,
+              h.back().seconds);
+  if (result.best_restored)
+    std::printf(
+        "  the last iteration ended at %.6e, above the best design: the outputs hold the best "
+        "one (iteration %d); checkpoint.json holds the last one\n",
+        result.last_value, result.best_iteration);
+  for (const auto& f : files) std::printf("  %s\n", (out / f).c_str());
+  std::printf("  stopped (%s): %s\n", stop_rule_name(result.rule), result.stop_reason.c_str());
+}
+
 }  // namespace
 
 void run_optimize(const OptimizeRequest& request) {
-  const std::string& scene_file = request.scene_file;
-  const std::string& out_dir = request.out_dir;
-  const std::string& resume_dir = request.resume_dir;
-  const int max_iterations = request.max_iterations;
-  const bool force = request.force;
-  const std::string& keep_failed = request.keep_failed;
   const auto t_start = SteadyClock::now();
-  OptimizationScene input = read_optimization_scene(scene_file);
-  check_keep_failed_folder(keep_failed, out_dir);
-  if (max_iterations >= 0) input.optimization.optimizer.max_iterations = max_iterations;
-  const OptimizationSpec& spec = input.optimization;
-  const fs::path out(out_dir);
-  prepare_output_folder(out, force);
-  mark_output_folder(out, "optimize");
-
-  auto scene = load_scene(input.scene);
-  auto sim = make_simulation(*scene);
-  const auto objective = build_objective(spec, *sim);
-  const std::vector<std::string> names = term_names(*objective);
-  std::printf("tightfit optimize: %d garment vertices, %d triangles, %zu pieces; terms:",
-              sim->garment().num_garment_vertices(),
-              static_cast<int>(sim->garment().topology->garment_triangles.rows()),
-              sim->garment().pattern.pieces.size());
-  for (size_t k = 0; k < names.size(); ++k)
-    std::printf(" %s (w %g)", names[k].c_str(), objective->entries()[k].weight);
-  std::printf("\n");
-
-  DesignProblem problem(*sim, objective, spec.problem,
-                        [&spec](const GarmentSimulation& s) { return build_objective(spec, s); });
+  OptimizeSetup s = load_optimize_setup(request);
+  const OptimizationSpec& spec = s.input.optimization;
+  const fs::path out(request.out_dir);
+  DesignProblem problem(*s.sim, s.objective, spec.problem,
+                        [&spec](const GarmentSimulation& g) { return build_objective(spec, g); });
   PatternOptimizer optimizer(problem, spec.optimizer);
-  if (!resume_dir.empty()) {
-    const fs::path file = fs::path(resume_dir) / "checkpoint.json";
-    try {
-      optimizer.resume(read_checkpoint(file, names));
-    } catch (const InputError& e) {
-      if (e.source() == file.string()) throw;
-      // e.g. a checkpoint of another garment (source "checkpoint"): name the file instead
-      std::string what = e.what();
-      if (what.starts_with(e.source() + ": ")) what.erase(0, e.source().size() + 2);
-      throw InputError(file.string(), what);
-    }
-    std::printf("  resuming from %s at iteration %d\n", file.c_str(),
-                optimizer.checkpoint().iteration);
+  const bool resuming = !request.resume_dir.empty();
+  if (resuming) {
+    resume_from(optimizer, request.resume_dir, s.names);
   } else {
     std::printf("  initial equilibrium...\n");
     std::fflush(stdout);
   }
   std::printf("  %d design parameters (boundary points of %zu pieces)\n", problem.num_parameters(),
-              sim->garment().pattern.pieces.size());
+              s.sim->garment().pattern.pieces.size());
 
   const fs::path checkpoint_file = out / "checkpoint.json";
   // A solver failure from here on (a non-finite state, a NaN refused by a writer, see
@@ -108,109 +249,67 @@ void run_optimize(const OptimizeRequest& request) {
   // checkpoint, the one a --resume continues from.
   std::string stage = kStartOfRun;
   LastCheckpoint last;
-  if (!resume_dir.empty())
-    last = {fs::path(resume_dir) / "checkpoint.json", optimizer.checkpoint().iteration, true};
+  if (resuming)
+    last = {fs::path(request.resume_dir) / "checkpoint.json", optimizer.checkpoint().iteration,
+            true};
   try {
     // Ctrl-C / SIGTERM: the current iteration finishes, then the run stops and writes the
-    // checkpoint and the outputs of the last accepted pattern as after a normal stop.
+    // checkpoint and the outputs of the returned pattern as after a normal stop.
     const InterruptGuard interrupts;
     std::optional<TriMesh> initial_garment;  // the initial equilibrium (unknown on resume)
-    OptimizeProgress progress(names, spec.optimizer.max_iterations, request.terse);
+    OptimizeProgress progress(s.names, spec.optimizer.max_iterations, request.terse);
     const OptimizationResult result = optimizer.run(
         [&](const OptimizationIteration& it) {
-          if (it.iteration == 0 && resume_dir.empty())
+          if (it.iteration == 0 && !resuming)
             initial_garment =
-                TriMesh{sim->garment_positions(), sim->garment().topology->garment_triangles};
+                TriMesh{s.sim->garment_positions(), s.sim->garment().topology->garment_triangles};
           progress.print(it);
           stage = "writing history.json and checkpoint.json after iteration " +
                   std::to_string(it.iteration);
-          write_json_atomically(out / "history.json", history_json(optimizer.history(), names), 2);
+          write_json_atomically(out / "history.json",
+                                marked_history_json(optimizer.history(), s.names,
+                                                    best_iteration_so_far(optimizer.history())),
+                                2);
           if (it.iteration % spec.checkpoint_every == 0) {
-            write_checkpoint(checkpoint_file, optimizer.checkpoint(), names);
+            write_checkpoint(checkpoint_file, optimizer.checkpoint(), s.names);
             last = {checkpoint_file, it.iteration, false};
           }
           stage = "iteration " + std::to_string(it.iteration + 1);
         },
         [] { return interrupt_requested(); });
     stage = "writing the final checkpoint";
-    write_checkpoint(checkpoint_file, optimizer.checkpoint(), names);
+    write_checkpoint(checkpoint_file, optimizer.checkpoint(), s.names);
+    write_json_atomically(out / "history.json",
+                          marked_history_json(optimizer.history(), s.names, result.best_iteration),
+                          2);
     last = {checkpoint_file, optimizer.checkpoint().iteration, false};
-    stage = "writing the outputs of iteration " + std::to_string(result.iterations);
-    std::printf("  stopped: %s\n", result.stop_reason.c_str());
-
-    // The simulation holds the accepted pattern and its equilibrium. The report comes
-    // last: it needs the viewer's npm packages, and its failure must not cost the rest.
-    const auto t0 = SteadyClock::now();
-    const FitAnalysis fit = sim->analyze();
-    const auto op = input.scene.pressure_operator;
-    const std::vector<OptimizationIteration>& history = optimizer.history();
-    RunState state = make_run_state("optimize", input.scene, sim->garment(), sim->problem().state(),
-                                    &scene->garment.pattern);
-    state.term_names = names;
-    state.history = history;
-    state.initial_garment = initial_garment;
-    nlohmann::json initial_terms, final_terms;
-    for (size_t k = 0; k < names.size(); ++k) {
-      initial_terms[names[k]] = history.front().term_values[k];
-      final_terms[names[k]] = history.back().term_values[k];
-    }
-    nlohmann::json& result_json = state.result;
-    result_json["run"] = run_identity_json("optimize");
-    result_json["scene"] = scene_file;
-    result_json["optimization"] = {
-        {"converged", result.converged},
-        {"interrupted", result.interrupted},
-        {"stop_reason", result.stop_reason},
-        {"iterations", result.iterations},
-        {"objective_initial", history.front().value},
-        {"objective_final", history.back().value},
-        {"terms_initial", initial_terms},
-        {"terms_final", final_terms},
-        {"gradient_norm_initial", history.front().gradient_norm},
-        {"gradient_norm_final", history.back().gradient_norm},
-        {"design_parameters", problem.num_parameters()},
-        {"force_residual_n", sim->problem().force_norm(sim->problem().gradient())},
-        {"seconds_optimization", history.back().seconds}};
-    result_json["compute"] = compute_json();
-    result_json["counts"] = {
-        {"body_vertices", scene->body.num_vertices()},
-        {"body_tets", scene->body.volume.num_tets()},
-        {"garment_vertices", sim->garment().num_garment_vertices()},
-        {"garment_triangles", sim->garment().topology->garment_triangles.rows()},
-        {"pattern_pieces", sim->garment().pattern.pieces.size()},
-        {"dofs", sim->problem().num_dofs()}};
-    nlohmann::json seconds;
-    for (const auto& [name, s] : scene->stage_seconds) seconds[name] = s;
-    seconds["optimization_this_run"] = result.seconds;
-    seconds["analysis"] = seconds_since(t0);
-    seconds["total_this_run"] = seconds_since(t_start);
-    result_json["seconds"] = seconds;
-    std::printf("  objective %.6e -> %.6e in %d iterations (%.1f s)\n", history.front().value,
-                history.back().value, result.iterations, history.back().seconds);
-    std::vector<std::string> files =
-        write_fit_run_outputs(out, *sim, fit, op, state, &scene->garment.pattern);
-    files.push_back("checkpoint.json");
-    for (const auto& f : files) std::printf("  %s\n", (out / f).c_str());
+    stage = "writing the outputs of iteration " + std::to_string(result.best_iteration);
+    // The report comes last in write_fit_run_outputs: it needs the viewer's npm packages,
+    // and its failure must not cost the rest.
+    const std::vector<std::string> files = write_optimize_outputs(
+        out, request, s, optimizer, result, initial_garment, problem.num_parameters(), t_start);
+    print_summary(result, optimizer.history(), out, files);
     if (result.interrupted) {
       const int signal = interrupt_signal();
       std::printf(
           "  interrupted by %s: the files above hold the pattern of iteration %d; "
           "continue with\n    tightfit optimize %s --out DIR --resume %s\n",
-          signal_name(signal), result.iterations, scene_file.c_str(), out.c_str());
+          signal_name(signal), result.best_iteration, request.scene_file.c_str(), out.c_str());
       std::fflush(stdout);
       throw Interrupted{signal};
     }
   } catch (const SolverError& e) {
     // The initial equilibrium is the one forward solve whose failure ends a run (later
     // trials back off): keep its last state where the user asked.
-    if (!keep_failed.empty() && stage == kStartOfRun) {
+    if (!request.keep_failed.empty() && stage == kStartOfRun) {
       try {
-        report_kept_failure(keep_failed, force, scene_file, *scene, *sim, e.what());
+        report_kept_failure(request.keep_failed, request.force, request.scene_file, *s.scene,
+                            *s.sim, e.what());
       } catch (const std::exception& kept) {
         std::printf("  the failed state could not be kept: %s\n", kept.what());
       }
     }
-    throw SolverError(failure_message(stage, e.what(), last, scene_file));
+    throw SolverError(failure_message(stage, e.what(), last, request.scene_file));
   }
 }
 

@@ -3,6 +3,11 @@
 /// (design/optimization_spec.hpp): what `tightfit optimize` runs, and `tightfit grade`
 /// for each body.
 ///
+/// The run returns its best design (design/pattern_optimizer.hpp): the pattern, fit and
+/// report are those of the best iteration, which history.json marks ("best_iteration");
+/// result.json's "optimization" says which rule ended the run ("stop_rule", and
+/// "stop_reason" in words), and the last line printed repeats it.
+///
 /// The output folder is written DURING the run (each file atomically, so a crash leaves
 /// the last complete version of every file): history.json after every iteration,
 /// checkpoint.json every `checkpoint_every` iterations and at the end; at the end also
@@ -28,6 +33,7 @@ struct OptimizeRequest {
   std::string keep_failed;
   /// Progress rows only, without each iteration's line of term values.
   bool terse = false;
+  double time_limit = -1.0;  ///< s of wall time; overrides optimize/time_limit when ≥ 0
 };
 
 /// Runs the optimization and writes its outputs (header comment). Progress goes to

@@ -7,6 +7,7 @@ namespace tightfit::app {
 
 using api::compute_json;
 using api::kMaxPatternPieces;
+using api::mark_best_iteration;
 using api::report_summary;
 using api::run_identity_json;
 using api::write_fit_run_outputs;

@@ -123,7 +123,11 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   files.insert(files.end(), {"result.json", "scene.json"});
   nlohmann::json records = nlohmann::json::array();
   if (state.command == "optimize") {
-    const nlohmann::json history = history_json(state.history, state.term_names);
+    nlohmann::json history = history_json(state.history, state.term_names);
+    // The iteration whose design the run returned (PatternOptimizer's best design).
+    if (const auto o = state.result.find("optimization");
+        o != state.result.end() && o->is_object() && o->contains("best_iteration"))
+      mark_best_iteration(history, (*o)["best_iteration"].get<int>());
     write_json_atomically(folder / "history.json", history, 2);
     files.push_back("history.json");
     records = history["iterations"];
@@ -181,6 +185,12 @@ std::vector<std::string> write_layout_run_outputs(const std::filesystem::path& f
   write_run_state(folder / "state.json", state);
   files.insert(files.end(), {"garment_embedded.ply", "layout.json", "state.json"});
   return files;
+}
+
+void mark_best_iteration(nlohmann::json& history, int best) {
+  history["best_iteration"] = best;
+  for (nlohmann::json& it : history["iterations"])
+    if (it.value("iteration", -1) == best) it["best"] = true;
 }
 
 nlohmann::json run_identity_json(const std::string& command) {

@@ -189,6 +189,7 @@ nlohmann::json iteration_json(const OptimizationIteration& it,
                       {"seconds_factorization", it.seconds_factorization}};
   if (it.remesh) j["remesh"] = remesh_json(*it.remesh, term_names);
   if (it.snap) j["snap"] = snap_json(*it.snap);
+  if (it.jump) j["jump"] = true;
   return j;
 }
 
@@ -225,6 +226,7 @@ OptimizationIteration iteration_from_json(const nlohmann::json& j,
   it.seconds_factorization = f.number("seconds_factorization", 0.0);
   if (auto r = f.object("remesh")) it.remesh = remesh_from_json(*r, term_names);
   if (auto s = f.object("snap")) it.snap = snap_from_json(*s);
+  it.jump = f.boolean("jump", false);
   f.finish();
   return it;
 }

@@ -177,6 +177,11 @@ class DesignProblem {
   Points2 rest_positions(const VecX& p) const;
   /// Smallest signed rest-area ratio (current / initial) over all triangles at p.
   double min_area_ratio(const VecX& p) const;
+  /// The largest α (∞ when none binds) such that every pattern triangle's signed rest
+  /// area at p + α d stays at least `fraction` (in (0, 1)) times its area at p: the
+  /// bound a trial step keeps so that it never inverts or crushes a triangle (areas are
+  /// quadratic in α, so the bound is exact).
+  double max_step_keeping_areas(const VecX& p, const VecX& d, double fraction) const;
   /// Mean length (m) of the initial boundary edges (a natural step scale for p).
   double mean_boundary_edge() const { return ref_.mean_boundary_edge; }
 
@@ -214,6 +219,14 @@ class DesignProblem {
   /// meshes are invalid; std::logic_error without an objective factory.
   void restore_remeshed_design(const RemeshedDesign& design, const EmbeddedState& state);
 
+  /// The accepted design in memory (garment, reference, parameters, equilibrium), to be
+  /// put back by restore(): PatternOptimizer keeps its best design this way.
+  struct Snapshot;
+  Snapshot snapshot() const;
+  /// Makes `snapshot` (taken from this problem) the accepted point again, on its garment
+  /// (replaced when a remeshing changed it since); the simulation is put there.
+  void restore(const Snapshot& snapshot);
+
  private:
   /// What the design parameters and evaluations refer to, for one garment topology: a
   /// remesh() builds a new one and swaps it in only when the remeshed problem solved.
@@ -227,6 +240,17 @@ class DesignProblem {
     std::vector<PieceQuality> fresh;  // per piece: quality of its last fresh mesh
     std::vector<Points2> mesh_rest;   // per piece: rest positions its mesh was made with
   };
+
+ public:
+  struct Snapshot {
+    Garment garment;
+    Reference ref;
+    bool remeshed = false;
+    VecX parameters;
+    EmbeddedState state;
+  };
+
+ private:
   /// The reference of the simulation's current garment at its current rest shape.
   Reference make_reference(std::shared_ptr<const DesignTermSum> objective,
                            BiharmonicCoordinates coordinates, std::vector<PieceQuality> fresh,

@@ -73,6 +73,12 @@ void parse_lbfgs(JsonFields f, PatternOptimizerOptions& o) {
   if (o.stall_iterations < 1) f.fail("must be >= 1", "stall_iterations");
   o.snap_iterations = f.integer("snap_iterations", o.snap_iterations);
   if (o.snap_iterations < 0) f.fail("must be >= 0", "snap_iterations");
+  o.snap_jumps = f.integer("snap_jumps", o.snap_jumps);
+  if (o.snap_jumps < 0) f.fail("must be >= 0", "snap_jumps");
+  o.gradient_check_tolerance =
+      f.positive("gradient_check_tolerance", o.gradient_check_tolerance, true);
+  o.max_compression = f.positive("max_compression", o.max_compression, true);
+  if (o.max_compression >= 1.0) f.fail("must be in [0, 1)", "max_compression");
   o.max_step = f.positive("max_step", o.max_step, true);
   o.max_step_fraction = f.positive("max_step_fraction", o.max_step_fraction);
   o.step_growth = f.positive("step_growth", o.step_growth, true);
@@ -152,6 +158,7 @@ OptimizationSpec parse_optimization_spec(const nlohmann::json& section, const st
   }
   spec.optimizer.max_iterations = f.integer("max_iterations", spec.optimizer.max_iterations);
   if (spec.optimizer.max_iterations < 0) f.fail("must be >= 0", "max_iterations");
+  spec.optimizer.time_limit = f.positive("time_limit", spec.optimizer.time_limit, true);
   spec.checkpoint_every = f.integer("checkpoint_every", spec.checkpoint_every);
   if (spec.checkpoint_every < 1) f.fail("must be >= 1", "checkpoint_every");
   spec.problem.min_area_ratio = f.positive("min_area_ratio", spec.problem.min_area_ratio);

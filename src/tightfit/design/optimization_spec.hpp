@@ -25,13 +25,19 @@
 ///       "compactness": {"weight": 1, "min_ratio": 0.1, "pair_stride": 1}
 ///     },
 ///     "max_iterations": 50,                 // L-BFGS iterations (default 50)
+///     "time_limit": 0,                      // s of wall time per run (0: none)
 ///     "checkpoint_every": 5,                // iterations between checkpoints (default 5)
 ///     "min_area_ratio": 0.05,               // trial patterns with smaller triangles fail
-///     "lbfgs": {"memory": 8, "gradient_tolerance": 0, "relative_gradient_tolerance": 1e-6,
-///               "value_tolerance": 0, "relative_decrease_tolerance": 1e-9,
-///               "stall_iterations": 3, "max_step": 0, "max_step_fraction": 0.5,
-///               "snap_iterations": 3,     // stop after 3 iterations limited by a
-///                                         // snap-through (0: off)
+///     "lbfgs": {"memory": 8, "gradient_tolerance": 0, "relative_gradient_tolerance": 1e-3,
+///               "value_tolerance": 0,
+///               "relative_decrease_tolerance": 1e-9, // progress over stall_iterations
+///               "stall_iterations": 20,   //   below which the gradient is checked
+///               "gradient_check_tolerance": 0.05,  // FD agreement of that check
+///               "max_step": 0, "max_step_fraction": 0.5,  // trust radius
+///               "max_compression": 0.5,   // no step shrinks a triangle below half
+///               "snap_iterations": 3,     // after 3 iterations limited by a
+///                                         // snap-through, jump through it (0: off)
+///               "snap_jumps": 3,          // jumps per run; then stop there
 ///               "step_growth": 2,         // first trial moves no point more than 2x
 ///                                         // the previous iteration's farthest
 ///                                         // converged trial (0: off)

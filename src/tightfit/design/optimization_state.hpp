@@ -81,6 +81,10 @@ struct OptimizationIteration {
   double seconds_factorization = 0.0;
   std::optional<RemeshRecord> remesh;  ///< set when pieces were remeshed after this step
   std::optional<SnapRecord> snap;      ///< set when the line search met a snap-through
+  /// The step of this iteration crossed a snap-through on purpose: after snaps stopped
+  /// several line searches, the run accepted the shortest snapped trial (T rose by the
+  /// jump) and went on from that equilibrium with an empty L-BFGS memory.
+  bool jump = false;
 };
 
 /// L-BFGS curvature pairs, oldest first: s_k = p_{k+1} − p_k (m), y_k = ∇T_{k+1} − ∇T_k.
@@ -118,7 +122,7 @@ struct OptimizationCheckpoint {
   int iteration = 0;    ///< last accepted iteration
   VecX parameters;      ///< p (m)
   EmbeddedState state;  ///< equilibrium at p
-  LbfgsMemory memory;   ///< pairs since the last remeshing (it clears the memory)
+  LbfgsMemory memory;   ///< on the current parameters (carried across remeshings)
   std::vector<OptimizationIteration> history;
   std::optional<RemeshedDesign> remeshed;  ///< set once a remeshing succeeded
   /// The ordering the held factorization of the accepted point was analysed with

@@ -7,7 +7,9 @@
 
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/stopwatch.hpp"
-#include "tightfit/design/snap_detector.hpp"
+#include "tightfit/design/lbfgs.hpp"
+#include "tightfit/design/line_search.hpp"
+#include "tightfit/design/memory_transfer.hpp"
 
 namespace tightfit {
 namespace {
@@ -15,19 +17,23 @@ namespace {
 /// Iterations without a new attempt after a remeshing that had to be undone.
 constexpr int kRemeshRetryGap = 5;
 
-/// Why a run stopped at a snap-through, and where (the last iteration's SnapRecord).
-std::string snap_stop_reason(const SnapRecord& snap, int iterations, int iteration, double value) {
+bool remeshed(const OptimizationIteration& it) { return it.remesh && it.remesh->failure.empty(); }
+
+/// T at the point a record leaves the run at (after its remeshing, if one succeeded).
+double point_value(const OptimizationIteration& it) {
+  return remeshed(it) ? it.remesh->value : it.value;
+}
+
+/// Where the last iteration's snap-through happened, for the stop reason.
+std::string snap_details(const SnapRecord& snap, int iterations, int jumps, double value) {
   std::ostringstream out;
   out.precision(3);
-  out << "snap-through: in the last " << iterations
-      << " iterations every longer step made the fit jump to another equilibrium with a "
-         "higher objective (by "
+  out << "in the last " << iterations << " iterations every longer step made the fit jump (T +"
       << snap.rise << ", " << 100.0 * snap.rise / std::max(value, 1e-300)
       << " % of T, for a step of " << 1e3 * snap.step << " mm; garment vertex " << snap.vertex;
   if (!snap.label.empty()) out << " (" << snap.label << ")";
   out << " at (" << snap.position.x() << ", " << snap.position.y() << ", " << snap.position.z()
-      << ") m moved " << 1e3 * snap.move << " mm); the pattern of iteration " << iteration
-      << " is at the edge of that jump";
+      << ") m moved " << 1e3 * snap.move << " mm); " << jumps << " jumps made";
   return out.str();
 }
 
@@ -36,61 +42,30 @@ std::string snap_stop_reason(const SnapRecord& snap, int iterations, int iterati
 PatternOptimizer::PatternOptimizer(DesignProblem& problem, PatternOptimizerOptions options)
     : problem_(problem), options_(options) {
   if (options_.max_iterations < 0 || options_.memory < 1 || options_.max_line_search < 1 ||
-      options_.stall_iterations < 1)
+      options_.stall_iterations < 1 || options_.snap_iterations < 0 || options_.snap_jumps < 0)
     throw std::invalid_argument("PatternOptimizer: iteration counts must be positive");
   if (!(options_.armijo > 0.0 && options_.armijo < 0.5))
     throw std::invalid_argument("PatternOptimizer: armijo must be in (0, 0.5)");
+  if (!(options_.max_compression >= 0.0 && options_.max_compression < 1.0))
+    throw std::invalid_argument("PatternOptimizer: max_compression must be in [0, 1)");
   if (!(options_.max_step >= 0.0) || !(options_.max_step_fraction > 0.0) ||
       !(options_.step_growth >= 0.0) || !(options_.gradient_tolerance >= 0.0) ||
       !(options_.relative_gradient_tolerance >= 0.0) ||
-      !(options_.relative_decrease_tolerance >= 0.0) || std::isnan(options_.value_tolerance))
+      !(options_.relative_decrease_tolerance >= 0.0) || !(options_.time_limit >= 0.0) ||
+      !(options_.gradient_check_tolerance >= 0.0) || std::isnan(options_.value_tolerance))
     throw std::invalid_argument("PatternOptimizer: tolerances and step limits must be >= 0");
 }
 
-double PatternOptimizer::max_point_move(const VecX& d) {
-  double m = 0.0;
-  for (Eigen::Index i = 0; i + 1 < d.size(); i += 2) m = std::max(m, std::hypot(d[i], d[i + 1]));
-  return m;
-}
-
-VecX PatternOptimizer::direction(const VecX& g) const {
-  const int m = static_cast<int>(memory_.s.size());
-  if (m == 0) return -g;
-  VecX q = g;
-  std::vector<double> alpha(m), rho(m);
-  for (int i = m - 1; i >= 0; --i) {
-    rho[i] = 1.0 / memory_.y[i].dot(memory_.s[i]);
-    alpha[i] = rho[i] * memory_.s[i].dot(q);
-    q -= alpha[i] * memory_.y[i];
-  }
-  const double gamma = memory_.s[m - 1].dot(memory_.y[m - 1]) / memory_.y[m - 1].squaredNorm();
-  q *= gamma;
-  for (int i = 0; i < m; ++i) {
-    const double beta = rho[i] * memory_.y[i].dot(q);
-    q += (alpha[i] - beta) * memory_.s[i];
-  }
-  return -q;
-}
-
-void PatternOptimizer::push_pair(const VecX& s, const VecX& y) {
-  if (!(s.dot(y) > 1e-12 * s.norm() * y.norm())) return;
-  memory_.s.push_back(s);
-  memory_.y.push_back(y);
-  if (static_cast<int>(memory_.s.size()) > options_.memory) {
-    memory_.s.erase(memory_.s.begin());
-    memory_.y.erase(memory_.y.begin());
-  }
-}
+double PatternOptimizer::max_point_move(const VecX& d) { return tightfit::max_point_move(d); }
 
 void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
-  bool remeshed = false;
-  for (const OptimizationIteration& it : checkpoint.history)
-    remeshed = remeshed || (it.remesh && it.remesh->failure.empty());
-  if (remeshed && !checkpoint.remeshed)
+  bool any_remesh = false;
+  for (const OptimizationIteration& it : checkpoint.history) any_remesh |= remeshed(it);
+  if (any_remesh && !checkpoint.remeshed)
     throw InputError("checkpoint",
                      "its history has a remeshing but it holds no remeshed "
                      "pattern (/remeshed)");
-  if (!remeshed && checkpoint.remeshed)
+  if (!any_remesh && checkpoint.remeshed)
     throw InputError("checkpoint",
                      "it holds a remeshed pattern (/remeshed) but its history "
                      "has no remeshing");
@@ -134,42 +109,16 @@ void PatternOptimizer::resume(const OptimizationCheckpoint& checkpoint) {
   problem_.set_accepted(checkpoint.parameters, checkpoint.state, checkpoint.held_ordering,
                         checkpoint.held_point);
   memory_ = checkpoint.memory;
-  while (static_cast<int>(memory_.s.size()) > options_.memory) {
-    memory_.s.erase(memory_.s.begin());
-    memory_.y.erase(memory_.y.begin());
-  }
+  lbfgs_trim(memory_, options_.memory);
   history_ = checkpoint.history;
   iteration_ = checkpoint.iteration;
   seconds_before_ = history_.back().seconds;
   resumed_ = true;
-  // The loop's counters as they were after the last record: replayed by the rule run()
-  // applies after each iteration.
-  stalled_ = 0;
-  remesh_blocked_until_ = -1;
-  for (size_t k = 1; k < history_.size(); ++k) {
-    const OptimizationIteration& prev = history_[k - 1];
-    const double before =
-        prev.remesh && prev.remesh->failure.empty() ? prev.remesh->value : prev.value;
-    update_counters(before, history_[k]);
-  }
-}
-
-void PatternOptimizer::update_counters(double value_before, const OptimizationIteration& record) {
-  const double decrease = value_before - record.value;
-  stalled_ =
-      decrease <= options_.relative_decrease_tolerance * std::abs(value_before) ? stalled_ + 1 : 0;
-  snapped_ = record.snap ? snapped_ + 1 : 0;
-  if (const auto& r = record.remesh) {
-    if (r->failure.empty()) {
-      stalled_ = 0;
-      snapped_ = 0;
-    } else {
-      remesh_blocked_until_ = record.iteration + kRemeshRetryGap;
-    }
-  }
+  jump_target_ = VecX();
 }
 
 OptimizationCheckpoint PatternOptimizer::checkpoint() const {
+  if (last_checkpoint_) return *last_checkpoint_;
   OptimizationCheckpoint c;
   c.iteration = iteration_;
   c.parameters = problem_.accepted_parameters();
@@ -182,254 +131,354 @@ OptimizationCheckpoint PatternOptimizer::checkpoint() const {
   return c;
 }
 
-OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
-                                         const std::function<bool()>& stop_requested) {
-  const auto t_start = SteadyClock::now();
-  auto elapsed = [&] { return seconds_before_ + seconds_since(t_start); };
-  OptimizationResult result;
+// ---- history-derived counters (the same for a fresh and a resumed run) ----
 
-  VecX p = problem_.accepted_parameters();
-  DesignEvaluation current = problem_.evaluate(p, true);
+int PatternOptimizer::snapped_in_a_row() const {
+  int n = 0;
+  for (auto it = history_.rbegin(); it != history_.rend(); ++it) {
+    if (remeshed(*it) || !it->snap) break;
+    ++n;
+  }
+  return n;
+}
+
+int PatternOptimizer::jumps_made() const {
+  return static_cast<int>(
+      std::count_if(history_.begin(), history_.end(), [](const auto& it) { return it.jump; }));
+}
+
+int PatternOptimizer::remesh_blocked_until() const {
+  for (auto it = history_.rbegin(); it != history_.rend(); ++it)
+    if (it->remesh && !it->remesh->failure.empty()) return it->iteration + kRemeshRetryGap;
+  return -1;
+}
+
+bool PatternOptimizer::no_progress() const {
+  const int n = options_.stall_iterations;
+  const int last = static_cast<int>(history_.size()) - 1;
+  int start = 0;  // the segment since the last remeshing or jump
+  for (int k = last; k > 0 && start == 0; --k)
+    if (remeshed(history_[static_cast<size_t>(k)]) || history_[static_cast<size_t>(k)].jump)
+      start = k;
+  if (last - start < n) return false;
+  const double before = point_value(history_[static_cast<size_t>(last - n)]);
+  const double after = point_value(history_[static_cast<size_t>(last)]);
+  return before - after <= options_.relative_decrease_tolerance * std::abs(before);
+}
+
+double PatternOptimizer::trust_radius() const {
+  return options_.max_step > 0.0 ? options_.max_step
+                                 : options_.max_step_fraction * problem_.mean_boundary_edge();
+}
+
+double PatternOptimizer::previous_move() const {
+  // How far the previous iteration's forward solves followed a step: its largest
+  // converged trial, accepted or not (none after a remeshing or a jump: new parameters
+  // or another equilibrium). Not the accepted move alone: a step shortened by the
+  // sufficient-decrease test says nothing about the solver.
+  const OptimizationIteration& last = history_.back();
+  if (history_.size() < 2 || remeshed(last) || last.jump) return 0.0;
+  return std::max(last.max_solved_move, last.max_point_move);
+}
+
+// ---- the best design ----
+
+void PatternOptimizer::note_point(const DesignEvaluation& point, bool after_remesh) {
+  if (best_iteration_ >= 0 && !(point.value < best_value_)) {
+    at_best_ = false;
+    return;
+  }
+  best_value_ = point.value;
+  best_terms_ = point.term_values;
+  best_gradient_norm_ = point.gradient.norm();
+  best_iteration_ = iteration_;
+  best_after_remesh_ = after_remesh;
+  at_best_ = true;
+  best_snapshot_.reset();
+}
+
+void PatternOptimizer::keep_best_before_rise() {
+  if (at_best_) best_snapshot_ = std::make_shared<DesignProblem::Snapshot>(problem_.snapshot());
+}
+
+void PatternOptimizer::finish_with_best(OptimizationResult& result, double last_value) {
+  result.last_value = last_value;
+  result.best_iteration = best_iteration_;
+  result.best_after_remesh = best_after_remesh_;
+  result.final_value = best_value_;
+  result.final_terms = best_terms_;
+  result.final_gradient_norm = best_gradient_norm_;
+  if (at_best_ || !best_snapshot_) return;
+  last_checkpoint_ = checkpoint();
+  problem_.restore(*best_snapshot_);
+  memory_ = {};
+  jump_target_ = VecX();
+  at_best_ = true;
+  result.best_restored = true;
+}
+
+// ---- one run ----
+
+void PatternOptimizer::record_point(OptimizationIteration& rec,
+                                    const DesignEvaluation& current) const {
+  rec.iteration = iteration_;
+  rec.value = current.value;
+  rec.term_values = current.term_values;
+  rec.gradient_norm = current.gradient.norm();
+  rec.hessian_shift = current.hessian_shift;
+  rec.adjoint_method = adjoint_method_name(current.adjoint_method);
+  rec.krylov_iterations = current.krylov_iterations;
+}
+
+DesignEvaluation PatternOptimizer::start(const std::function<double()>& elapsed,
+                                         const IterationCallback& on_iteration) {
+  last_checkpoint_.reset();
+  DesignEvaluation current = problem_.evaluate(problem_.accepted_parameters(), true);
   if (!current.ok)
     throw SolverError(
         "initial equilibrium" +
         (resumed_ ? " (resumed at iteration " + std::to_string(iteration_) + ")" : std::string()) +
         ": the starting pattern cannot be evaluated: " + current.failure);
   problem_.accept();
-  if (!resumed_) {
-    history_.clear();
-    memory_ = {};
-    iteration_ = 0;
-    OptimizationIteration first;
-    first.value = current.value;
-    first.term_values = current.term_values;
-    first.gradient_norm = current.gradient.norm();
-    first.line_search_trials = 1;
-    first.newton_iterations = current.newton_iterations;
-    first.chord_steps = current.chord_steps;
-    first.force_accepted_steps = current.force_accepted_steps;
-    first.factorizations = current.factorizations + current.adjoint_factorizations;
-    first.adjoint_method = adjoint_method_name(current.adjoint_method);
-    first.krylov_iterations = current.krylov_iterations;
-    first.seconds_assembly = current.seconds_assembly;
-    first.seconds_factorization = current.seconds_factorization;
-    first.hessian_shift = current.hessian_shift;
-    first.seconds_forward = current.seconds_forward;
-    first.seconds_objective = current.seconds_objective;
-    first.seconds_adjoint = current.seconds_adjoint;
-    first.seconds = elapsed();
-    history_.push_back(first);
-    stalled_ = 0;
-    snapped_ = 0;
-    remesh_blocked_until_ = -1;
-    if (on_iteration) on_iteration(first);
-  }
+  best_iteration_ = -1;
+  best_snapshot_.reset();
+  const bool fresh = !resumed_;
   resumed_ = true;  // a second run() continues this one
-  result.initial_value = history_.front().value;
+  if (!fresh) {
+    note_point(current, !history_.empty() && remeshed(history_.back()));
+    return current;
+  }
+  history_.clear();
+  memory_ = {};
+  iteration_ = 0;
+  jump_target_ = VecX();
+  OptimizationIteration first;
+  record_point(first, current);
+  add_trial_counters(first, current, current.seconds_forward + current.seconds_objective);
+  first.factorizations += current.adjoint_factorizations;
+  first.seconds_adjoint = current.seconds_adjoint;
+  first.seconds = elapsed();
+  history_.push_back(first);
+  note_point(current, false);
+  if (on_iteration) on_iteration(first);
+  return current;
+}
 
+std::optional<StopRule> PatternOptimizer::stop_rule(const DesignEvaluation& current,
+                                                    double run_seconds,
+                                                    const std::function<bool()>& stop_requested,
+                                                    std::ostringstream& reason,
+                                                    OptimizationResult& result) {
   const double gradient_stop =
       std::max(options_.gradient_tolerance,
                options_.relative_gradient_tolerance * history_.front().gradient_norm);
-  std::ostringstream reason;
-  for (;;) {
-    const double gnorm = current.gradient.norm();
-    if (gnorm <= gradient_stop) {
-      reason << "gradient norm " << gnorm << " <= " << gradient_stop;
-      result.converged = true;
-      break;
+  const double gnorm = current.gradient.norm();
+  if (gnorm <= gradient_stop) {
+    reason << "gradient norm " << gnorm << " <= " << gradient_stop;
+    return StopRule::kGradient;
+  }
+  if (current.value <= options_.value_tolerance) {
+    reason << "objective " << current.value << " <= " << options_.value_tolerance;
+    return StopRule::kTargetValue;
+  }
+  if (no_progress()) {
+    reason << "relative progress below " << options_.relative_decrease_tolerance << " over "
+           << options_.stall_iterations << " iterations; ";
+    try {
+      result.gradient_check =
+          check_design_gradient(problem_, problem_.accepted_parameters(), options_.gradient_check);
+    } catch (const SolverError& e) {
+      reason << "the finite-difference check failed: " << e.what();
+      return StopRule::kNoProgress;
     }
-    if (current.value <= options_.value_tolerance) {
-      reason << "objective " << current.value << " <= " << options_.value_tolerance;
-      result.converged = true;
-      break;
+    bool agree = true;
+    for (size_t k = 0; k < result.gradient_check.size(); ++k) {
+      const DirectionalCheck& c = result.gradient_check[k];
+      const double d_norm =
+          random_design_direction(problem_.num_parameters(),
+                                  options_.gradient_check.seed + static_cast<unsigned>(k))
+              .norm();
+      const double diff = std::abs(c.adjoint - c.finite_difference);
+      agree &= diff <= options_.gradient_check_tolerance *
+                           std::max(std::abs(c.adjoint), std::abs(c.finite_difference)) ||
+               diff <= gradient_stop * d_norm;
+      reason << (k ? ", " : "directional derivatives adjoint / finite difference: ") << c.adjoint
+             << " / " << c.finite_difference;
     }
-    if (stalled_ >= options_.stall_iterations) {
-      reason << "relative decrease below " << options_.relative_decrease_tolerance << " for "
-             << stalled_ << " iterations";
-      result.converged = true;
-      break;
-    }
-    if (options_.snap_iterations > 0 && snapped_ >= options_.snap_iterations) {
-      reason << snap_stop_reason(*history_.back().snap, snapped_, iteration_, current.value);
-      break;
-    }
-    if (iteration_ >= options_.max_iterations) {
-      reason << "iteration limit " << options_.max_iterations << " reached";
-      break;
-    }
-    if (stop_requested && stop_requested()) {
-      reason << "interrupted after iteration " << iteration_;
-      result.interrupted = true;
-      break;
-    }
+    return agree ? StopRule::kStationary : StopRule::kNoProgress;
+  }
+  if (options_.snap_iterations > 0 && snapped_in_a_row() >= options_.snap_iterations &&
+      jumps_made() >= options_.snap_jumps) {
+    reason << snap_details(*history_.back().snap, snapped_in_a_row(), jumps_made(), current.value)
+           << "; the pattern of iteration " << iteration_ << " is at the edge of that jump";
+    return StopRule::kSnapThrough;
+  }
+  if (iteration_ >= options_.max_iterations) {
+    reason << "iteration limit " << options_.max_iterations;
+    return StopRule::kIterationLimit;
+  }
+  if (options_.time_limit > 0.0 && run_seconds >= options_.time_limit) {
+    reason << "time limit " << options_.time_limit << " s";
+    return StopRule::kTimeLimit;
+  }
+  if (stop_requested && stop_requested()) {
+    reason << "after iteration " << iteration_;
+    return StopRule::kInterrupted;
+  }
+  return std::nullopt;
+}
 
-    const double max_step = options_.max_step > 0.0
-                                ? options_.max_step
-                                : options_.max_step_fraction * problem_.mean_boundary_edge();
-    // How far the previous iteration's forward solves followed a step: its largest
-    // converged trial, accepted or not (none after a remeshing: the parameters are new).
-    // Not the accepted move alone: a step shortened by the sufficient-decrease test says
-    // nothing about the solver, and capping by it would shrink the steps geometrically
-    // once a few line searches backtrack (the run then stops as "stalled").
-    const OptimizationIteration& last = history_.back();
-    const double previous_move =
-        history_.size() > 1 && !(last.remesh && last.remesh->failure.empty())
-            ? std::max(last.max_solved_move, last.max_point_move)
-            : 0.0;
-    OptimizationIteration rec;
-    DesignEvaluation trial;
-    VecX d;
-    double alpha = 0.0;
-    bool accepted = false;
-    bool stopped_in_line_search = false;
-    SnapDetector snaps;
-    for (int attempt = 0; attempt < 2 && !accepted && !stopped_in_line_search; ++attempt) {
-      snaps.reset();
-      if (attempt == 1) {
-        if (memory_.s.empty()) break;  // steepest descent already failed
-        memory_ = {};
-      }
-      d = direction(current.gradient);
-      double slope = current.gradient.dot(d);
-      if (!(slope < 0.0)) {  // not a descent direction: drop the memory
-        memory_ = {};
-        d = -current.gradient;
-        slope = -gnorm * gnorm;
-      }
-      const double move = max_point_move(d);
-      if (!(move > 0.0)) break;
-      alpha = memory_.s.empty() || move > max_step ? max_step / move : 1.0;
-      if (const double cap = options_.step_growth * previous_move; cap > 0.0 && alpha * move > cap)
-        alpha = cap / move;
-      for (int t = 0; t < options_.max_line_search; ++t) {
-        // A stop request ends the iteration between two trials: a hard line search can
-        // take minutes, and the last accepted iteration is what a stop keeps anyway.
-        if (t > 0 && stop_requested && stop_requested()) {
-          stopped_in_line_search = true;
-          break;
-        }
-        ++rec.line_search_trials;
-        const auto t_trial = SteadyClock::now();
-        trial = problem_.evaluate(p + alpha * d, false);
-        rec.seconds_forward += seconds_since(t_trial) - trial.seconds_objective;
-        rec.seconds_objective += trial.seconds_objective;
-        rec.newton_iterations += trial.newton_iterations;
-        rec.chord_steps += trial.chord_steps;
-        rec.force_accepted_steps += trial.force_accepted_steps;
-        rec.factorizations += trial.factorizations;
-        rec.seconds_assembly += trial.seconds_assembly;
-        rec.seconds_factorization += trial.seconds_factorization;
-        if (!trial.ok) {
-          ++rec.failed_solves;
-          alpha *= 0.5;
-          continue;
-        }
-        // The same computation as the accepted step's max_point_move below (not
-        // alpha · move, which differs from it by round-off).
-        rec.max_solved_move = std::max(rec.max_solved_move, max_point_move(VecX(alpha * d)));
-        if (trial.value <= current.value + options_.armijo * alpha * slope) {
-          const auto t_gradient = SteadyClock::now();
-          const bool gradient_ok = problem_.add_gradient(trial);
-          rec.seconds_adjoint += seconds_since(t_gradient);
-          rec.factorizations += trial.adjoint_factorizations;
-          if (gradient_ok) {
-            accepted = true;
-            break;
-          }
-          ++rec.failed_solves;
-          alpha *= 0.5;
-          continue;
-        }
-        if (const double rise = trial.value - current.value; rise > 0.0)
-          snaps.add_rising_trial(alpha, max_point_move(VecX(alpha * d)), rise, trial);
-        // Minimizer of the quadratic through T(0), T'(0) and T(α), kept in [0.1, 0.5]·α.
-        const double curvature = 2.0 * (trial.value - current.value - alpha * slope);
-        const double next = curvature > 0.0 ? -slope * alpha * alpha / curvature : 0.5 * alpha;
-        alpha = std::clamp(next, 0.1 * alpha, 0.5 * alpha);
-      }
-    }
-    if (stopped_in_line_search) {
-      problem_.restore_accepted();
-      reason << "interrupted during the line search of iteration " << iteration_ + 1 << " ("
+bool PatternOptimizer::jump(VecX& p, DesignEvaluation& current, OptimizationIteration& rec) {
+  keep_best_before_rise();
+  const VecX target = jump_target_;
+  jump_target_ = VecX();
+  const auto t0 = SteadyClock::now();
+  DesignEvaluation ev = problem_.evaluate(target, true);
+  add_trial_counters(rec, ev, seconds_since(t0));
+  if (!ev.ok) {
+    ++rec.failed_solves;
+    problem_.restore_accepted();
+    return false;
+  }
+  problem_.accept();
+  memory_ = {};
+  const VecX step = target - p;
+  p = target;
+  current = std::move(ev);
+  ++iteration_;
+  record_point(rec, current);
+  rec.step_norm = step.norm();
+  rec.max_point_move = tightfit::max_point_move(step);
+  rec.max_solved_move = rec.max_point_move;
+  rec.step_factor = 1.0;
+  rec.jump = true;
+  note_point(current, false);
+  return true;
+}
+
+bool PatternOptimizer::iterate(VecX& p, DesignEvaluation& current,
+                               const std::function<bool()>& should_stop, OptimizationIteration& rec,
+                               StopRule& rule, std::ostringstream& reason) {
+  LineSearchSettings settings;
+  settings.armijo = options_.armijo;
+  settings.max_trials = options_.max_line_search;
+  settings.trust_radius = trust_radius();
+  settings.growth_cap = options_.step_growth * previous_move();
+  settings.max_compression = options_.max_compression;
+  settings.memory = options_.memory;
+  LineSearchResult ls = line_search(problem_, p, current, memory_, settings, rec, should_stop);
+  if (ls.stopped || !ls.accepted) {
+    problem_.restore_accepted();
+    if (ls.stopped) {
+      rule = StopRule::kInterrupted;
+      reason << "during the line search of iteration " << iteration_ + 1 << " ("
              << rec.line_search_trials << " trials); the pattern of iteration " << iteration_
              << " is kept";
-      result.interrupted = true;
+    } else {
+      rule = StopRule::kLineSearchFailed;
+      reason << "last trial: " << (ls.trial.ok ? "no sufficient decrease" : ls.trial.failure);
+    }
+    return false;
+  }
+  lbfgs_push(memory_, ls.step, ls.trial.gradient - current.gradient, options_.memory);
+  problem_.accept();
+  jump_target_ = ls.jump_step.size() == p.size() ? VecX(p + ls.jump_step) : VecX();
+  p += ls.step;
+  current = std::move(ls.trial);
+  ++iteration_;
+  record_point(rec, current);
+  rec.step_norm = ls.step.norm();
+  rec.max_point_move = tightfit::max_point_move(ls.step);
+  rec.step_factor = ls.alpha;
+  rec.snap = ls.snap;
+  note_point(current, false);
+  remesh_if_degraded(p, current, rec);
+  return true;
+}
+
+void PatternOptimizer::remesh_if_degraded(VecX& p, DesignEvaluation& current,
+                                          OptimizationIteration& rec) {
+  if (!problem_.options().remesh.enabled || !problem_.can_remesh() ||
+      iteration_ <= remesh_blocked_until())
+    return;
+  const std::vector<int> degraded = problem_.degraded_pieces();
+  if (degraded.empty()) return;
+  keep_best_before_rise();
+  const ParameterPoints before = parameter_points(p, parameter_pieces(problem_.coordinates()));
+  RemeshOutcome o;
+  try {
+    o = problem_.remesh(degraded);
+  } catch (const SolverError& e) {
+    throw SolverError("remeshing after iteration " + std::to_string(iteration_) + ": " + e.what());
+  }
+  RemeshRecord r;
+  for (int k : o.pieces.empty() ? degraded : o.pieces)
+    r.pieces.push_back(problem_.simulation().garment().pattern.pieces[static_cast<size_t>(k)].name);
+  r.min_angle_before = o.min_angle_before;
+  r.min_angle_after = o.min_angle_after;
+  r.newton_iterations = o.evaluation.newton_iterations;
+  r.seconds = o.seconds;
+  r.failure = o.failure;
+  if (o.ok) {
+    current = std::move(o.evaluation);
+    p = problem_.accepted_parameters();
+    // The curvature pairs mapped onto the new boundary points (memory_transfer.hpp).
+    memory_ = transfer_memory(memory_, before,
+                              parameter_points(p, parameter_pieces(problem_.coordinates())));
+    jump_target_ = VecX();
+    note_point(current, true);
+  }
+  r.value = current.value;
+  r.term_values = current.term_values;
+  r.gradient_norm = current.gradient.norm();
+  r.parameters = o.ok ? o.parameters_after : o.parameters_before;
+  r.garment_vertices = o.ok ? o.garment_vertices_after : o.garment_vertices_before;
+  rec.remesh = std::move(r);
+}
+
+OptimizationResult PatternOptimizer::run(const IterationCallback& on_iteration,
+                                         const std::function<bool()>& stop_requested) {
+  const auto t_start = SteadyClock::now();
+  auto elapsed = [&] { return seconds_before_ + seconds_since(t_start); };
+  auto time_up = [&] {
+    return options_.time_limit > 0.0 && seconds_since(t_start) >= options_.time_limit;
+  };
+  auto should_stop = [&] { return (stop_requested && stop_requested()) || time_up(); };
+  OptimizationResult result;
+  DesignEvaluation current = start(elapsed, on_iteration);
+  result.initial_value = history_.front().value;
+  VecX p = problem_.accepted_parameters();
+  std::ostringstream reason;
+  reason.precision(4);
+  for (;;) {
+    if (const auto rule =
+            stop_rule(current, seconds_since(t_start), stop_requested, reason, result)) {
+      result.rule = *rule;
       break;
     }
-    if (!accepted) {
-      problem_.restore_accepted();
-      reason << "line search failed (no decrease of the objective; last trial: "
-             << (trial.ok ? "no sufficient decrease" : trial.failure) << ")";
+    OptimizationIteration rec;
+    const bool want_jump = options_.snap_iterations > 0 &&
+                           snapped_in_a_row() >= options_.snap_iterations &&
+                           jump_target_.size() == p.size();
+    if (want_jump && !jump(p, current, rec)) {
+      result.rule = StopRule::kSnapThrough;
+      reason << "the jump through the snap-through failed: "
+             << "the equilibrium beyond it could not be evaluated";
       break;
     }
-
-    const VecX step = alpha * d;
-    push_pair(step, trial.gradient - current.gradient);
-    problem_.accept();
-    p += step;
-    const double value_before = current.value;
-    current = std::move(trial);
-    ++iteration_;
-
-    rec.iteration = iteration_;
-    rec.value = current.value;
-    rec.term_values = current.term_values;
-    rec.gradient_norm = current.gradient.norm();
-    rec.step_norm = step.norm();
-    rec.max_point_move = max_point_move(step);
-    rec.step_factor = alpha;
-    rec.hessian_shift = current.hessian_shift;
-    rec.adjoint_method = adjoint_method_name(current.adjoint_method);
-    rec.krylov_iterations = current.krylov_iterations;
-    rec.snap = snaps.record();
-
-    if (problem_.options().remesh.enabled && problem_.can_remesh() &&
-        iteration_ > remesh_blocked_until_) {
-      const std::vector<int> degraded = problem_.degraded_pieces();
-      if (!degraded.empty()) {
-        RemeshOutcome o;
-        try {
-          o = problem_.remesh(degraded);
-        } catch (const SolverError& e) {
-          throw SolverError("remeshing after iteration " + std::to_string(iteration_) + ": " +
-                            e.what());
-        }
-        RemeshRecord r;
-        for (int k : o.pieces.empty() ? degraded : o.pieces)
-          r.pieces.push_back(
-              problem_.simulation().garment().pattern.pieces[static_cast<size_t>(k)].name);
-        r.min_angle_before = o.min_angle_before;
-        r.min_angle_after = o.min_angle_after;
-        r.newton_iterations = o.evaluation.newton_iterations;
-        r.seconds = o.seconds;
-        r.failure = o.failure;
-        if (o.ok) {
-          current = std::move(o.evaluation);
-          p = problem_.accepted_parameters();
-          memory_ = {};
-          r.value = current.value;
-          r.term_values = current.term_values;
-          r.gradient_norm = current.gradient.norm();
-          r.parameters = o.parameters_after;
-          r.garment_vertices = o.garment_vertices_after;
-        } else {
-          r.value = current.value;
-          r.term_values = current.term_values;
-          r.gradient_norm = current.gradient.norm();
-          r.parameters = o.parameters_before;
-          r.garment_vertices = o.garment_vertices_before;
-        }
-        rec.remesh = std::move(r);
-      }
+    if (!want_jump && !iterate(p, current, should_stop, rec, result.rule, reason)) {
+      if (result.rule == StopRule::kInterrupted && time_up()) result.rule = StopRule::kTimeLimit;
+      break;
     }
-    update_counters(value_before, rec);
     rec.seconds = elapsed();
     history_.push_back(rec);
     if (on_iteration) on_iteration(rec);
   }
-  result.stop_reason = reason.str();
+  result.converged = stop_rule_converged(result.rule);
+  result.interrupted = result.rule == StopRule::kInterrupted;
+  result.stop_reason = stop_rule_words(result.rule) + " (" + reason.str() + ")";
   result.iterations = iteration_;
-  result.final_value = current.value;
+  finish_with_best(result, current.value);
   result.seconds = seconds_since(t_start);
   return result;
 }

@@ -37,4 +37,11 @@ std::optional<SnapRecord> SnapDetector::record() const {
   return out;
 }
 
+std::optional<double> SnapDetector::shortest_snapped_alpha() const {
+  std::optional<double> out;
+  for (const Trial& t : trials_)
+    if (t.snapped && (!out || t.alpha < *out)) out = t.alpha;
+  return out;
+}
+
 }  // namespace tightfit

@@ -31,6 +31,9 @@ class SnapDetector {
   /// The snap met since reset(), if any: the count of snapped trials and the shortest
   /// snapped trial's rise, step and equilibrium move.
   std::optional<SnapRecord> record() const;
+  /// The step factor of the shortest snapped trial (nullopt: no snap): a step that lands
+  /// on the other equilibrium (PatternOptimizer jumps there when the snaps persist).
+  std::optional<double> shortest_snapped_alpha() const;
 
  private:
   struct Trial {
