@@ -37,11 +37,11 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
                                                ShapeOperatorKind pressure_operator, RunState& state,
                                                const Pattern* initial_pattern = nullptr);
 
-/// result.json's "run": {"command", "version", "date" (UTC, ISO 8601)}.
 /// Marks iteration `best` of a history.json document: "best_iteration" at the top and
 /// "best": true on its record.
 void mark_best_iteration(nlohmann::json& history, int best);
 
+/// result.json's "run": {"command", "version", "date" (UTC, ISO 8601)}.
 nlohmann::json run_identity_json(const std::string& command);
 
 /// The report's run summary from a fit run's state (command, scene, version, date and,
