@@ -27,6 +27,7 @@ import datetime
 import json
 import os
 import platform
+import shutil
 import signal
 import subprocess
 import sys
@@ -119,7 +120,13 @@ def command_of(r, binary, folder, time_limit, own_time_limit):
 def run_row(r, binary, work, time_limit):
     """Runs one row in WORK/ID and writes WORK/ID/runner.json."""
     folder = os.path.join(work, r["id"])
-    os.makedirs(folder, exist_ok=True)
+    # A fresh folder: tightfit grade would skip a body graded there or resume its checkpoint.
+    if os.path.isdir(folder):
+        if os.listdir(folder) and not os.path.isfile(os.path.join(folder, "runner.json")):
+            raise SystemExit(f"table1: {folder} exists and is not a run of bench/table1.py: "
+                             "give another --work")
+        shutil.rmtree(folder)
+    os.makedirs(folder)
     subcommand = "grade" if r["body"] else "optimize"
     own_limit = bool(time_limit) and supports_time_limit(binary, subcommand)
     cmd = command_of(r, binary, folder, time_limit, own_limit)
@@ -129,6 +136,10 @@ def run_row(r, binary, work, time_limit):
     record["load_average_at_start"] = load_average()
     record["machine"] = machine()
     record["commit"] = commit()
+    record["returncode"] = None  # until the run ends
+    runner_file = os.path.join(folder, "runner.json")
+    with open(runner_file, "w") as f:
+        json.dump(record, f, indent=1)
     start = time.monotonic()
     stopped = False
     with open(log_path, "w") as log:
@@ -153,7 +164,7 @@ def run_row(r, binary, work, time_limit):
         with open(log_path) as f:
             lines = [line.rstrip() for line in f if line.strip()]
         record["error"] = " / ".join(lines[-3:]) or f"exit code {proc.returncode}"
-    with open(os.path.join(folder, "runner.json"), "w") as f:
+    with open(runner_file, "w") as f:
         json.dump(record, f, indent=1)
     return record
 
@@ -187,6 +198,9 @@ def parse_row(r, folder):
     with open(runner_file) as f:
         runner = json.load(f)
     out = {"runner": runner}
+    if runner.get("returncode", 0) is None:
+        out["error"] = "the runner was stopped before this row's run ended"
+        return out
     files = outputs_folder(r, folder)
     try:
         with open(os.path.join(files, "result.json")) as f:

@@ -66,8 +66,11 @@ class Report(unittest.TestCase):
         write(self.work / "pants_stretch" / "runner.json",
               {"row": "pants_stretch", "returncode": 2, "wall_seconds": 3.0,
                "error": "tightfit: scene.json: /body: missing | bad"})
+        write(self.work / "pants_sliding" / "runner.json",
+              {"row": "pants_sliding", "returncode": None})  # the runner itself was killed
         self.out = self.work / "results.md"
-        rows = "cylinder_tapered,wetsuit_kid,sphere_pressure,pants_stretch,mask_pressure"
+        rows = ("cylinder_tapered,wetsuit_kid,sphere_pressure,pants_stretch,pants_sliding,"
+                "mask_pressure")
         self.assertEqual(table1.main(["--report-only", str(self.work), "--rows", rows,
                                       "--out", str(self.out)]), 0)
         self.text = self.out.read_text()
@@ -96,9 +99,14 @@ class Report(unittest.TestCase):
         self.assertEqual(cells[4], "**failed**")
         self.assertIn("/body: missing \\| bad", cells[10])
 
+    def test_a_row_whose_runner_was_killed_is_failed(self):
+        cells = self.rows["Sliding pants (Fig. 7)"]
+        self.assertEqual(cells[4], "**failed**")
+        self.assertIn("stopped before this row's run ended", cells[10])
+
     def test_rows_not_run_are_named(self):
         self.assertEqual(self.rows["Mask pressure (Fig. 6)"][4], "not run")
-        self.assertEqual(self.rows["Sliding pants (Fig. 7)"][4], "not run")
+        self.assertEqual(self.rows["Pants shape (Fig. 4)"][4], "not run")
         header = [line for line in self.text.splitlines() if "**not run**" in line][0]
         self.assertIn("mask_pressure", header)
         self.assertIn("stocking_graduated", header)
