@@ -95,17 +95,22 @@ def _matching(toks, i, open_, close):
     return len(toks) - 1
 
 
+def _without_template(words):
+    """`words` without a leading `template <...>`."""
+    if words[:2] != ["template", "<"]:
+        return words
+    depth = 0
+    for k, w in enumerate(words):
+        depth += (w == "<") - (w == ">")
+        if depth == 0 and k > 0:
+            return words[k + 1:]
+    return []
+
+
 def _function_name(header):
     """The (qualified) name of the function whose definition a declaration header starts,
     or None when the header is not a function's (an initializer, a lambda, an enum, ...)."""
-    words = [t for t, _ in header]
-    if words[:2] == ["template", "<"]:
-        depth = 0
-        for k, w in enumerate(words):
-            depth += (w == "<") - (w == ">")
-            if depth == 0 and k > 0:
-                words = words[k + 1:]
-                break
+    words = _without_template([t for t, _ in header])
     if not words or words[0] in _KEYWORDS_NOT_FUNCTIONS or words[0] in _CONTROL:
         return None
     for k, w in enumerate(words):
@@ -150,20 +155,26 @@ def functions(text):
             elif t == "{":
                 close = _matching(toks, i, "{", "}")
                 words = [w for w, _ in header]
+                # A braced list inside parentheses (a default argument `= {}`, a member
+                # initializer `x_(a, {})`) or a braced member initializer `x_{a}` belongs
+                # to the header.
+                open_parens = words.count("(") - words.count(")")
                 member_init = (len(header) >= 2 and re.match(r"[A-Za-z_]\w*$", header[-1][0])
                                and header[-2][0] in (",", ":") and ")" in words and ":" in words)
-                if member_init:
+                if open_parens > 0 or member_init:
                     header.extend(toks[i:close + 1])
                     i = close + 1
                     continue
-                if words and words[0] in ("namespace", "extern"):
+                if words and (words[0] == "namespace" or
+                              (words[0] == "extern" and "(" not in words)):
                     scan(i + 1, close, scope)
                     header = []
                     i = close + 1
                     continue
-                if words and words[0] in ("class", "struct", "union") and "(" not in words \
-                        and "=" not in words:
-                    name = next((w for w in words[1:] if re.match(r"[A-Za-z_]\w*$", w)
+                kind = _without_template(words)
+                if kind and kind[0] in ("class", "struct", "union") and "(" not in kind \
+                        and "=" not in kind:
+                    name = next((w for w in kind[1:] if re.match(r"[A-Za-z_]\w*$", w)
                                  and w not in ("final", "alignas")), "")
                     scan(i + 1, close, scope + [name])
                     header = []
@@ -174,6 +185,14 @@ def functions(text):
                     last = name.split("::")[-1]
                     name_line = next((ln for w, ln in header if w == last.lstrip("~")), header[0][1])
                     found.append(("::".join(scope + [name]), name_line, toks[close][1]))
+                elif header and kind and kind[0] not in _KEYWORDS_NOT_FUNCTIONS and \
+                        any(w == "[" for w, _ in toks[i:close]):
+                    # A variable initialized with lambdas (a command's registration): its
+                    # code counts like a function's, under the variable's name.
+                    before = words[:words.index("=")] if "=" in words else words
+                    ids = [w for w in before if re.match(r"[A-Za-z_]\w*$", w)]
+                    if ids:
+                        found.append(("::".join(scope + [ids[-1]]), header[0][1], toks[close][1]))
                 header = []
                 i = close + 1
                 continue

@@ -51,6 +51,29 @@ class Bar : public Base {
   int v_{0};
 };
 
+extern "C" void on_signal(int signal) {
+  if (signal) {
+    stop();
+  }
+}
+
+template <int Dim>
+struct Metric {
+  double norm(const Vec& v, const Options& o = {}) const {
+    return v.norm();
+  }
+};
+
+Baz::Baz(const Garment& g)
+    : regions_(g, {}, kSource) {
+  init();
+}
+
+const Registration kCommand{
+    "name", [](App& app) {
+      app.run();
+    }};
+
 }  // namespace tightfit
 '''
 
@@ -64,6 +87,10 @@ class FunctionFinder(unittest.TestCase):
             "Foo::twice": (27, 29),
             "Bar::operator()": (33, 33),
             "Bar::value": (35, 37),
+            "on_signal": (43, 47),
+            "Metric::norm": (51, 53),
+            "Baz::Baz": (56, 59),
+            "kCommand": (61, 64),
         })
 
     def test_comments_and_literals_keep_their_lines(self):
