@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "tightfit/common/error.hpp"
 
@@ -25,15 +26,55 @@ TEST(SceneSpec, EveryExampleParses) {
   for (const auto& file : scenes) EXPECT_NO_THROW(read_scene(file)) << file;
 }
 
-TEST(SceneSpec, EveryExampleValidatesAgainstTheSchema) {
+std::string error_of(const std::string& text);
+
+/// Validates `file` against the schema's definition `def` ("" for a whole scene).
+int validate(const std::filesystem::path& file, const std::string& def = "") {
   const std::string schema = std::string(TIGHTFIT_SOURCE_DIR) + "/schema/scene.schema.json";
-  for (const auto& file : example_scenes()) {
-    const std::string cmd =
-        "/usr/bin/python3 -c \"import json,sys,jsonschema; "
-        "jsonschema.validate(json.load(open(sys.argv[2])), json.load(open(sys.argv[1])))\" '" +
-        schema + "' '" + file.string() + "'";
-    EXPECT_EQ(std::system(cmd.c_str()), 0) << file;
+  const std::string cmd =
+      "/usr/bin/python3 -c \"import json,sys,jsonschema; s = json.load(open(sys.argv[1])); "
+      "d = sys.argv[3]; s = {'\\$ref': '#/\\$defs/' + d, '\\$defs': s['\\$defs']} if d else s; "
+      "jsonschema.Draft202012Validator(s).validate(json.load(open(sys.argv[2])))\" '" +
+      schema + "' '" + file.string() + "' '" + def + "'";
+  return std::system(cmd.c_str());
+}
+
+TEST(SceneSpec, EveryExampleValidatesAgainstTheSchema) {
+  std::vector<std::filesystem::path> scenes = example_scenes();
+  scenes.push_back(kExamples / "grading/left_leg.json");
+  for (const auto& e : std::filesystem::directory_iterator(
+           std::filesystem::path(TIGHTFIT_SOURCE_DIR) / "tests/scene/data/schema_corpus"))
+    if (e.path().extension() == ".json") scenes.push_back(e.path());
+  for (const auto& file : scenes) EXPECT_EQ(validate(file), 0) << file;
+}
+
+TEST(SceneSpec, EveryLayoutFileValidatesAgainstTheSchema) {
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(kExamples / "layouts")) {
+    EXPECT_EQ(validate(e.path(), "layout"), 0) << e.path();
+    ++files;
   }
+  EXPECT_GE(files, 2);
+}
+
+TEST(SceneSpec, TheSchemaRejectsWhatTheReaderRejects) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tightfit_schema_test";
+  std::filesystem::create_directories(dir);
+  const auto rejected = [&](const std::string& text) {
+    const std::filesystem::path file = dir / "scene.json";
+    std::ofstream(file) << text;
+    EXPECT_NE(error_of(text), "") << text;
+    return validate(file) != 0;
+  };
+  EXPECT_TRUE(rejected(
+      R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {"scal": 1}}})"));
+  EXPECT_TRUE(rejected(
+      R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}, "sleeve": {}}})"));
+  EXPECT_TRUE(rejected(
+      R"({"body": {"generator": "sphere", "radius": 0.1, "mesh": "a.obj"}, "garment": {"cover": {}}})"));
+  EXPECT_TRUE(rejected(
+      R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": {"cover": {}}, "fabric": {"poisson_ratio": 1.5}})"));
+  std::filesystem::remove_all(dir);
 }
 
 std::string error_of(const std::string& text) {

@@ -1,15 +1,32 @@
 #include "tightfit/common/json_fields.hpp"
 
+#include "tightfit/common/json_key_observer.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 namespace tightfit {
 namespace {
 
 std::string type_name(const nlohmann::json& j) { return j.type_name(); }
 
+thread_local JsonKeyObserver key_observer;
+
+/// Marks `key` as known and reports it to the thread's observer, if any.
+void ask(std::set<std::string>& known, const std::string& source, const std::string& path,
+         const std::string& key) {
+  known.insert(key);
+  if (key_observer) key_observer(source, path, key);
+}
+
 }  // namespace
+
+ScopedJsonKeyObserver::ScopedJsonKeyObserver(JsonKeyObserver observer)
+    : previous_(std::exchange(key_observer, std::move(observer))) {}
+
+ScopedJsonKeyObserver::~ScopedJsonKeyObserver() { key_observer = std::move(previous_); }
 
 JsonFields::JsonFields(const nlohmann::json& object, std::string source, std::string path)
     : object_(&object), source_(std::move(source)), path_(std::move(path)) {
@@ -21,7 +38,7 @@ JsonFields::JsonFields(const nlohmann::json& object, std::string source, std::st
 std::string JsonFields::child_path(const std::string& key) const { return path_ + "/" + key; }
 
 bool JsonFields::has(const std::string& key) {
-  known_.insert(key);
+  ask(known_, source_, path_, key);
   return object_->contains(key);
 }
 
@@ -31,7 +48,7 @@ void JsonFields::fail(const std::string& what, const std::string& key) const {
 }
 
 const nlohmann::json& JsonFields::get(const std::string& key, const char* expected, bool required) {
-  known_.insert(key);
+  ask(known_, source_, path_, key);
   static const nlohmann::json null_json;
   auto it = object_->find(key);
   if (it == object_->end()) {
