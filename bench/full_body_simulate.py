@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Full-body-size simulation (issue 10's full-body benchmark): a cold-start `tightfit
+"""Full-body-size simulation benchmark: a cold-start `tightfit
 simulate` of the 12-piece wetsuit (examples/optimize_wetsuit_regular.json) on the
 MakeHuman regular body at a resolution chosen on the command line.
 

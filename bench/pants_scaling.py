@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Scaling and mesh convergence of pattern optimization (issue 10's scaling benchmark).
+"""Scaling and mesh convergence of pattern optimization: a benchmark.
 
 Runs `tightfit optimize` on examples/optimize_pants_stretch.json with the garment edge
 length set to each value of --edges (mm) and the body surface kept at the example's

@@ -1,4 +1,4 @@
-/// Poses (issue #14): what a pose costs next to a forward solve, on the sliding pants
+/// Poses: what a pose costs next to a forward solve, on the sliding pants
 /// of examples/optimize_pants_sliding.json (the legs body, four stride poses). At the
 /// neutral equilibrium of the initial pattern:
 ///  * PoseBody: skinning one pose of the body (weights transferred beforehand);

@@ -7,7 +7,7 @@ find_package(Threads REQUIRED)
 # through Debian's libblas.so.3 alternative at run time (common/parallel.hpp).
 
 # OpenSubdiv: bookworm's CMake config names a static library that is not shipped
-# (DESIGN.md §6), so the header and the shared CPU library are found directly.
+# (docs/design.md §6), so the header and the shared CPU library are found directly.
 find_path(OPENSUBDIV_INCLUDE_DIR opensubdiv/bfr/refinerSurfaceFactory.h REQUIRED)
 find_library(OPENSUBDIV_CPU_LIBRARY NAMES osdCPU REQUIRED)
 add_library(tightfit_opensubdiv INTERFACE)

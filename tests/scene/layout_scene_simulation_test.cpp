@@ -1,4 +1,4 @@
-/// Issue "Garment layouts and initial patterns", acceptance: `simulate` converges on the
+/// Layouts and initial patterns end to end: `simulate` converges on the
 /// two-panel sleeve, the three-piece sphere cover and the four-piece pants with the
 /// pieces scaled down 10 %. Each scene is an example in examples/, loaded and solved
 /// exactly as `tightfit simulate` does (load_scene + make_simulation + solve).

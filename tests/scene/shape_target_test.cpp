@@ -79,7 +79,7 @@ TEST(ShapeTarget, CoarseTargetIsSampledSoTheDistanceIsContinuous) {
   EXPECT_LT(sampled.largest_jump, 3.0 * step);  // |∇f| is about 1: no jump
   EXPECT_LT(sampled.largest_value, 0.01);       // the facets' depth at most
 
-  // The mesh's vertices alone (what the target used to be): far from every vertex,
+  // The mesh's vertices alone (no surface sampling): far from every vertex,
   // the nearest-vertex fallback jumps (0.5 mm here) where the nearest vertex changes.
   const ImlsSurface vertices_only(coarse.vertices, vertex_normals(coarse), spec.radius);
   const Walk bare = walk(vertices_only, path);

@@ -1,4 +1,4 @@
-/// Analytic pressure checks on rigid bodies whose curvature varies (issue 15, item 7):
+/// Analytic pressure checks on rigid bodies whose curvature varies:
 /// a sleeve on a truncated cone (radius varying along the axis) and on an elliptic
 /// cylinder (curvature varying around it). Laplace's law with the local principal
 /// curvatures gives the pressure, p = tr(T Λ) = κ_hoop τᵀ T τ (the meridian / axial

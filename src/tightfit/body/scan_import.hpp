@@ -1,5 +1,5 @@
 #pragma once
-/// Body scans as they come (issue 13): several surfaces in one file, files in
+/// Body scans as they come: several surfaces in one file, files in
 /// millimetres or centimetres, and (scan_repair.hpp) duplicate and non-manifold
 /// elements, small holes, a million triangles. Every step reports what it did as a
 /// warning (prefixed with the file's name).

@@ -1,10 +1,10 @@
 #pragma once
-/// Repairs of a scanned body surface (issue 13, CGAL Polygon Mesh Processing, GPL-3):
+/// Repairs of a scanned body surface (CGAL Polygon Mesh Processing, GPL-3):
 /// duplicate, degenerate and non-manifold elements, and small holes. scan_import.hpp
 /// puts them together with the choice of the body's component and its units. A scan of
 /// a million triangles needs no decimation: the isotropic remeshing of
-/// surface_remeshing.hpp takes it to the simulation resolution in about 20 s (README,
-/// "Robustness"). Shapes: a TriMesh has vertices n×3 (coordinates) and faces m×3
+/// surface_remeshing.hpp takes it to the simulation resolution in about 20 s
+/// (docs/benchmarks.md). Shapes: a TriMesh has vertices n×3 (coordinates) and faces m×3
 /// (vertex indices, counter-clockwise seen from outside).
 #include <string>
 #include <vector>

@@ -27,8 +27,8 @@ Fn loaded_symbol(const char* name) {
 
 /// OpenBLAS's worker threads spin (sched_yield) for 2^28 cycles, about 0.1 s, after each
 /// BLAS call before they sleep. On two cores the spinning thread takes turns on the
-/// cores of tightfit's own loop threads between factorizations (session 19, c0 pants
-/// scene: 4–7 % of the wall time, half the system time). Unless the user set
+/// cores of tightfit's own loop threads between factorizations (measured on the pants
+/// example: 4–7 % of the wall time, half the system time). Unless the user set
 /// OPENBLAS_THREAD_TIMEOUT, OpenBLAS re-reads it as 20 (2^20 cycles, about 0.4 ms) and
 /// restarts its thread pool once, through its exported openblas_read_env,
 /// blas_thread_shutdown_ and blas_thread_init; the environment is left as it was.

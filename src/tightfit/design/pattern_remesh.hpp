@@ -1,5 +1,5 @@
 #pragma once
-/// Remeshing of degraded pattern pieces during optimization (issue #5 item 6).
+/// Remeshing of degraded pattern pieces during optimization.
 ///
 /// As the optimizer moves the boundary points, the biharmonic coordinates drag the
 /// interior along and triangles can degrade (small angles, tiny or inverted elements).

@@ -1,5 +1,5 @@
 #pragma once
-/// Test garments that need no layout machinery (issue "Forward simulation", item 5):
+/// Test garments that need no layout machinery:
 /// a sleeve (tube) wrapped around a cylinder and a closed cover of a whole body, both
 /// generated directly on the limit surface with their rest shape scaled down.
 #include "tightfit/garment/garment.hpp"

@@ -146,8 +146,8 @@ void write_grade_report(const std::filesystem::path& file, const GradeSummary& s
     }
     h << "</table>\n<p>Body circumference at each level (cm, on the body before the garment "
          "presses it) and the pattern's negative ease there, (pattern − body) / body; the "
-         "levels are those of each body's measurement table (README, \"Measurements and "
-         "negative ease\").</p>\n";
+         "levels are those of each body's measurement table (docs/guide/outputs.md, \"Measurements "
+         "and negative ease\").</p>\n";
   }
 
   // Seam lengths and their size-to-size change.

@@ -1,5 +1,5 @@
 #pragma once
-/// What a sewer and an engineer want to know about every seam (issue #16 item 6): the
+/// What a sewer and an engineer want to know about every seam: the
 /// sewing lengths of its two sides in the pattern (they must agree to be sewn; their
 /// difference is the mismatch), and on a fit the seam's sewn 3D length, the sewing
 /// stretch of each side (sewn length / side length) and the normal traction the cloth

@@ -1,8 +1,8 @@
 #pragma once
-/// The fit against the target surface of a shape objective (paper Sec. 5.1; issue #16
-/// item 5): the signed distance of every garment vertex to the target (the objective's
-/// own IMLS distance, imls_surface.hpp), its RMS and maximum for result.json, and the
-/// per-face distance map of the report.
+/// The fit against the target surface of a shape objective (paper Sec. 5.1): the signed
+/// distance of every garment vertex to the target (the objective's own IMLS distance,
+/// imls_surface.hpp), its RMS and maximum for result.json, and the per-face distance map
+/// of the report.
 ///
 /// Units: distances in m inside, mm in the JSON and the face field.
 #include <filesystem>
