@@ -69,13 +69,10 @@ LINK_FILES = ["README.md", "CONTRIBUTING.md", "CHANGELOG.md"]
 LINK_ROOT = "docs"
 # Documents of other branches linked before they land (see the module comment).
 PENDING = {
-    "docs/results.md",
     "docs/files.md",
-    "docs/optimization.md",
-    "docs/api.md",
-    "docs/scene-reference.md",
 }
 
+HTML_ANCHOR = re.compile(r"<a\s+(?:id|name)=\"([^\"]+)\"")
 FENCE = re.compile(r"^\s*(```|~~~)")
 INLINE_LINK = re.compile(r"!?\[(?:[^\[\]]|\[[^\[\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 REFERENCE_DEF = re.compile(r"^\s{0,3}\[[^\]]+\]:\s*<?(\S+?)>?(?:\s+.*)?$")
@@ -149,10 +146,12 @@ def slug(heading):
 
 
 def anchors(path, cache={}):
-    """The anchors of every heading of a Markdown file (duplicates numbered -1, -2, …)."""
+    """The anchors of every heading of a Markdown file (duplicates numbered -1, -2, …) and
+    of every explicit HTML anchor (<a id="…"> or <a name="…">)."""
     if path not in cache:
         seen, result = {}, set()
         for _, line in prose_lines(read_lines(path)):
+            result.update(HTML_ANCHOR.findall(line))
             m = HEADING.match(line)
             if not m:
                 continue
