@@ -127,7 +127,7 @@ TEST(Tetrahedralize, SelfIntersectingSurfaceIsAnInputError) {
 
 TEST(Tetrahedralize, TheTetCountIsBudgetedBeforeTetGenRuns) {
   // A ball of 0.5 m radius with tetrahedra of at most a regular one of 2 cm edges: at
-  // least 0.52 m³ / 9.4e-7 m³ = 555 000 tetrahedra. Refused at once, naming the lengths.
+  // least 0.53 m³ / 9.4e-7 m³ = 564 000 tetrahedra. Refused at once, naming the lengths.
   SphereParams p;
   p.radius = 0.5;
   p.edge_length = 0.1;
@@ -138,7 +138,7 @@ TEST(Tetrahedralize, TheTetCountIsBudgetedBeforeTetGenRuns) {
     tetrahedralize_surface(ball, q);
     ADD_FAILURE() << "meshed";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("would be meshed into at least 5.5"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("would be meshed into at least 5.6"), std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("interior_edge_length"), std::string::npos) << e.what();
   }

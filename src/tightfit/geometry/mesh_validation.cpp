@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 
 #include "tightfit/common/error.hpp"
@@ -219,9 +220,11 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
             for (const int f : pairs[k])
               for (int c = 0; c < 3; ++c)
                 at += mesh.vertices.row(mesh.faces(f, c)).transpose() / 6.0;
+            char near[96];
+            std::snprintf(near, sizeof near, " intersect near (%.4g, %.4g, %.4g)", at.x(), at.y(),
+                          at.z());
             return "faces " + std::to_string(pairs[k][0]) + " and " + std::to_string(pairs[k][1]) +
-                   " intersect near (" + text::format_double(at.x()) + ", " +
-                   text::format_double(at.y()) + ", " + text::format_double(at.z()) + ")";
+                   near;
           }));
     }
   }
