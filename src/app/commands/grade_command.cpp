@@ -67,6 +67,7 @@ int gather(const GradeOptions& o, const std::vector<GradeBody>& bodies) {
   std::optional<Nest> nest;
   if (!sizes.empty()) nest = make_nest(sizes, o.nest_seam);
   OutputDirectory out(o.out, o.force, "grade");
+  out.commit_in_place();  // other invocations may be grading bodies in it right now
   write_json_atomically(out.file("grade.json"), summary.json, 2);
   write_grade_report(out.file("grade.html"), summary, nest ? &*nest : nullptr);
   std::vector<std::string> files = {"grade.json", "grade.html"};

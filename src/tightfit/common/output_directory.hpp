@@ -74,6 +74,10 @@ class OutputDirectory {
   /// the run fails, unless keep_published() was called.
   void publish(const std::string& name,
                const std::function<void(const std::filesystem::path&)>& write);
+  /// Makes commit() move the files in one by one (after checking every obstacle) instead of
+  /// swapping the folder: for a folder whose subfolders other processes may be writing
+  /// into at the same time (the grading folder, whose body folders are graded apart).
+  void commit_in_place() { in_place_ = true; }
   /// Keeps the published files (and the target) of a run that fails: its checkpoint.
   void keep_published() { keep_published_ = true; }
   const std::filesystem::path& target() const { return target_; }
@@ -95,7 +99,8 @@ class OutputDirectory {
   bool committed_ = false;
   bool keep_published_ = false;
   bool staged_inside_ = false;  ///< the staging folder is inside the target (no swap)
-  long steps_ = 0;  ///< changes made by commit() so far (its test hook counts them)
+  bool in_place_ = false;       ///< commit_in_place()
+  long steps_ = 0;              ///< changes made by commit() so far (its test hook counts them)
   std::set<std::string> published_;
 };
 
