@@ -33,11 +33,11 @@ void write_checkpoint_with_inputs(const std::filesystem::path& file,
                                   const nlohmann::json& inputs);
 
 /// Reads the checkpoint `file` of a run with `term_names`, refusing it (InputError naming
-/// the file) when its inputs differ from `inputs` (check_same_inputs) or its coordinates
-/// are absurd (check_checkpoint_coordinates).
+/// the file) when its coordinates are absurd (check_checkpoint_coordinates) or, unless
+/// `inputs` is null, when its recorded inputs differ from `*inputs` (check_same_inputs).
 OptimizationCheckpoint read_checkpoint_for(const std::filesystem::path& file,
                                            const std::vector<std::string>& term_names,
-                                           const nlohmann::json& inputs);
+                                           const nlohmann::json* inputs);
 
 /// Throws InputError naming `checkpoint_file` when a design parameter or body coordinate
 /// lies more than kMaxCoordinate (common/json_fields.hpp) from the origin.
