@@ -241,8 +241,7 @@ bool OutputDirectory::swap_into_target(const std::set<std::string>& staged) {
   struct stat target_stat {};
   std::error_code ec;
   if (staged_inside_ || in_place_ || same_file(real_, fs::current_path(ec)) ||
-      ::fstat(target_fd_, &target_stat) != 0 ||
-      target_stat.st_uid != ::geteuid())
+      ::fstat(target_fd_, &target_stat) != 0 || target_stat.st_uid != ::geteuid())
     return false;  // a shell in the folder would be left in the old one; not ours to replace
   const int staging_fd = open_folder(staging_);
   std::vector<std::string> cloned;
