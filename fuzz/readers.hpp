@@ -48,6 +48,7 @@ inline std::filesystem::path small_mesh() {
 /// terms "stretch", "seam length", "boundary spacing".
 inline const std::map<std::string, Reader>& readers() {
   static const std::map<std::string, Reader> all = {
+      {"json", {".json", [](const auto& f) { read_json_file(f.string()); }}},
       {"obj", {".obj", [](const auto& f) { read_obj_with_groups(f); }}},
       {"ply", {".ply", [](const auto& f) { read_ply(f); }}},
       {"off", {".off", [](const auto& f) { read_off(f); }}},

@@ -46,6 +46,7 @@ corpus_files() {
     stl_fuzz) ls tests/geometry/data/*.stl ;;
     vtu_fuzz) ls "$seeds/run/body/volume.vtu" ;;
     scene_fuzz) ls examples/*.json ;;
+    json_fuzz) ls examples/*.json "$seeds/run/optimize/checkpoint.json" ;;
     state_fuzz) ls "$seeds/run/optimize/state.json" ;;
     checkpoint_fuzz) ls "$seeds/run/optimize/checkpoint.json" ;;
     pieces_fuzz) ls "$seeds/run/optimize/pieces.json" ;;

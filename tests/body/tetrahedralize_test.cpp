@@ -125,6 +125,27 @@ TEST(Tetrahedralize, SelfIntersectingSurfaceIsAnInputError) {
   EXPECT_THROW(tetrahedralize_surface(both, TetQuality()), InputError);
 }
 
+TEST(Tetrahedralize, TheTetCountIsBudgetedBeforeTetGenRuns) {
+  // A ball of 0.5 m radius with tetrahedra of at most a regular one of 2 cm edges: at
+  // least 0.53 m³ / 9.4e-7 m³ = 564 000 tetrahedra. Refused at once, naming the lengths.
+  SphereParams p;
+  p.radius = 0.5;
+  p.edge_length = 0.1;
+  const TriMesh ball = sphere_surface(p);
+  TetQuality q;
+  q.max_volume = regular_tet_volume(0.02);
+  try {
+    tetrahedralize_surface(ball, q);
+    ADD_FAILURE() << "meshed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("would be meshed into at least 5.6"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("interior_edge_length"), std::string::npos) << e.what();
+  }
+  q.max_volume = regular_tet_volume(0.2);  // 555 times fewer: meshed
+  EXPECT_GT(tetrahedralize_surface(ball, q).num_tets(), 0);
+}
+
 TEST(Tetrahedralize, ConstraintsOutsideTheSurfaceAreInputErrors) {
   const TriMesh surface = small_sphere();
   Points3 outside(1, 3);

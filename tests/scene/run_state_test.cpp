@@ -20,7 +20,7 @@ const double kAwkward[] = {0.1,
                            -2.0 / 7.0,
                            1e-300,
                            5e-324,
-                           std::numeric_limits<double>::max(),
+                           std::nextafter(1000.0, 0.0),
                            0.30000000000000004,
                            std::nextafter(1.0, 2.0)};
 
@@ -294,6 +294,22 @@ TEST(RunState, MalformedDocumentsNameTheJsonPath) {
   no_body.erase("body");
   EXPECT_NE(read_error(no_body).find("body"), std::string::npos);
   EXPECT_NE(read_error(nlohmann::json::array()).find("expected a JSON object"), std::string::npos);
+}
+
+TEST(RunState, AbsurdCoordinatesAreInputErrorsNamingTheFile) {
+  nlohmann::json j = run_state_json(sample_state("simulate"));
+  j["body"][1][2] = 1e308;
+  try {
+    run_state_from_json(j, "run/state.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("run/state.json: /body/1/2: 1e+308 m is not a coordinate"),
+              std::string::npos)
+        << e.what();
+  }
+  j = run_state_json(sample_state("simulate"));
+  j["garment"][0] = {3, 1e300, 0.25};
+  EXPECT_THROW(run_state_from_json(j, "run/state.json"), InputError);
 }
 
 TEST(RunState, FileErrorsNameTheFile) {

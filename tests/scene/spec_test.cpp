@@ -141,4 +141,29 @@ TEST(SceneSpec, ErrorsNameTheFileAndJsonPath) {
       std::string::npos);
 }
 
+TEST(SceneSpec, NullsAndPhysicsBeyondReasonAreErrorsNamingTheJsonPath) {
+  auto with = [](const std::string& key, const nlohmann::json& value) {
+    auto j = nlohmann::json::parse(kGood);
+    j[key] = value;
+    return j.dump();
+  };
+  EXPECT_EQ(error_of(R"({"body": null, "garment": {"cover": {}}})"),
+            "bad.json: /body: is null (expected an object)");
+  EXPECT_EQ(error_of(R"({"body": {"generator": "sphere", "radius": 0.1}, "garment": null})"),
+            "bad.json: /garment: is null (expected an object)");
+  for (const char* section : {"fabric", "body_material", "patterns", "solver"})
+    EXPECT_NE(error_of(with(section, nullptr)).find(std::string("/") + section + ": is null"),
+              std::string::npos)
+        << section;
+  EXPECT_EQ(error_of(with("fabric", {{"youngs_modulus", 1e308}})),
+            "bad.json: /fabric/youngs_modulus: is 1e+308, beyond ±1e+15 (no quantity of a scene "
+            "in SI units is that large)");
+  EXPECT_NE(error_of(with("body_material", {{"youngs_modulus", 1e14}}))
+                .find("/body_material/youngs_modulus: is 1e+14, more than 1e+12"),
+            std::string::npos);
+  EXPECT_NE(error_of(with("solver", {{"max_iterations", 4294967296}}))
+                .find("/solver/max_iterations: is 4294967296, out of range"),
+            std::string::npos);
+}
+
 }  // namespace tightfit::scene_spec_test

@@ -14,6 +14,7 @@
 
 #include "cli_checks.hpp"
 #include "command_registry.hpp"
+#include "resume_check.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/adjoint_check.hpp"
 #include "tightfit/design/optimization_checkpoint.hpp"
@@ -67,7 +68,7 @@ void run_check_gradient(const CheckArgs& args) {
   // Read before the initial solve, so that a bad file fails at once.
   std::optional<OptimizationCheckpoint> at;
   const std::filesystem::path at_file = std::filesystem::path(args.at) / "checkpoint.json";
-  if (!args.at.empty()) at = read_checkpoint(at_file, names);
+  if (!args.at.empty()) at = read_checkpoint_for(at_file, names, nullptr);
   const NewtonReport initial = sim->solve();
   std::printf(
       "tightfit check-gradient: %d garment vertices, initial equilibrium in %d Newton "

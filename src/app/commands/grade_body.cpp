@@ -31,7 +31,7 @@ class FolderLock {
  public:
   explicit FolderLock(const fs::path& folder) {
     const fs::path file = folder / kLockFile;
-    fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd_ < 0) throw InputError(folder.string(), "cannot create the lock file " + file.string());
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       ::close(fd_);

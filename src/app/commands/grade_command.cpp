@@ -32,6 +32,7 @@
 #include "tightfit/common/nearest_word.hpp"
 #include "tightfit/common/output_directory.hpp"
 #include "tightfit/common/parallel.hpp"
+#include "tightfit/common/staging_folder.hpp"
 #include "tightfit/grade/report.hpp"
 #include "tightfit/grade/summary.hpp"
 #include "tightfit/patterns/nest.hpp"
@@ -66,6 +67,7 @@ int gather(const GradeOptions& o, const std::vector<GradeBody>& bodies) {
   std::optional<Nest> nest;
   if (!sizes.empty()) nest = make_nest(sizes, o.nest_seam);
   OutputDirectory out(o.out, o.force, "grade");
+  out.commit_in_place();  // other invocations may be grading bodies in it right now
   write_json_atomically(out.file("grade.json"), summary.json, 2);
   write_grade_report(out.file("grade.html"), summary, nest ? &*nest : nullptr);
   std::vector<std::string> files = {"grade.json", "grade.html"};
@@ -96,15 +98,19 @@ int gather(const GradeOptions& o, const std::vector<GradeBody>& bodies) {
 void prepare_grade_folder(const fs::path& dir, bool force) {
   std::error_code ec;
   if (!dir.empty() && !fs::exists(dir, ec)) {
-    const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
-    fs::create_directories(parent, ec);
-    const fs::path fresh =
-        parent / (dir.filename().string() + ".tmp." + std::to_string(::getpid()) + ".0");
-    fs::create_directory(fresh, ec);
-    if (!ec) {
-      mark_output_folder(fresh, "grade");
-      fs::rename(fresh, dir, ec);  // fails when another invocation was first: fine
-      fs::remove_all(fresh, ec);
+    const fs::path real = fs::weakly_canonical(fs::absolute(dir), ec);
+    fs::create_directories(real.parent_path(), ec);
+    try {
+      const StagingFolder staging = make_staging_folder(real, real.parent_path());
+      const fs::path fresh = staging.path / "new";
+      if (fs::create_directory(fresh, ec)) {
+        mark_output_folder(fresh, "grade");
+        fs::rename(fresh, real, ec);  // fails when another invocation was first: fine
+      }
+      ::close(staging.fd);
+      fs::remove_all(staging.path, ec);
+    } catch (const InputError&) {
+      // no staging folder beside it: prepare_output_folder below says what is wrong
     }
   }
   prepare_output_folder(dir, force);

@@ -1,5 +1,6 @@
 #include "optimize_run.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -9,10 +10,12 @@
 
 #include "kept_failure.hpp"
 #include "optimize_progress.hpp"
+#include "resume_check.hpp"
 #include "run_outputs.hpp"
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/finite_output.hpp"
+#include "tightfit/common/input_file.hpp"
 #include "tightfit/common/interrupt.hpp"
 #include "tightfit/common/output_directory.hpp"
 #include "tightfit/common/stopwatch.hpp"
@@ -37,18 +40,44 @@ struct LastCheckpoint {
   bool resumed = false;  ///< the checkpoint this run resumed from (none written since)
 };
 
+/// `word` quoted for a POSIX shell when it holds anything but safe characters.
+std::string shell_word(const std::string& word) {
+  const bool safe = !word.empty() && word.find_first_not_of(
+                                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                         "0123456789_-+=.,/:@%") == std::string::npos;
+  if (safe) return word;
+  std::string quoted = "'";
+  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+/// The command that continues a run from the checkpoint in `folder`, with the options
+/// of this one that change its result.
+std::string resume_command(const OptimizeRequest& request, const fs::path& folder) {
+  std::string command = "tightfit optimize " + shell_word(request.scene_file) + " --out " +
+                        shell_word(request.out_dir) + " --resume " + shell_word(folder.string());
+  if (request.max_iterations >= 0)
+    command += " --max-iterations " + std::to_string(request.max_iterations);
+  if (request.time_limit >= 0.0) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.17g", request.time_limit);
+    command += std::string(" --time-limit ") + seconds;
+  }
+  if (request.terse) command += " --terse";
+  return command;
+}
+
 /// "optimize failed during STAGE: WHAT; last good checkpoint: FILE (iteration N); continue
-/// with tightfit optimize SCENE --out DIR --resume FOLDER" (or that there is none).
+/// with tightfit optimize SCENE --out OUT --resume FOLDER ..." (or that there is none).
 std::string failure_message(const std::string& stage, const std::string& what,
-                            const LastCheckpoint& last, const std::string& scene_file) {
+                            const LastCheckpoint& last, const OptimizeRequest& request) {
   std::string text = "optimize failed during " + stage + ": " + what + "; ";
   if (last.file.empty()) return text + "no checkpoint was written (start again from the scene)";
   const fs::path folder = last.file.has_parent_path() ? last.file.parent_path() : fs::path(".");
   return text + (last.resumed ? "last checkpoint: " : "last good checkpoint: ") +
          last.file.string() + " (iteration " + std::to_string(last.iteration) +
-         (last.resumed ? ", the one this run resumed from" : "") +
-         "); continue with tightfit optimize " + scene_file + " --out DIR --resume " +
-         folder.string();
+         (last.resumed ? ", the one this run resumed from" : "") + "); continue with " +
+         resume_command(request, folder);
 }
 
 /// history.json with the best iteration marked (run_outputs.hpp's mark_best_iteration).
@@ -81,22 +110,26 @@ struct OptimizeSetup {
   std::unique_ptr<GarmentSimulation> sim;
   std::shared_ptr<const DesignTermSum> objective;
   std::vector<std::string> names;
+  /// The output folder, locked for the run (common/output_directory.hpp).
+  std::unique_ptr<OutputDirectory> folder;
+  /// The inputs the run read (resume_check.hpp), recorded in every checkpoint.
+  nlohmann::json inputs;
 };
 
 OptimizeSetup load_optimize_setup(const OptimizeRequest& request) {
   OptimizeSetup s;
+  const std::uint64_t reads_before = input_reads();  // the inputs of this run follow
   s.input = read_optimization_scene(request.scene_file);
   check_keep_failed_folder(request.keep_failed, request.out_dir);
   PatternOptimizerOptions& o = s.input.optimization.optimizer;
   if (request.max_iterations >= 0) o.max_iterations = request.max_iterations;
   if (request.time_limit >= 0.0) o.time_limit = request.time_limit;
-  const fs::path out(request.out_dir);
-  prepare_output_folder(out, request.force);
-  mark_output_folder(out, "optimize");
+  s.folder = std::make_unique<OutputDirectory>(request.out_dir, request.force, "optimize");
   s.scene = load_scene(s.input.scene);
   s.sim = make_simulation(*s.scene);
   s.objective = build_objective(s.input.optimization, *s.sim);
   s.names = term_names(*s.objective);
+  s.inputs = run_inputs_json(reads_before, request.scene_file);
   std::printf("tightfit optimize: %d garment vertices, %d triangles, %zu pieces; terms:",
               s.sim->garment().num_garment_vertices(),
               static_cast<int>(s.sim->garment().topology->garment_triangles.rows()),
@@ -107,12 +140,13 @@ OptimizeSetup load_optimize_setup(const OptimizeRequest& request) {
   return s;
 }
 
-/// Resumes `optimizer` from RESUME/checkpoint.json (errors name that file).
+/// Resumes `optimizer` from RESUME/checkpoint.json of a run of the same `inputs` (errors
+/// name that file).
 void resume_from(PatternOptimizer& optimizer, const std::string& resume_dir,
-                 const std::vector<std::string>& names) {
+                 const std::vector<std::string>& names, const nlohmann::json& inputs) {
   const fs::path file = fs::path(resume_dir) / "checkpoint.json";
   try {
-    optimizer.resume(read_checkpoint(file, names));
+    optimizer.resume(read_checkpoint_for(file, names, &inputs));
   } catch (const InputError& e) {
     if (e.source() == file.string()) throw;
     // e.g. a checkpoint of another garment (source "checkpoint"): name the file instead
@@ -235,7 +269,7 @@ void run_optimize(const OptimizeRequest& request) {
   PatternOptimizer optimizer(problem, spec.optimizer);
   const bool resuming = !request.resume_dir.empty();
   if (resuming) {
-    resume_from(optimizer, request.resume_dir, s.names);
+    resume_from(optimizer, request.resume_dir, s.names, s.inputs);
   } else {
     std::printf("  initial equilibrium...\n");
     std::fflush(stdout);
@@ -244,6 +278,17 @@ void run_optimize(const OptimizeRequest& request) {
               s.sim->garment().pattern.pieces.size());
 
   const fs::path checkpoint_file = out / "checkpoint.json";
+  OutputDirectory& folder = *s.folder;
+  const auto publish_history = [&](int best) {
+    folder.publish("history.json", [&](const fs::path& file) {
+      write_json_atomically(file, marked_history_json(optimizer.history(), s.names, best), 2);
+    });
+  };
+  const auto publish_checkpoint = [&] {
+    folder.publish("checkpoint.json", [&](const fs::path& file) {
+      write_checkpoint_with_inputs(file, optimizer.checkpoint(), s.names, s.inputs);
+    });
+  };
   // A solver failure from here on (a non-finite state, a NaN refused by a writer, see
   // common/finite_output.hpp) names the stage it happened in and the last good
   // checkpoint, the one a --resume continues from.
@@ -266,35 +311,32 @@ void run_optimize(const OptimizeRequest& request) {
           progress.print(it);
           stage = "writing history.json and checkpoint.json after iteration " +
                   std::to_string(it.iteration);
-          write_json_atomically(out / "history.json",
-                                marked_history_json(optimizer.history(), s.names,
-                                                    best_iteration_so_far(optimizer.history())),
-                                2);
+          publish_history(best_iteration_so_far(optimizer.history()));
           if (it.iteration % spec.checkpoint_every == 0) {
-            write_checkpoint(checkpoint_file, optimizer.checkpoint(), s.names);
+            publish_checkpoint();
             last = {checkpoint_file, it.iteration, false};
           }
           stage = "iteration " + std::to_string(it.iteration + 1);
         },
         [] { return interrupt_requested(); });
     stage = "writing the final checkpoint";
-    write_checkpoint(checkpoint_file, optimizer.checkpoint(), s.names);
-    write_json_atomically(out / "history.json",
-                          marked_history_json(optimizer.history(), s.names, result.best_iteration),
-                          2);
+    publish_checkpoint();
+    publish_history(result.best_iteration);
     last = {checkpoint_file, optimizer.checkpoint().iteration, false};
     stage = "writing the outputs of iteration " + std::to_string(result.best_iteration);
     // The report comes last in write_fit_run_outputs: it needs the viewer's npm packages,
     // and its failure must not cost the rest.
-    const std::vector<std::string> files = write_optimize_outputs(
-        out, request, s, optimizer, result, initial_garment, problem.num_parameters(), t_start);
+    const std::vector<std::string> files =
+        write_optimize_outputs(folder.staging(), request, s, optimizer, result, initial_garment,
+                               problem.num_parameters(), t_start);
+    folder.commit();  // all at once (common/output_directory.hpp)
     print_summary(result, optimizer.history(), out, files);
     if (result.interrupted) {
       const int signal = interrupt_signal();
       std::printf(
           "  interrupted by %s: the files above hold the pattern of iteration %d; "
-          "continue with\n    tightfit optimize %s --out DIR --resume %s\n",
-          signal_name(signal), result.best_iteration, request.scene_file.c_str(), out.c_str());
+          "continue with\n    %s\n",
+          signal_name(signal), result.best_iteration, resume_command(request, out).c_str());
       std::fflush(stdout);
       throw Interrupted{signal};
     }
@@ -309,7 +351,8 @@ void run_optimize(const OptimizeRequest& request) {
         std::printf("  the failed state could not be kept: %s\n", kept.what());
       }
     }
-    throw SolverError(failure_message(stage, e.what(), last, request.scene_file));
+    if (!last.file.empty() && !last.resumed) folder.keep_published();  // resumable
+    throw SolverError(failure_message(stage, e.what(), last, request));
   }
 }
 

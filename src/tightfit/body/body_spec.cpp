@@ -110,7 +110,7 @@ void parse_mesh(JsonFields& f, BodySpec& spec, const std::filesystem::path& base
     own_skeleton = read_skeleton(joints);
     skeleton = {&own_skeleton, joints.string()};
   }
-  for (JsonFields& plane : f.objects("crop")) {
+  for (JsonFields& plane : f.objects("crop", false, kMaxSceneParts)) {
     CropPlane p;
     std::optional<BoneAnchor> anchor;
     std::optional<BoneDirection> along_bone;

@@ -1,5 +1,7 @@
 #include "tightfit/body/tetrahedralize.hpp"
 
+#include "tightfit/common/mesh_budget.hpp"
+
 #include <tetgen.h>
 
 #include <algorithm>
@@ -120,6 +122,18 @@ void check_input(const TriMesh& surface, const TriMesh& internal, const Points3&
   }
 }
 
+/// The volume (m³) a closed, outward-oriented surface encloses (divergence theorem).
+double enclosed_volume(const TriMesh& surface) {
+  double six_volume = 0.0;
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const Vec3 a = surface.vertices.row(surface.faces(f, 0));
+    const Vec3 b = surface.vertices.row(surface.faces(f, 1));
+    const Vec3 c = surface.vertices.row(surface.faces(f, 2));
+    six_volume += a.dot(b.cross(c));
+  }
+  return std::abs(six_volume) / 6.0;
+}
+
 }  // namespace
 
 TetMesh tetrahedralize_surface(const TriMesh& surface, const TetQuality& quality,
@@ -134,6 +148,7 @@ TetMesh tetrahedralize_surface(const TriMesh& surface, const TetQuality& quality
   facets << surface.faces, (internal_surface.faces.array() + n_surface).matrix();
   const int n_fixed = static_cast<int>(fixed.rows());
   check_input(surface, internal_surface, interior_points, facets, fixed);
+  check_tet_budget(enclosed_volume(surface), quality.max_volume, "surface");
 
   tetgenio in;
   in.firstnumber = 0;

@@ -1,6 +1,11 @@
 #pragma once
-/// Atomic output: results are written to a temporary name beside the target and
-/// renamed into place only when complete, so a failed run leaves no partial file.
+/// Atomic output: results are written to a temporary file beside the target and renamed
+/// into place only when complete, so a failed run leaves no partial file.
+///
+/// The temporary file is created exclusively (O_CREAT | O_EXCL: never an existing file,
+/// never through a symbolic link) under an unpredictable name ".NAME.tightfit-XXXXXX", so a
+/// link planted in a shared folder cannot redirect a write. The rename replaces the entry
+/// `path` itself: a symbolic link at `path` is replaced, not followed.
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
@@ -19,11 +24,13 @@ void write_file_atomically(const std::filesystem::path& path,
 /// Writes `text` to `path` atomically.
 void write_text_atomically(const std::filesystem::path& path, const std::string& text);
 
-/// A temporary path beside `path` (same directory, unique suffix), for writers
-/// such as cairo that need a file name; rename it with `commit_temporary`.
+/// Creates a new, empty file beside `path` exclusively under an unpredictable name (see
+/// above) and returns its name, for writers such as cairo that need a file name; rename it
+/// with `commit_temporary` (or remove it). Throws InputError naming `path` when the folder
+/// does not allow it.
 std::filesystem::path temporary_path_for(const std::filesystem::path& path);
 
-/// Renames `temporary` to `path` (atomic on one file system).
+/// Flushes `temporary` to disk and renames it to `path` (atomic on one file system).
 void commit_temporary(const std::filesystem::path& temporary, const std::filesystem::path& path);
 
 }  // namespace tightfit

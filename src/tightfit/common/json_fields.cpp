@@ -3,9 +3,15 @@
 #include "tightfit/common/json_key_observer.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <fstream>
+#include <limits>
+#include <map>
 #include <sstream>
 #include <utility>
+
+#include "tightfit/common/input_file.hpp"
 
 namespace tightfit {
 namespace {
@@ -27,6 +33,12 @@ ScopedJsonKeyObserver::ScopedJsonKeyObserver(JsonKeyObserver observer)
     : previous_(std::exchange(key_observer, std::move(observer))) {}
 
 ScopedJsonKeyObserver::~ScopedJsonKeyObserver() { key_observer = std::move(previous_); }
+
+std::string format_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
 
 JsonFields::JsonFields(const nlohmann::json& object, std::string source, std::string path)
     : object_(&object), source_(std::move(source)), path_(std::move(path)) {
@@ -55,6 +67,11 @@ const nlohmann::json& JsonFields::get(const std::string& key, const char* expect
     if (required) fail(std::string("missing (expected ") + expected + ")", key);
     return null_json;
   }
+  // An explicit null is never taken for "absent": it is a mistake or a placeholder.
+  if (it->is_null())
+    fail(std::string("is null (expected ") + expected +
+             (required ? ")" : "; leave the key out for the default)"),
+         key);
   return *it;
 }
 
@@ -63,7 +80,19 @@ double JsonFields::number(const std::string& key) {
   if (!j.is_number()) fail("expected a number, got " + type_name(j), key);
   const double v = j.get<double>();
   if (!std::isfinite(v)) fail("expected a finite number", key);
+  if (std::abs(v) > kMaxJsonMagnitude)
+    fail("is " + format_number(v) + ", beyond ±" + format_number(kMaxJsonMagnitude) +
+             " (no quantity of a scene in SI units is that large)",
+         key);
   return v;
+}
+
+double JsonFields::at_most(const std::string& key, double value, double max,
+                           const std::string& why) const {
+  if (value > max)
+    fail("is " + format_number(value) + ", more than " + format_number(max) + " (" + why + ")",
+         key);
+  return value;
 }
 
 double JsonFields::number(const std::string& key, double fallback) {
@@ -89,6 +118,14 @@ int JsonFields::integer(const std::string& key, std::optional<int> fallback) {
   const auto& j = get(key, "an integer", !fallback);
   if (j.is_null()) return *fallback;
   if (!j.is_number_integer()) fail("expected an integer, got " + type_name(j), key);
+  const bool too_large = j.is_number_unsigned()
+                             ? j.get<std::uint64_t>() > std::numeric_limits<int>::max()
+                             : j.get<std::int64_t>() > std::numeric_limits<int>::max();
+  if (too_large || j.get<std::int64_t>() < std::numeric_limits<int>::min())
+    fail("is " + j.dump() + ", out of range (an integer from " +
+             std::to_string(std::numeric_limits<int>::min()) + " to " +
+             std::to_string(std::numeric_limits<int>::max()) + ")",
+         key);
   return j.get<int>();
 }
 
@@ -127,6 +164,8 @@ Eigen::Matrix<double, N, 1> read_vector(JsonFields& f, const nlohmann::json& j,
     if (!j[i].is_number()) f.fail("expected an array of " + std::to_string(N) + " numbers", key);
     v[i] = j[i].get<double>();
     if (!std::isfinite(v[i])) f.fail("expected finite numbers", key);
+    if (std::abs(v[i]) > kMaxJsonMagnitude)
+      f.fail("holds " + format_number(v[i]) + ", beyond ±" + format_number(kMaxJsonMagnitude), key);
   }
   return v;
 }
@@ -151,11 +190,16 @@ std::optional<JsonFields> JsonFields::object(const std::string& key, bool requir
   return JsonFields(j, source_, child_path(key));
 }
 
-std::vector<JsonFields> JsonFields::objects(const std::string& key, bool required) {
+std::vector<JsonFields> JsonFields::objects(const std::string& key, bool required,
+                                            std::size_t max_count) {
   const auto& j = get(key, "an array of objects", required);
   std::vector<JsonFields> out;
   if (j.is_null()) return out;
   if (!j.is_array()) fail("expected an array of objects, got " + type_name(j), key);
+  if (j.size() > max_count)
+    fail("lists " + std::to_string(j.size()) + " entries, more than " + std::to_string(max_count) +
+             " (more than any body or garment has parts)",
+         key);
   for (size_t i = 0; i < j.size(); ++i) {
     const std::string p = child_path(key) + "/" + std::to_string(i);
     if (!j[i].is_object())
@@ -165,41 +209,89 @@ std::vector<JsonFields> JsonFields::objects(const std::string& key, bool require
   return out;
 }
 
-const nlohmann::json& JsonFields::raw(const std::string& key) { return get(key, "", false); }
+const nlohmann::json& JsonFields::raw(const std::string& key) {
+  ask(known_, source_, path_, key);
+  static const nlohmann::json null_json;
+  const auto it = object_->find(key);
+  return it == object_->end() ? null_json : *it;
+}
 
 void JsonFields::finish() const {
   for (auto it = object_->begin(); it != object_->end(); ++it)
     if (!known_.count(it.key())) fail("unknown key \"" + it.key() + "\"", it.key());
 }
 
-nlohmann::json parse_json_text(const std::string& text, const std::string& source) {
-  // Nesting depth outside strings: nlohmann's copy and dump recurse once per level, so a
-  // file of a million brackets would overflow the stack later, far from the parser.
-  int depth = 0;
-  bool in_string = false, escaped = false;
-  std::size_t line = 1;
-  for (const char c : text) {
+namespace {
+
+/// The text of a JSON string literal's content `raw` (escapes decoded when it has any).
+std::string decoded(const std::string& raw) {
+  if (raw.find('\\') == std::string::npos) return raw;
+  try {
+    return nlohmann::json::parse("\"" + raw + "\"").get<std::string>();
+  } catch (const nlohmann::json::exception&) {
+    return raw;  // the parser reports the bad escape
+  }
+}
+
+/// What the pre-pass of parse_json_text keeps per open array or object.
+struct Frame {
+  bool object = false;
+  std::map<std::string, std::size_t> keys;  ///< key → line
+};
+
+/// Checks nesting depth and repeated keys before nlohmann parses `text` (which keeps the
+/// last of repeated keys without a word, and recurses once per nesting level).
+void check_json_structure(const std::string& text, const std::string& source) {
+  std::vector<Frame> frames;
+  bool in_string = false, escaped = false, pending_key = false;
+  std::size_t line = 1, string_start = 0, string_line = 0;
+  std::string last_string;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
     if (c == '\n') ++line;
     if (in_string) {
       if (escaped)
         escaped = false;
       else if (c == '\\')
         escaped = true;
-      else if (c == '"')
+      else if (c == '"') {
         in_string = false;
+        last_string = text.substr(string_start, i - string_start);
+        pending_key = !frames.empty() && frames.back().object;
+      }
       continue;
     }
-    if (c == '"')
+    if (c == ' ' || c == '\t' || c == '\n' || c == '\r') continue;
+    if (c == ':' && pending_key) {
+      const std::string key = decoded(last_string);
+      const auto [it, fresh] = frames.back().keys.emplace(key, string_line);
+      if (!fresh)
+        throw InputError(source,
+                         "invalid JSON: key \"" + key + "\" given twice in one object (lines " +
+                             std::to_string(it->second) + " and " + std::to_string(string_line) +
+                             "): only one value can count; remove the other");
+    }
+    pending_key = false;
+    if (c == '"') {
       in_string = true;
-    else if (c == '[' || c == '{') {
-      if (++depth > kMaxJsonDepth)
+      string_start = i + 1;
+      string_line = line;
+    } else if (c == '[' || c == '{') {
+      if (static_cast<int>(frames.size()) >= kMaxJsonDepth)
         throw InputError(source, "invalid JSON: nested deeper than " +
                                      std::to_string(kMaxJsonDepth) + " levels (line " +
                                      std::to_string(line) + ")");
-    } else if (c == ']' || c == '}') {
-      --depth;
+      frames.push_back({c == '{', {}});
+    } else if ((c == ']' || c == '}') && !frames.empty()) {
+      frames.pop_back();
     }
   }
+}
+
+}  // namespace
+
+nlohmann::json parse_json_text(const std::string& text, const std::string& source) {
+  check_json_structure(text, source);
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
@@ -212,12 +304,7 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
 }
 
 nlohmann::json read_json_file(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, "cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(file, "cannot read file");
-  return parse_json_text(text.str(), file);
+  return parse_json_text(read_input_file(file), file);
 }
 
 }  // namespace tightfit

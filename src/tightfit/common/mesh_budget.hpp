@@ -15,6 +15,26 @@ namespace tightfit {
 /// 5 mm edges has about 170 000.
 inline constexpr double kMaxSurfaceTriangles = 2e6;
 
+/// The most tetrahedra a body's volume is meshed into, counted as the least TetGen can
+/// make: the volume divided by the largest tetrahedron allowed (TetGen makes about three
+/// times as many). A full body at 1 cm edges needs about 75 000.
+inline constexpr double kMaxVolumeTets = 5e5;
+
+/// Throws InputError(source, …) when a volume of `volume` (m³) meshed with tetrahedra of
+/// at most `max_tet_volume` (m³) needs more than kMaxVolumeTets of them.
+inline void check_tet_budget(double volume, double max_tet_volume, const std::string& source) {
+  if (!(max_tet_volume > 0.0)) return;
+  const double n = volume / max_tet_volume;
+  if (n <= kMaxVolumeTets) return;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "its volume (%.3g m³) would be meshed into at least %.3g tetrahedra (none larger "
+                "than %.3g m³), more than %.3g: choose a larger edge_length or "
+                "interior_edge_length (lengths are in metres)",
+                volume, n, max_tet_volume, kMaxVolumeTets);
+  throw InputError(source, text);
+}
+
 /// Triangles of a surface of `area` (m²) meshed with equilateral triangles of edge `h` (m).
 inline double expected_triangles(double area, double h) {
   return area / (std::sqrt(3.0) / 4.0 * h * h);

@@ -277,6 +277,7 @@ OptimizationCheckpoint checkpoint_from_json(const nlohmann::json& j,
     f.fail("unsupported version (expected " + std::to_string(kVersion) + ")", "version");
   c.iteration = f.integer("iteration");
   if (c.iteration < 0) f.fail("must be >= 0", "iteration");
+  f.raw("inputs");  // what the run read (optional): `tightfit optimize --resume` checks it
   const nlohmann::json& names = f.raw("terms");
   if (names != nlohmann::json(term_names))
     f.fail("the checkpoint was written for the objective terms " + names.dump() +

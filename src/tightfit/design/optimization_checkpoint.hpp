@@ -14,7 +14,9 @@
 ///     at that state and those parameters' rest positions, shifted by δ,
 ///   "remeshed" (only after a remeshing): {"pattern": the complete pattern with the
 ///     reference rest positions (garment/pattern_record.hpp), "mesh_rest": per piece
-///     [[x, y], ...] (m), the rest positions its mesh was made with}}
+///     [[x, y], ...] (m), the rest positions its mesh was made with},
+///   "inputs" (optional, written by `tightfit optimize`): {"files": {path: content hash}},
+///     the files the run read; not read here}
 /// Doubles are written with round-trip precision, so a resumed run continues with
 /// bit-identical numbers.
 ///

@@ -52,7 +52,7 @@ LayoutPlane parse_plane(JsonFields& f, bool named) {
 std::vector<LayoutPlane> parse_planes(JsonFields& f, const std::string& key) {
   std::vector<LayoutPlane> planes;
   std::set<std::string> names;
-  for (auto& pf : f.objects(key)) {
+  for (auto& pf : f.objects(key, false, kMaxSceneParts)) {
     planes.push_back(parse_plane(pf, true));
     if (planes.back().name.empty()) pf.fail("empty name", "name");
     if (!names.insert(planes.back().name).second)
@@ -168,21 +168,21 @@ LayoutSpec parse_layout_spec(JsonFields& f, const std::string& base_dir) {
         throw InputError(spec.source,
                          d.source_path + ": name \"" + d.name + "\" is also a region plane");
     std::set<std::string> names;
-    for (auto& pf : f.objects("panels", true)) {
+    for (auto& pf : f.objects("panels", true, kMaxSceneParts)) {
       spec.panels.push_back(parse_panel(pf, spec.dividers));
       if (!names.insert(spec.panels.back().name).second)
         pf.fail("duplicate panel name \"" + spec.panels.back().name + "\"", "name");
     }
     if (spec.panels.empty()) f.fail("at least one panel is needed", "panels");
     std::set<std::string> opening_names;
-    for (auto& of : f.objects("openings")) {
+    for (auto& of : f.objects("openings", false, kMaxSceneParts)) {
       spec.openings.push_back(parse_opening(of));
       if (!opening_names.insert(spec.openings.back().name).second)
         of.fail("duplicate opening name \"" + spec.openings.back().name + "\"", "name");
     }
   }
   std::set<std::string> pin_names;
-  for (auto& pf : f.objects("pinned")) {
+  for (auto& pf : f.objects("pinned", false, kMaxSceneParts)) {
     spec.pins.push_back(parse_pin(pf, spec));
     if (!pin_names.insert(spec.pins.back().name).second)
       pf.fail("duplicate pin name \"" + spec.pins.back().name + "\"", "name");

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 
 #include "tightfit/common/error.hpp"
@@ -214,8 +215,16 @@ std::vector<std::string> surface_problems(const TriMesh& mesh, const SurfaceRequ
       for (std::size_t k = 0; k < pairs.size(); ++k) ids[k] = static_cast<int>(k);
       problems.push_back(
           summarize(ids, "self-intersection", "self-intersecting face pairs", [&](int k) {
+            // Where: between the two faces' centroids, in the file's coordinates.
+            Vec3 at = Vec3::Zero();
+            for (const int f : pairs[k])
+              for (int c = 0; c < 3; ++c)
+                at += mesh.vertices.row(mesh.faces(f, c)).transpose() / 6.0;
+            char near[96];
+            std::snprintf(near, sizeof near, " intersect near (%.4g, %.4g, %.4g)", at.x(), at.y(),
+                          at.z());
             return "faces " + std::to_string(pairs[k][0]) + " and " + std::to_string(pairs[k][1]) +
-                   " intersect";
+                   near;
           }));
     }
   }

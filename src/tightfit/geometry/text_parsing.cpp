@@ -8,20 +8,11 @@
 #include <iterator>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/input_file.hpp"
 
 namespace tightfit::text {
 
-std::string read_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path.string(), "file does not exist");
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(path.string(), "is a directory, not a file");
-  std::ifstream in(path, std::ios::in | std::ios::binary);
-  if (!in) throw InputError(path.string(), "cannot open for reading");
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path.string(), "read error");
-  return data;
-}
+std::string read_file(const std::filesystem::path& path) { return read_input_file(path); }
 
 std::optional<std::string_view> LineCursor::next() {
   if (pos_ >= text_.size()) return std::nullopt;

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/common/input_file.hpp"
 #include "tightfit/common/json_fields.hpp"
 #include "tightfit/design/optimization_spec.hpp"
 
@@ -129,14 +130,13 @@ std::string grade_fingerprint(const nlohmann::json& scene, const fs::path& scene
   hash.add(extra);
   std::set<fs::path> files;
   collect_paths(scene, scene_dir, files);
-  std::array<char, 1 << 16> buffer{};
   for (const fs::path& file : files) {
     hash.add(file.filename().string());
-    std::ifstream in(file, std::ios::binary);
-    if (!in) continue;
-    while (in) {
-      in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-      hash.add(buffer.data(), static_cast<std::size_t>(in.gcount()));
+    try {
+      const std::string bytes = read_input_file(file);  // a regular file, of bounded size
+      hash.add(bytes.data(), bytes.size());
+    } catch (const InputError&) {
+      // not readable: the run that reads it says why
     }
   }
   char text[17];

@@ -1,6 +1,7 @@
 #include "tightfit/scene/run_state.hpp"
 
 #include <cmath>
+#include <cstdint>
 
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/error.hpp"
@@ -31,6 +32,10 @@ Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> read_rows
     for (int c = 0; c < width; ++c) {
       if (!row[c].is_number() || !std::isfinite(row[c].get<double>()))
         throw InputError(source, at(at(path, i), c) + ": expected a finite number");
+      if (std::abs(row[c].get<double>()) > kMaxCoordinate)
+        throw InputError(source, at(at(path, i), c) + ": " + format_number(row[c].get<double>()) +
+                                     " m is not a coordinate of a garment or body (more than " +
+                                     format_number(kMaxCoordinate) + " m from the origin)");
       m(static_cast<Eigen::Index>(i), c) = row[c].get<double>();
     }
   }
@@ -167,6 +172,12 @@ RunState run_state_from_json(const nlohmann::json& j, const std::string& source)
         !e[2].is_number() || !std::isfinite(e[1].get<double>()) ||
         !std::isfinite(e[2].get<double>()))
       throw InputError(source, at("/garment", i) + ": expected [face, u, v]");
+    if (e[0].get<std::int64_t>() < 0 || e[0].get<std::int64_t>() > (std::int64_t{1} << 30) ||
+        std::abs(e[1].get<double>()) > kMaxCoordinate ||
+        std::abs(e[2].get<double>()) > kMaxCoordinate)
+      throw InputError(source, at("/garment", i) + ": " + e.dump() +
+                                   " is not a point on a triangle (face index or coordinates "
+                                   "out of range)");
     s.state.garment.push_back({e[0].get<int>(), e[1].get<double>(), e[2].get<double>()});
   }
   s.state.body = read_rows(f.raw("body"), 3, source, "/body");

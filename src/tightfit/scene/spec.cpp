@@ -77,12 +77,21 @@ GarmentSpec parse_garment(JsonFields& f, const std::filesystem::path& base_dir) 
   return g;
 }
 
+/// The stiffest material a scene may name (Pa): beyond any fabric, skin or foam by far,
+/// and low enough that energies, forces and their derivatives stay finite.
+constexpr double kMaxModulus = 1e12;
+constexpr const char* kModulusWhy = "stiffer than steel, about 2e11 Pa: not a garment or a body";
+/// The thickest fabric or seam a scene may name (m).
+constexpr double kMaxThickness = 0.1;
+
 void parse_fabric(JsonFields& f, ClothMaterial& m) {
-  m.youngs_modulus = f.positive("youngs_modulus", m.youngs_modulus);
+  m.youngs_modulus = f.at_most("youngs_modulus", f.positive("youngs_modulus", m.youngs_modulus),
+                               kMaxModulus, kModulusWhy);
   m.poisson_ratio = f.number("poisson_ratio", m.poisson_ratio);
   if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 1.0))
     f.fail("must lie in (-1, 1) for a membrane", "poisson_ratio");
-  m.thickness = f.positive("thickness", m.thickness);
+  m.thickness = f.at_most("thickness", f.positive("thickness", m.thickness), kMaxThickness,
+                          "a fabric is thinner than 10 cm");
   m.regime_smoothing = f.positive("regime_smoothing", m.regime_smoothing);
   const double relaxation = f.number("relaxation", 0.0);
   if (!(relaxation >= 0.0 && relaxation < 1.0)) f.fail("must lie in [0, 1)", "relaxation");
@@ -91,14 +100,19 @@ void parse_fabric(JsonFields& f, ClothMaterial& m) {
 }
 
 void parse_seam(JsonFields& f, SeamMaterial& m) {
-  m.youngs_modulus = f.positive("youngs_modulus", m.youngs_modulus, true);
-  m.width = f.positive("width", m.width);
-  m.depth = f.positive("thickness", m.depth);
+  m.youngs_modulus =
+      f.at_most("youngs_modulus", f.positive("youngs_modulus", m.youngs_modulus, true), kMaxModulus,
+                kModulusWhy);
+  m.width = f.at_most("width", f.positive("width", m.width), kMaxThickness,
+                      "a seam is narrower than 10 cm");
+  m.depth = f.at_most("thickness", f.positive("thickness", m.depth), kMaxThickness,
+                      "a seam is thinner than 10 cm");
   f.finish();
 }
 
 void parse_body_material(JsonFields& f, NeoHookeanMaterial& m, bool& rigid) {
-  m.youngs_modulus = f.positive("youngs_modulus", m.youngs_modulus);
+  m.youngs_modulus = f.at_most("youngs_modulus", f.positive("youngs_modulus", m.youngs_modulus),
+                               kMaxModulus, kModulusWhy);
   m.poisson_ratio = f.number("poisson_ratio", m.poisson_ratio);
   if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
     f.fail("must lie in (-1, 0.5) for a solid", "poisson_ratio");
@@ -165,7 +179,7 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
         f->choice("shape_operator", {"mid_edge", "limit_surface"}, "mid_edge") == "mid_edge"
             ? ShapeOperatorKind::kMidEdge
             : ShapeOperatorKind::kLimitSurface;
-    for (JsonFields& region : f->objects("regions"))
+    for (JsonFields& region : f->objects("regions", false, kMaxSceneParts))
       s.pressure_regions.push_back(parse_pressure_region(region));
     if (auto rig = f->object("rig")) {
       auto resolve = [&](const std::string& key) {
