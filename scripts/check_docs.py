@@ -68,9 +68,7 @@ COMMIT_HASH = re.compile(r"(?<![\w#./-])(?=[0-9a-f]*[a-f])(?=[0-9a-f]*\d)[0-9a-f
 LINK_FILES = ["README.md", "CONTRIBUTING.md", "CHANGELOG.md"]
 LINK_ROOT = "docs"
 # Documents of other branches linked before they land (see the module comment).
-PENDING = {
-    "docs/files.md",
-}
+PENDING = set()
 
 HTML_ANCHOR = re.compile(r"<a\s+(?:id|name)=\"([^\"]+)\"")
 FENCE = re.compile(r"^\s*(```|~~~)")

@@ -143,7 +143,8 @@ long staging_owner(const fs::path& target, const fs::path& in) {
 }
 
 bool same_device(const fs::path& a, const fs::path& b) {
-  struct stat sa {}, sb {};
+  struct stat sa {
+  }, sb{};
   return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev;
 }
 
