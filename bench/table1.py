@@ -22,6 +22,7 @@ Usage:
 The summary between the markers <!-- table1-summary:begin --> and
 <!-- table1-summary:end --> of the results file is the short table the README includes.
 """
+import functools
 import argparse
 import datetime
 import json
@@ -272,7 +273,9 @@ def machine():
     return f"{model}, {cores} logical cores, {memory} ({platform.system()} {platform.release()})"
 
 
+@functools.lru_cache(maxsize=None)
 def commit():
+    """The source's commit when the runner started (one for all rows)."""
     try:
         sha = subprocess.run(["git", "-C", ROOT, "rev-parse", "HEAD"], capture_output=True,
                              text=True, check=True).stdout.strip()
