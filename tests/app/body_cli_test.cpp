@@ -68,7 +68,7 @@ TEST_F(BodyCli, SpecFileWritesSurfaceVolumeAndSummary) {
 TEST_F(BodyCli, FlagsWithoutSpec) {
   const fs::path out = dir_ / "flags";
   const CliRun r = run_cli(
-      "body --generator cylinder --radius 0.03 --length 0.06 --edge-length 0.01 --soft-tissue 0.01 "
+      "body --generator cylinder --radius 0.03 --length 0.06 --edge-length 0.01 --soft-tissue=0.01 "
       "--out " +
       out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -78,7 +78,7 @@ TEST_F(BodyCli, FlagsWithoutSpec) {
 TEST_F(BodyCli, MeshFlagIsRelativeToTheCurrentFolder) {
   const fs::path out = dir_ / "head";
   const CliRun r = run_cli(
-      "body --mesh bodies/mh_head_neutral.obj --edge-length 0.02 --soft-tissue 0.02 --out " +
+      "body --mesh bodies/mh_head_neutral.obj --edge-length 0.02 --soft-tissue=0.02 --out " +
           out.string(),
       TIGHTFIT_DATA_DIR);
   ASSERT_EQ(r.exit_code, 0) << r.output;
