@@ -16,11 +16,14 @@ run's outputs; --report-only rebuilds the results file from such a folder withou
 
 Usage:
   bench/table1.py BIN [--rows ID,ID...] [--time-limit S] [--out docs/results.md]
-                  [--work out/table1]
+                  [--work out/table1] [--readme README.md]
   bench/table1.py --report-only WORK [--out FILE]
   bench/table1.py --list
 The summary between the markers <!-- table1-summary:begin --> and
-<!-- table1-summary:end --> of the results file is the short table the README includes.
+<!-- table1-summary:end --> of the results file is the short table the README shows: the
+runner copies it into README.md's block between the same markers when it writes
+docs/results.md (--readme FILE for another file); `make test` checks that the two agree
+(scripts/check_docs.py).
 """
 import functools
 import argparse
@@ -372,6 +375,27 @@ def report(measured, command_line):
     return "\n".join(lines)
 
 
+def summary_block(text):
+    """The summary of a results file: the text from SUMMARY_BEGIN to SUMMARY_END."""
+    begin, end = text.find(SUMMARY_BEGIN), text.find(SUMMARY_END)
+    if begin < 0 or end < begin:
+        raise ValueError("no summary markers")
+    return text[begin:end + len(SUMMARY_END)]
+
+
+def copy_summary(results_text, readme):
+    """Replaces the summary block of `readme` (between the same markers) by the one of
+    `results_text`; the README's results section shows the runner's summary."""
+    with open(readme) as f:
+        old = f.read()
+    try:
+        new = old.replace(summary_block(old), summary_block(results_text))
+    except ValueError:
+        sys.exit(f"table1: {readme} has no {SUMMARY_BEGIN} ... {SUMMARY_END} block")
+    with open(readme, "w") as f:
+        f.write(new)
+
+
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -383,6 +407,8 @@ def main(argv):
                     help="folder of the runs (default out/table1)")
     ap.add_argument("--report-only", metavar="WORK",
                     help="write the results file from the runs in WORK, running nothing")
+    ap.add_argument("--readme", help="file whose summary block gets the new summary (default: "
+                    "README.md when --out is docs/results.md, else none; '' for none)")
     ap.add_argument("--list", action="store_true", help="print the row ids and exit")
     a = ap.parse_args(argv)
     if a.list:
@@ -418,6 +444,12 @@ def main(argv):
     with open(a.out, "w") as f:
         f.write(text)
     print(f"table1: wrote {a.out}")
+    readme = a.readme if a.readme is not None else (
+        os.path.join(ROOT, "README.md")
+        if os.path.abspath(a.out) == os.path.join(ROOT, "docs", "results.md") else "")
+    if readme:
+        copy_summary(text, readme)
+        print(f"table1: copied the summary into {readme}")
     return 0
 
 

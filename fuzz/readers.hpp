@@ -16,11 +16,11 @@
 #include "tightfit/body/skeleton.hpp"
 #include "tightfit/body/skin_weights.hpp"
 #include "tightfit/common/json_fields.hpp"
-#include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/garment/layout_spec.hpp"
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 #include "tightfit/patterns/json.hpp"
+#include "tightfit/scene/optimization_checkpoint.hpp"
 #include "tightfit/scene/run_state.hpp"
 #include "tightfit/scene/spec.hpp"
 

@@ -26,6 +26,9 @@ Docs.NoHistoryAndLinksResolve):
    an anchor `#name` in a link to a Markdown file (or in the same document) must be the
    GitHub anchor of one of its headings.
 
+   The README's results summary (between the markers of SUMMARY_BEGIN and SUMMARY_END)
+   must be the copy of docs/results.md's, which bench/table1.py writes.
+
    PENDING lists documents written on other branches that are linked before they land.
    A link to a pending document that does not exist yet is reported but does not fail;
    once the document exists the entry must be removed (the check fails until it is), so
@@ -63,6 +66,12 @@ HISTORY_PATTERNS = [
 # Pages of current measured figures: each figure names the commit of the binary.
 MEASURED_PAGES = {"docs/benchmarks.md", "docs/results.md"}
 COMMIT_HASH = re.compile(r"(?<![\w#./-])(?=[0-9a-f]*[a-f])(?=[0-9a-f]*\d)[0-9a-f]{7,40}(?![\w/-])")
+
+# The results page the Table 1 runner writes, and the markers of its summary, which the
+# README holds a copy of (bench/table1.py copies it).
+RESULTS_PAGE = "docs/results.md"
+SUMMARY_BEGIN = "<!-- table1-summary:begin -->"
+SUMMARY_END = "<!-- table1-summary:end -->"
 
 # Documents whose links are checked: these files and every .md under docs/.
 LINK_FILES = ["README.md", "CONTRIBUTING.md", "CHANGELOG.md"]
@@ -106,16 +115,51 @@ def history_findings(root):
     findings = []
     for path, rel in text_files(root):
         markdown = rel.endswith(".md") and rel not in MEASURED_PAGES
-        for number, line in enumerate(read_lines(path), 1):
+        lines = read_lines(path)
+        summary = summary_line_numbers(lines) if rel == "README.md" else set()
+        for number, line in enumerate(lines, 1):
             for pattern, what in HISTORY_PATTERNS:
                 m = pattern.search(line)
                 if m:
                     findings.append(f"{rel}:{number}: {what}: '{m.group(0)}'")
-            if markdown:
+            if markdown and number not in summary:
                 m = COMMIT_HASH.search(line)
                 if m:
                     findings.append(f"{rel}:{number}: commit hash: '{m.group(0)}'")
     return findings
+
+
+def summary_line_numbers(lines):
+    """Line numbers (1-based) of the results summary block: the README's copy of the
+    measured figures of docs/results.md, which names their commit."""
+    numbers, inside = set(), False
+    for number, line in enumerate(lines, 1):
+        if line.strip() == SUMMARY_BEGIN:
+            inside = True
+        if inside:
+            numbers.add(number)
+        if line.strip() == SUMMARY_END:
+            inside = False
+    return numbers
+
+
+def summary_findings(root):
+    """The README's results summary must be the one bench/table1.py wrote into
+    docs/results.md (the runner copies it; nobody edits it by hand)."""
+    readme, results = os.path.join(root, "README.md"), os.path.join(root, RESULTS_PAGE)
+    if not os.path.exists(results):
+        return []
+    def block(path):
+        lines = read_lines(path)
+        numbers = summary_line_numbers(lines)
+        return [lines[n - 1] for n in sorted(numbers)]
+    expected, actual = block(results), block(readme)
+    if not expected:
+        return [f"{RESULTS_PAGE}: no {SUMMARY_BEGIN} ... {SUMMARY_END} block"]
+    if actual != expected:
+        return [f"README.md: its results summary differs from the one in {RESULTS_PAGE}: "
+                "rerun bench/table1.py (or bench/table1.py --report-only WORK), which copies it"]
+    return []
 
 
 def prose_lines(lines):
@@ -215,6 +259,7 @@ def main(argv):
     findings = history_findings(root)
     links, notes = link_findings(root)
     findings += links
+    findings += summary_findings(root)
     for note in notes:
         print(f"note: {note}")
     for finding in findings:

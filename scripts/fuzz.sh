@@ -15,10 +15,11 @@ BUILD=build/fuzz
 RELEASE="${TIGHTFIT_RELEASE_BUILD:-build/release}"
 
 bash scripts/install-deps.sh --fuzz
+mkdir -p "$BUILD"
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DTIGHTFIT_BUILD_FUZZERS=ON -DTIGHTFIT_SANITIZE=ON -DTIGHTFIT_BUILD_TESTS=OFF \
-  -DTIGHTFIT_BUILD_BENCH=OFF -DTIGHTFIT_PCH=OFF > "$BUILD.configure.log"
+  -DTIGHTFIT_BUILD_BENCH=OFF -DTIGHTFIT_PCH=OFF > "$BUILD/configure.log"
 targets=("$@")
 if [ "${#targets[@]}" -eq 0 ]; then
   for f in fuzz/*_fuzz.cpp; do targets+=("$(basename "$f" .cpp)"); done

@@ -163,4 +163,59 @@ TEST(ApiOptimize, AResumeFileOfAnotherSceneIsNamed) {
   }
 }
 
+TEST(ApiOptimize, TheResultSaysTheRuleAndTheBestDesignAndTheHistoryMarksIt) {
+  api::Scene scene = api::Scene::read(source_path(kOptimizeSleeve));
+  api::OptimizeOptions options;
+  options.max_iterations = 2;
+  api::Optimization optimization(scene, options);
+  const OptimizationResult result = optimization.run();
+  const nlohmann::json o = api::optimization_result_json(optimization, result);
+  EXPECT_EQ(o["stop_rule"], stop_rule_name(result.rule));
+  EXPECT_EQ(o["stop_reason"], result.stop_reason);
+  EXPECT_EQ(o["best_iteration"], result.best_iteration);
+  EXPECT_EQ(o["objective_final"], result.final_value);
+  EXPECT_EQ(optimization.best_iteration_so_far(), result.best_iteration);
+  const nlohmann::json history = optimization.history_json(result.best_iteration);
+  EXPECT_EQ(history["best_iteration"], result.best_iteration);
+  EXPECT_EQ(history["iterations"].size(), optimization.history().size());
+}
+
+TEST(ApiOptimize, ATimeLimitEndsTheRunByItsRule) {
+  api::Scene scene = api::Scene::read(source_path(kOptimizeSleeve));
+  api::OptimizeOptions options;
+  options.time_limit = 1e-9;  // over before the first iteration ends
+  api::Optimization optimization(scene, options);
+  const OptimizationResult result = optimization.run();
+  EXPECT_EQ(result.rule, StopRule::kTimeLimit) << result.stop_reason;
+  EXPECT_LE(result.iterations, 1);
+}
+
+TEST(ApiOptimize, ACheckpointOfAnotherSceneDocumentIsRefusedNamingWhatChanged) {
+  test::TempDir dir("api_resume_inputs");
+  nlohmann::json document = read_json(source_path(kOptimizeSleeve));
+  api::Scene scene = api::Scene::from_json(document, "sleeve.json", source_path("examples"));
+  api::OptimizeOptions options;
+  options.max_iterations = 1;
+  api::Optimization optimization(scene, options);
+  optimization.run();
+  optimization.write_checkpoint(dir / "checkpoint.json");
+  // The same document resumes; only the limits differ (a resumed run may change them).
+  document["optimize"]["max_iterations"] = 3;
+  api::Scene same = api::Scene::from_json(document, "sleeve.json", source_path("examples"));
+  api::Optimization resumed(same);
+  resumed.resume(dir / "checkpoint.json");
+  EXPECT_TRUE(resumed.resumed());
+  // Another stretch target is another scene.
+  document["optimize"]["objectives"]["stretch"]["max"] = 1.07;
+  api::Scene other = api::Scene::from_json(document, "sleeve.json", source_path("examples"));
+  api::Optimization refused(other);
+  try {
+    refused.resume(dir / "checkpoint.json");
+    FAIL() << "a checkpoint of another scene was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), (dir / "checkpoint.json").string());
+    EXPECT_NE(std::string(e.what()).find("sleeve.json changed"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace tightfit::api_test

@@ -87,6 +87,19 @@ def main():
         expect(what in out, f"broken link {what} is not reported:\n{out}", failures)
     expect("'#h'" not in out, f"a valid anchor in the same file is reported:\n{out}", failures)
 
+    begin, end = "<!-" + "- table1-summary:begin -->", "<!-" + "- table1-summary:end -->"
+    results = {"docs/results.md": f"# R\n\n{begin}\n| a | 0.5 |\ncommit {HASH}\n{end}\n"}
+    same_summary = {"README.md": CLEAN["README.md"] +
+                    f"\n{begin}\n| a | 0.5 |\ncommit {HASH}\n{end}\n"}
+    code, out = run({**CLEAN, **results, **same_summary})
+    expect(code == 0, f"a README holding the results summary (with its commit) fails:\n{out}",
+           failures)
+    stale_summary = {"README.md": CLEAN["README.md"] +
+                     f"\n{begin}\n| a | 0.4 |\ncommit {HASH}\n{end}\n"}
+    code, out = run({**CLEAN, **results, **stale_summary})
+    expect(code == 1 and "results summary differs" in out,
+           f"a README whose summary differs from docs/results.md passes:\n{out}", failures)
+
     if failures:
         print("\n".join(failures))
         return 1

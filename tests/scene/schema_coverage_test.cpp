@@ -38,8 +38,8 @@ const std::set<std::string> kSceneReaders = {"src/tightfit/scene/spec.cpp",
 /// Sources whose JsonFields read other files (joints, saved states, pieces.json, bodies).
 const std::set<std::string> kOtherReaders = {"src/tightfit/common/json_fields.cpp",
                                              "src/tightfit/body/skeleton.cpp",
-                                             "src/tightfit/design/optimization_checkpoint.cpp",
-                                             "src/tightfit/garment/pattern_record.cpp",
+                                             "src/tightfit/scene/optimization_checkpoint.cpp",
+                                             "src/tightfit/scene/pattern_record.cpp",
                                              "src/tightfit/patterns/json.cpp",
                                              "src/tightfit/grade/bodies.cpp",
                                              "src/tightfit/scene/run_state.cpp"};

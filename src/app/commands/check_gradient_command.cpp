@@ -14,12 +14,12 @@
 
 #include "cli_checks.hpp"
 #include "command_registry.hpp"
-#include "resume_check.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/design/adjoint_check.hpp"
-#include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
+#include "tightfit/scene/checkpoint_inputs.hpp"
 #include "tightfit/scene/loader.hpp"
+#include "tightfit/scene/optimization_checkpoint.hpp"
 #include "tightfit/scene/optimization_setup.hpp"
 
 namespace tightfit::app {

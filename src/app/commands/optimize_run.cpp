@@ -1,29 +1,17 @@
 #include "optimize_run.hpp"
 
-#include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "kept_failure.hpp"
 #include "optimize_progress.hpp"
-#include "resume_check.hpp"
-#include "run_outputs.hpp"
-#include "tightfit/common/atomic_file.hpp"
+#include "tightfit/api/optimize.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/finite_output.hpp"
-#include "tightfit/common/input_file.hpp"
 #include "tightfit/common/interrupt.hpp"
 #include "tightfit/common/output_directory.hpp"
-#include "tightfit/common/stopwatch.hpp"
-#include "tightfit/design/optimization_checkpoint.hpp"
-#include "tightfit/design/pattern_optimizer.hpp"
-#include "tightfit/report/simulation_outputs.hpp"
-#include "tightfit/scene/loader.hpp"
-#include "tightfit/scene/optimization_setup.hpp"
 
 namespace tightfit::app {
 namespace {
@@ -80,164 +68,33 @@ std::string failure_message(const std::string& stage, const std::string& what,
          resume_command(request, folder);
 }
 
-/// history.json with the best iteration marked (run_outputs.hpp's mark_best_iteration).
-nlohmann::json marked_history_json(const std::vector<OptimizationIteration>& history,
-                                   const std::vector<std::string>& names, int best_iteration) {
-  nlohmann::json j = history_json(history, names);
-  mark_best_iteration(j, best_iteration);
-  return j;
-}
-
-/// The iteration of the lowest objective in `history` (after remeshings too): the best
-/// design so far while the run goes on.
-int best_iteration_so_far(const std::vector<OptimizationIteration>& history) {
-  int best = 0;
-  double value = std::numeric_limits<double>::infinity();
-  for (const OptimizationIteration& it : history)
-    for (double v :
-         {it.value, it.remesh && it.remesh->failure.empty() ? it.remesh->value : it.value})
-      if (v < value) {
-        value = v;
-        best = it.iteration;
-      }
-  return best;
-}
-
-/// The scene, simulation and objective of a run, loaded and announced.
+/// Reads the scene and its "optimize" section (bad input fails before the folder is
+/// touched), locks the output folder, loads the scene and builds the optimization.
 struct OptimizeSetup {
-  OptimizationScene input;
-  std::unique_ptr<LoadedScene> scene;
-  std::unique_ptr<GarmentSimulation> sim;
-  std::shared_ptr<const DesignTermSum> objective;
-  std::vector<std::string> names;
+  std::unique_ptr<api::Scene> scene;
   /// The output folder, locked for the run (common/output_directory.hpp).
   std::unique_ptr<OutputDirectory> folder;
-  /// The inputs the run read (resume_check.hpp), recorded in every checkpoint.
-  nlohmann::json inputs;
+  std::unique_ptr<api::Optimization> optimization;
 };
 
 OptimizeSetup load_optimize_setup(const OptimizeRequest& request) {
   OptimizeSetup s;
-  const std::uint64_t reads_before = input_reads();  // the inputs of this run follow
-  s.input = read_optimization_scene(request.scene_file);
+  s.scene = std::make_unique<api::Scene>(api::Scene::read(request.scene_file));
+  s.scene->optimization();
   check_keep_failed_folder(request.keep_failed, request.out_dir);
-  PatternOptimizerOptions& o = s.input.optimization.optimizer;
-  if (request.max_iterations >= 0) o.max_iterations = request.max_iterations;
-  if (request.time_limit >= 0.0) o.time_limit = request.time_limit;
   s.folder = std::make_unique<OutputDirectory>(request.out_dir, request.force, "optimize");
-  s.scene = load_scene(s.input.scene);
-  s.sim = make_simulation(*s.scene);
-  s.objective = build_objective(s.input.optimization, *s.sim);
-  s.names = term_names(*s.objective);
-  s.inputs = run_inputs_json(reads_before, request.scene_file);
+  s.optimization = std::make_unique<api::Optimization>(
+      *s.scene, api::OptimizeOptions{request.max_iterations, request.time_limit});
+  const GarmentSimulation& sim = s.scene->simulation();
   std::printf("tightfit optimize: %d garment vertices, %d triangles, %zu pieces; terms:",
-              s.sim->garment().num_garment_vertices(),
-              static_cast<int>(s.sim->garment().topology->garment_triangles.rows()),
-              s.sim->garment().pattern.pieces.size());
-  for (size_t k = 0; k < s.names.size(); ++k)
-    std::printf(" %s (w %g)", s.names[k].c_str(), s.objective->entries()[k].weight);
+              sim.garment().num_garment_vertices(),
+              static_cast<int>(sim.garment().topology->garment_triangles.rows()),
+              sim.garment().pattern.pieces.size());
+  const std::vector<std::string>& names = s.optimization->term_names();
+  for (size_t k = 0; k < names.size(); ++k)
+    std::printf(" %s (w %g)", names[k].c_str(), s.optimization->objective().entries()[k].weight);
   std::printf("\n");
   return s;
-}
-
-/// Resumes `optimizer` from RESUME/checkpoint.json of a run of the same `inputs` (errors
-/// name that file).
-void resume_from(PatternOptimizer& optimizer, const std::string& resume_dir,
-                 const std::vector<std::string>& names, const nlohmann::json& inputs) {
-  const fs::path file = fs::path(resume_dir) / "checkpoint.json";
-  try {
-    optimizer.resume(read_checkpoint_for(file, names, &inputs));
-  } catch (const InputError& e) {
-    if (e.source() == file.string()) throw;
-    // e.g. a checkpoint of another garment (source "checkpoint"): name the file instead
-    std::string what = e.what();
-    if (what.starts_with(e.source() + ": ")) what.erase(0, e.source().size() + 2);
-    throw InputError(file.string(), what);
-  }
-  std::printf("  resuming from %s at iteration %d\n", file.c_str(),
-              optimizer.checkpoint().iteration);
-}
-
-/// result.json's "optimization" section: the stop rule in words and by name, and the
-/// objective of the returned (best) design.
-nlohmann::json optimization_json(const OptimizationResult& result,
-                                 const std::vector<OptimizationIteration>& history,
-                                 const std::vector<std::string>& names, int design_parameters,
-                                 double force_residual) {
-  nlohmann::json initial_terms, final_terms;
-  for (size_t k = 0; k < names.size(); ++k) {
-    initial_terms[names[k]] = history.front().term_values[k];
-    if (k < result.final_terms.size()) final_terms[names[k]] = result.final_terms[k];
-  }
-  nlohmann::json j = {{"converged", result.converged},
-                      {"interrupted", result.interrupted},
-                      {"stop_rule", stop_rule_name(result.rule)},
-                      {"stop_reason", result.stop_reason},
-                      {"iterations", result.iterations},
-                      {"best_iteration", result.best_iteration},
-                      {"best_after_remesh", result.best_after_remesh},
-                      {"best_restored", result.best_restored},
-                      {"objective_initial", history.front().value},
-                      {"objective_final", result.final_value},
-                      {"objective_last_iteration", result.last_value},
-                      {"terms_initial", initial_terms},
-                      {"terms_final", final_terms},
-                      {"gradient_norm_initial", history.front().gradient_norm},
-                      {"gradient_norm_final", result.final_gradient_norm},
-                      {"design_parameters", design_parameters},
-                      {"force_residual_n", force_residual},
-                      {"seconds_optimization", history.back().seconds}};
-  if (!result.gradient_check.empty()) {
-    nlohmann::json checks = nlohmann::json::array();
-    for (const DirectionalCheck& c : result.gradient_check)
-      checks.push_back({{"adjoint", c.adjoint},
-                        {"finite_difference", c.finite_difference},
-                        {"relative_error", c.relative_error}});
-    j["gradient_check"] = checks;
-  }
-  return j;
-}
-
-/// The outputs of the returned design (the simulation holds it): result.json, the fit,
-/// the pattern and the report. Returns the files written.
-std::vector<std::string> write_optimize_outputs(const fs::path& out, const OptimizeRequest& request,
-                                                OptimizeSetup& s, const PatternOptimizer& optimizer,
-                                                const OptimizationResult& result,
-                                                const std::optional<TriMesh>& initial_garment,
-                                                int design_parameters,
-                                                SteadyClock::time_point t_start) {
-  const auto t0 = SteadyClock::now();
-  GarmentSimulation& sim = *s.sim;
-  const FitAnalysis fit = sim.analyze();
-  const std::vector<OptimizationIteration>& history = optimizer.history();
-  RunState state = make_run_state("optimize", s.input.scene, sim.garment(), sim.problem().state(),
-                                  &s.scene->garment.pattern);
-  state.term_names = s.names;
-  state.history = history;
-  state.initial_garment = initial_garment;
-  nlohmann::json& result_json = state.result;
-  result_json["run"] = run_identity_json("optimize");
-  result_json["scene"] = request.scene_file;
-  result_json["optimization"] =
-      optimization_json(result, history, s.names, design_parameters,
-                        sim.problem().force_norm(sim.problem().gradient()));
-  result_json["compute"] = compute_json();
-  result_json["counts"] = {{"body_vertices", s.scene->body.num_vertices()},
-                           {"body_tets", s.scene->body.volume.num_tets()},
-                           {"garment_vertices", sim.garment().num_garment_vertices()},
-                           {"garment_triangles", sim.garment().topology->garment_triangles.rows()},
-                           {"pattern_pieces", sim.garment().pattern.pieces.size()},
-                           {"dofs", sim.problem().num_dofs()}};
-  nlohmann::json seconds;
-  for (const auto& [name, value] : s.scene->stage_seconds) seconds[name] = value;
-  seconds["optimization_this_run"] = result.seconds;
-  seconds["analysis"] = seconds_since(t0);
-  seconds["total_this_run"] = seconds_since(t_start);
-  result_json["seconds"] = seconds;
-  std::vector<std::string> files = write_fit_run_outputs(
-      out, sim, fit, s.input.scene.pressure_operator, state, &s.scene->garment.pattern);
-  files.push_back("checkpoint.json");
-  return files;
 }
 
 /// The closing lines: the objective of the returned design, the files, and last the
@@ -260,34 +117,33 @@ void print_summary(const OptimizationResult& result, const std::vector<Optimizat
 }  // namespace
 
 void run_optimize(const OptimizeRequest& request) {
-  const auto t_start = SteadyClock::now();
   OptimizeSetup s = load_optimize_setup(request);
-  const OptimizationSpec& spec = s.input.optimization;
+  api::Optimization& optimization = *s.optimization;
+  const int checkpoint_every = s.scene->optimization().checkpoint_every;
   const fs::path out(request.out_dir);
-  DesignProblem problem(*s.sim, s.objective, spec.problem,
-                        [&spec](const GarmentSimulation& g) { return build_objective(spec, g); });
-  PatternOptimizer optimizer(problem, spec.optimizer);
   const bool resuming = !request.resume_dir.empty();
   if (resuming) {
-    resume_from(optimizer, request.resume_dir, s.names, s.inputs);
+    const fs::path file = fs::path(request.resume_dir) / "checkpoint.json";
+    optimization.resume(file);
+    std::printf("  resuming from %s at iteration %d\n", file.c_str(),
+                optimization.checkpoint().iteration);
   } else {
     std::printf("  initial equilibrium...\n");
     std::fflush(stdout);
   }
-  std::printf("  %d design parameters (boundary points of %zu pieces)\n", problem.num_parameters(),
-              s.sim->garment().pattern.pieces.size());
+  std::printf("  %d design parameters (boundary points of %zu pieces)\n",
+              optimization.num_parameters(), s.scene->simulation().garment().pattern.pieces.size());
 
   const fs::path checkpoint_file = out / "checkpoint.json";
   OutputDirectory& folder = *s.folder;
   const auto publish_history = [&](int best) {
     folder.publish("history.json", [&](const fs::path& file) {
-      write_json_atomically(file, marked_history_json(optimizer.history(), s.names, best), 2);
+      write_json_atomically(file, optimization.history_json(best), 2);
     });
   };
   const auto publish_checkpoint = [&] {
-    folder.publish("checkpoint.json", [&](const fs::path& file) {
-      write_checkpoint_with_inputs(file, optimizer.checkpoint(), s.names, s.inputs);
-    });
+    folder.publish("checkpoint.json",
+                   [&](const fs::path& file) { optimization.write_checkpoint(file); });
   };
   // A solver failure from here on (a non-finite state, a NaN refused by a writer, see
   // common/finite_output.hpp) names the stage it happened in and the last good
@@ -295,42 +151,39 @@ void run_optimize(const OptimizeRequest& request) {
   std::string stage = kStartOfRun;
   LastCheckpoint last;
   if (resuming)
-    last = {fs::path(request.resume_dir) / "checkpoint.json", optimizer.checkpoint().iteration,
+    last = {fs::path(request.resume_dir) / "checkpoint.json", optimization.checkpoint().iteration,
             true};
   try {
     // Ctrl-C / SIGTERM: the current iteration finishes, then the run stops and writes the
     // checkpoint and the outputs of the returned pattern as after a normal stop.
     const InterruptGuard interrupts;
-    std::optional<TriMesh> initial_garment;  // the initial equilibrium (unknown on resume)
-    OptimizeProgress progress(s.names, spec.optimizer.max_iterations, request.terse);
-    const OptimizationResult result = optimizer.run(
+    OptimizeProgress progress(optimization.term_names(),
+                              optimization.optimizer().options().max_iterations, request.terse);
+    const OptimizationResult result = optimization.run(
         [&](const OptimizationIteration& it) {
-          if (it.iteration == 0 && !resuming)
-            initial_garment =
-                TriMesh{s.sim->garment_positions(), s.sim->garment().topology->garment_triangles};
           progress.print(it);
           stage = "writing history.json and checkpoint.json after iteration " +
                   std::to_string(it.iteration);
-          publish_history(best_iteration_so_far(optimizer.history()));
-          if (it.iteration % spec.checkpoint_every == 0) {
+          publish_history(optimization.best_iteration_so_far());
+          if (it.iteration % checkpoint_every == 0) {
             publish_checkpoint();
             last = {checkpoint_file, it.iteration, false};
           }
           stage = "iteration " + std::to_string(it.iteration + 1);
+          return true;
         },
         [] { return interrupt_requested(); });
     stage = "writing the final checkpoint";
     publish_checkpoint();
     publish_history(result.best_iteration);
-    last = {checkpoint_file, optimizer.checkpoint().iteration, false};
+    last = {checkpoint_file, optimization.checkpoint().iteration, false};
     stage = "writing the outputs of iteration " + std::to_string(result.best_iteration);
     // The report comes last in write_fit_run_outputs: it needs the viewer's npm packages,
     // and its failure must not cost the rest.
-    const std::vector<std::string> files =
-        write_optimize_outputs(folder.staging(), request, s, optimizer, result, initial_garment,
-                               problem.num_parameters(), t_start);
+    const api::WrittenOutputs written =
+        api::write_optimization_outputs(optimization, result, folder.staging());
     folder.commit();  // all at once (common/output_directory.hpp)
-    print_summary(result, optimizer.history(), out, files);
+    print_summary(result, optimization.history(), out, written.files);
     if (result.interrupted) {
       const int signal = interrupt_signal();
       std::printf(
@@ -345,8 +198,8 @@ void run_optimize(const OptimizeRequest& request) {
     // trials back off): keep its last state where the user asked.
     if (!request.keep_failed.empty() && stage == kStartOfRun) {
       try {
-        report_kept_failure(request.keep_failed, request.force, request.scene_file, *s.scene,
-                            *s.sim, e.what());
+        report_kept_failure(request.keep_failed, request.force, request.scene_file,
+                            s.scene->loaded_scene(), s.scene->simulation(), e.what());
       } catch (const std::exception& kept) {
         std::printf("  the failed state could not be kept: %s\n", kept.what());
       }

@@ -19,9 +19,9 @@
 
 #include "tightfit/api/scene.hpp"
 #include "tightfit/api/simulate.hpp"
-#include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/design/optimization_problem.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
+#include "tightfit/scene/optimization_checkpoint.hpp"
 
 namespace tightfit::api {
 
@@ -34,6 +34,8 @@ using IterationObserver = std::function<bool(const OptimizationIteration& iterat
 struct OptimizeOptions {
   /// Overrides the scene's optimize/max_iterations when ≥ 0.
   int max_iterations = -1;
+  /// s of wall time for the run; overrides the scene's optimize/time_limit when ≥ 0.
+  double time_limit = -1.0;
 };
 
 /// One optimization of a scene's pattern. Holds references to the scene, which must
@@ -50,8 +52,22 @@ class Optimization {
 
   /// Continues from the checkpoint file `file` (written by write_checkpoint, e.g. a
   /// run's checkpoint.json) of the same scene instead of the initial pattern. Call before
-  /// run(). InputError naming `file` when it cannot be read or does not fit the scene.
+  /// run(). InputError naming `file` when it cannot be read, does not fit the scene, or
+  /// was written for other inputs (the scene or a file it reads changed: inputs()).
   void resume(const std::filesystem::path& file);
+
+  /// Writes the optimizer's checkpoint() with the run's inputs() into `file`,
+  /// atomically (scene/checkpoint_inputs.hpp).
+  void write_checkpoint(const std::filesystem::path& file) const;
+  /// history.json's document: the accepted iterations (history()) with iteration `best`
+  /// marked ("best_iteration" at the top, "best": true on its record).
+  nlohmann::json history_json(int best) const;
+  /// The iteration of the lowest objective so far, after remeshings too: the best design
+  /// while the run goes on (the run's result says which one it returns).
+  int best_iteration_so_far() const;
+  /// The scene's inputs (Scene::inputs_json) once it was loaded, as every checkpoint of
+  /// this run records them.
+  const nlohmann::json& inputs() const { return inputs_; }
 
   /// Runs the optimizer until a stopping rule of the scene's optimizer settings, until
   /// `on_iteration` returns false, or until `stop_requested` (polled before each
@@ -89,10 +105,16 @@ class Optimization {
   std::unique_ptr<DesignProblem> problem_;
   std::unique_ptr<PatternOptimizer> optimizer_;
   std::optional<TriMesh> initial_garment_;
+  nlohmann::json inputs_;
   bool resumed_ = false;
 };
 
-/// result.json's "optimization" member of a run that ended with `result`.
+/// result.json's "optimization" member of a run that ended with `result`: whether it
+/// converged or was interrupted, the rule that ended it ("stop_rule", and "stop_reason"
+/// in words), its iterations, the best (returned) iteration, the objective and its terms
+/// at the start and of the returned design, the gradient norms, the number of design
+/// parameters, the force residual of the equilibrium (N), the optimization's seconds
+/// and, when the stop rule checked it, the adjoint gradient against finite differences.
 nlohmann::json optimization_result_json(Optimization& optimization,
                                         const OptimizationResult& result);
 
@@ -100,8 +122,9 @@ nlohmann::json optimization_result_json(Optimization& optimization,
 /// must exist): the pattern files of the optimized pattern, the fit at its equilibrium
 /// (garment.ply, body.ply, report.html with the objective history and the before/after
 /// outlines, fit.glb), result.json, scene.json, history.json and state.json
-/// (write_fit_run_outputs), and checkpoint.json. Analyzes the fit first. Each file is
-/// written atomically (for all of them or none: OutputDirectory, see simulate.hpp).
+/// (write_fit_run_outputs), and checkpoint.json (with the run's inputs). Analyzes the fit
+/// first. Each file is written atomically (for all of them or none: OutputDirectory,
+/// see simulate.hpp).
 WrittenOutputs write_optimization_outputs(Optimization& optimization,
                                           const OptimizationResult& result,
                                           const std::filesystem::path& folder);

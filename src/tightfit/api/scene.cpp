@@ -2,12 +2,18 @@
 
 #include <utility>
 
+#include "tightfit/common/input_file.hpp"
+#include "tightfit/scene/checkpoint_inputs.hpp"
+
 namespace tightfit::api {
 
-Scene::Scene(SceneSpec spec, std::chrono::steady_clock::time_point read_time)
+Scene::Scene(SceneSpec spec, std::chrono::steady_clock::time_point read_time,
+             std::uint64_t first_input_read, nlohmann::json document)
     : spec_(std::move(spec)),
       newton_progress_(std::make_shared<NewtonStepCallback>()),
-      read_time_(read_time) {}
+      read_time_(read_time),
+      first_input_read_(first_input_read),
+      document_(std::move(document)) {}
 
 Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;
@@ -15,13 +21,15 @@ Scene::~Scene() = default;
 
 Scene Scene::read(const std::filesystem::path& file) {
   const auto start = std::chrono::steady_clock::now();
-  return Scene(read_scene(file), start);
+  const std::uint64_t reads = input_reads();
+  return Scene(read_scene(file), start, reads, nullptr);
 }
 
 Scene Scene::from_json(const nlohmann::json& document, const std::string& name,
                        const std::filesystem::path& base_dir) {
   const auto start = std::chrono::steady_clock::now();
-  return Scene(parse_scene(document, name, base_dir), start);
+  const std::uint64_t reads = input_reads();
+  return Scene(parse_scene(document, name, base_dir), start, reads, document);
 }
 
 const SceneSpec& Scene::spec() const { return loaded_ ? loaded_->spec : spec_; }
@@ -51,6 +59,11 @@ LoadedScene& Scene::loaded_scene() {
 GarmentSimulation& Scene::simulation() {
   load();
   return *simulation_;
+}
+
+nlohmann::json Scene::inputs_json() const {
+  if (document_.is_null()) return run_inputs_json(first_input_read_, file());
+  return run_inputs_json(first_input_read_, document_, file());
 }
 
 NewtonStepCallback Scene::set_newton_progress(NewtonStepCallback callback) {

@@ -9,6 +9,7 @@
 /// else; loading (seconds to minutes for a full body) happens at load() or at the first
 /// call that needs it.
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -71,8 +72,15 @@ class Scene {
   /// When the scene was read: the start of the run's wall time.
   std::chrono::steady_clock::time_point read_time() const { return read_time_; }
 
+  /// The inputs of the run so far (scene/checkpoint_inputs.hpp's run_inputs_json): the
+  /// scene document and every file read since the scene began to be read (the body
+  /// mesh, the layout, the shape target, ... once loaded), by content hash. A checkpoint
+  /// records them; a resumed run is refused when they differ.
+  nlohmann::json inputs_json() const;
+
  private:
-  Scene(SceneSpec spec, std::chrono::steady_clock::time_point read_time);
+  Scene(SceneSpec spec, std::chrono::steady_clock::time_point read_time,
+        std::uint64_t first_input_read, nlohmann::json document);
 
   SceneSpec spec_;  // until loaded; then loaded_->spec
   std::optional<OptimizationSpec> optimization_;
@@ -82,6 +90,10 @@ class Scene {
   /// keeps a copy of the forwarding function).
   std::shared_ptr<NewtonStepCallback> newton_progress_;
   std::chrono::steady_clock::time_point read_time_;
+  /// input_reads() before the scene was read (common/input_file.hpp).
+  std::uint64_t first_input_read_ = 0;
+  /// The document of a scene made from_json (null for a scene file, read again).
+  nlohmann::json document_;
 };
 
 }  // namespace tightfit::api

@@ -6,7 +6,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/stopwatch.hpp"
 #include "tightfit/design/finite_state.hpp"
-#include "tightfit/garment/pattern_record.hpp"
+#include "tightfit/garment/pattern_compare.hpp"
 
 /// DesignProblem's remeshing (remesh, degraded_pieces), the restore of a checkpoint's
 /// remeshed design and in-memory snapshots of the accepted design.

@@ -10,7 +10,6 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/planar.hpp"
 #include "tightfit/common/stopwatch.hpp"
-#include "tightfit/garment/pattern_record.hpp"
 
 namespace tightfit {
 namespace {

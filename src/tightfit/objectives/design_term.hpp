@@ -18,6 +18,7 @@
 ///
 /// Remeshing. Terms hold index sets of one pattern/garment topology (triangles,
 /// boundary loops, seams) and are rebuilt when the patterns are remeshed.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -153,5 +154,19 @@ class DesignTermSum : public DesignTerm {
  private:
   std::vector<Entry> entries_;
 };
+
+/// Names of the objective's entries for records and logs: the term names, made unique
+/// by appending " 2", " 3", ... to repeated ones.
+inline std::vector<std::string> term_names(const DesignTermSum& objective) {
+  std::vector<std::string> names;
+  for (const DesignTermSum::Entry& e : objective.entries()) {
+    const std::string base = e.term->name();
+    std::string name = base;
+    for (int k = 2; std::find(names.begin(), names.end(), name) != names.end(); ++k)
+      name = base + " " + std::to_string(k);
+    names.push_back(name);
+  }
+  return names;
+}
 
 }  // namespace tightfit

@@ -1,65 +1,20 @@
 #include "tightfit/objectives/seam_traction_objective.hpp"
 
-#include <algorithm>
-#include <map>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
-#include "tightfit/common/error.hpp"
 #include "tightfit/physics/autodiff.hpp"
 
 namespace tightfit {
-namespace {
 
 using namespace autodiff;  // NOLINT: the AD helper types
 
-/// l0 · (S n·n) of one element for its seam edge (a, b): with d = X_b − X_a and
-/// n = perp(d)/l0, l0 S n·n = perp(d)ᵀ S perp(d) / l0. `traction_only` drops the l0.
-template <typename S>
-S seam_term(const RelaxedStVK& law, const std::array<Vec3T<S>, 3>& x,
-            const std::array<Vec2T<S>, 3>& r, int a, int b, bool traction_only) {
-  using std::sqrt;
-  Mat2T<S> dm;
-  Mat32T<S> ds;
-  for (int k = 0; k < 2; ++k) {
-    dm.col(k) = r[k + 1] - r[0];
-    ds.col(k) = x[k + 1] - x[0];
-  }
-  const Mat32T<S> f = ds * inverse2(dm);
-  const Mat2T<S> c = f.transpose() * f;
-  const Mat2T<S> stress = second_piola(law, c);
-  const Vec2T<S> d = r[b] - r[a];
-  Vec2T<S> n;
-  n << -d(1), d(0);
-  const S l0 = sqrt(d.squaredNorm());
-  const S snn = n.dot(stress * n);
-  return law.material().thickness * (traction_only ? S(snn / (l0 * l0)) : S(snn / l0));
-}
-
-}  // namespace
-
 SeamTractionObjective::SeamTractionObjective(const Garment& garment, const ClothMaterial& material)
-    : pattern_triangles_(garment.topology->pattern_triangles),
-      pattern_to_garment_(garment.topology->pattern_to_garment),
+    : topology_(garment.topology),
       num_garment_(garment.num_garment_vertices()),
       num_pattern_(garment.num_pattern_vertices()),
-      law_(material) {
-  std::map<std::pair<int, int>, std::vector<int>> edge_triangles;
-  for (int e = 0; e < static_cast<int>(pattern_triangles_.rows()); ++e)
-    for (int k = 0; k < 3; ++k) {
-      const int a = pattern_triangles_(e, k), b = pattern_triangles_(e, (k + 1) % 3);
-      edge_triangles[{std::min(a, b), std::max(a, b)}].push_back(e);
-    }
-  for (const auto& [a, b] : garment.topology->seam_edges) {
-    const auto it = edge_triangles.find({std::min(a, b), std::max(a, b)});
-    if (it == edge_triangles.end())
-      throw InputError("seam traction objective", "seam edge (" + std::to_string(a) + ", " +
-                                                      std::to_string(b) +
-                                                      ") is not an edge of any pattern triangle");
-    for (int e : it->second) elements_.push_back({e, {a, b}});
-  }
-}
+      law_(material),
+      elements_(seam_elements(*garment.topology)) {}
 
 void SeamTractionObjective::check(const DesignState& state) const {
   if (state.x.size() != 3 * static_cast<Eigen::Index>(num_garment_) ||
@@ -71,33 +26,9 @@ void SeamTractionObjective::check(const DesignState& state) const {
                                 " and " + std::to_string(num_pattern_));
 }
 
-namespace {
-
-/// Local corner index (0..2) of pattern vertex v in triangle e.
-int corner_of(const Triangles& tri, int e, int v) {
-  for (int k = 0; k < 3; ++k)
-    if (tri(e, k) == v) return k;
-  return -1;
-}
-
-}  // namespace
-
 VecX SeamTractionObjective::tractions(const DesignState& state) const {
   check(state);
-  VecX out(elements_.size());
-  for (std::size_t i = 0; i < elements_.size(); ++i) {
-    const SeamElement& el = elements_[i];
-    std::array<Vec3, 3> x;
-    std::array<Vec2, 3> r;
-    for (int k = 0; k < 3; ++k) {
-      x[k] = state.x.segment<3>(3 * pattern_to_garment_[pattern_triangles_(el.triangle, k)]);
-      r[k] = state.rest.row(pattern_triangles_(el.triangle, k)).transpose();
-    }
-    out[static_cast<Eigen::Index>(i)] =
-        seam_term<double>(law_, x, r, corner_of(pattern_triangles_, el.triangle, el.edge[0]),
-                          corner_of(pattern_triangles_, el.triangle, el.edge[1]), true);
-  }
-  return out;
+  return seam_normal_tractions(*topology_, elements_, law_, state.x, state.rest);
 }
 
 double SeamTractionObjective::value(const DesignState& state) const {
@@ -107,11 +38,13 @@ double SeamTractionObjective::value(const DesignState& state) const {
     std::array<Vec3, 3> x;
     std::array<Vec2, 3> r;
     for (int k = 0; k < 3; ++k) {
-      x[k] = state.x.segment<3>(3 * pattern_to_garment_[pattern_triangles_(el.triangle, k)]);
-      r[k] = state.rest.row(pattern_triangles_(el.triangle, k)).transpose();
+      x[k] = state.x.segment<3>(
+          3 * topology_->pattern_to_garment[topology_->pattern_triangles(el.triangle, k)]);
+      r[k] = state.rest.row(topology_->pattern_triangles(el.triangle, k)).transpose();
     }
-    total += seam_term<double>(law_, x, r, corner_of(pattern_triangles_, el.triangle, el.edge[0]),
-                               corner_of(pattern_triangles_, el.triangle, el.edge[1]), false);
+    total += seam_traction_term<double>(
+        law_, x, r, triangle_corner(topology_->pattern_triangles, el.triangle, el.edge[0]),
+        triangle_corner(topology_->pattern_triangles, el.triangle, el.edge[1]), false);
   }
   return total;
 }
@@ -126,17 +59,18 @@ void SeamTractionObjective::add_gradient(const DesignState& state, VecX& d_x, Ve
     std::array<Vec3T<S>, 3> x;
     std::array<Vec2T<S>, 3> r;
     for (int k = 0; k < 3; ++k) {
-      const int pv = pattern_triangles_(el.triangle, k);
-      const int gv = pattern_to_garment_[pv];
+      const int pv = topology_->pattern_triangles(el.triangle, k);
+      const int gv = topology_->pattern_to_garment[pv];
       for (int c = 0; c < 3; ++c) x[k](c) = variable<kN>(state.x[3 * gv + c], 3 * k + c);
       for (int c = 0; c < 2; ++c) r[k](c) = variable<kN>(state.rest(pv, c), 9 + 2 * k + c);
     }
-    const S t = seam_term<S>(law_, x, r, corner_of(pattern_triangles_, el.triangle, el.edge[0]),
-                             corner_of(pattern_triangles_, el.triangle, el.edge[1]), false);
+    const S t = seam_traction_term<S>(
+        law_, x, r, triangle_corner(topology_->pattern_triangles, el.triangle, el.edge[0]),
+        triangle_corner(topology_->pattern_triangles, el.triangle, el.edge[1]), false);
     const Eigen::Matrix<double, kN, 1>& g = t.derivatives();
     for (int k = 0; k < 3; ++k) {
-      const int pv = pattern_triangles_(el.triangle, k);
-      d_x.segment<3>(3 * pattern_to_garment_[pv]) += g.segment<3>(3 * k);
+      const int pv = topology_->pattern_triangles(el.triangle, k);
+      d_x.segment<3>(3 * topology_->pattern_to_garment[pv]) += g.segment<3>(3 * k);
       d_rest.segment<2>(2 * pv) += g.segment<2>(9 + 2 * k);
     }
   }

@@ -1,6 +1,6 @@
 #pragma once
 /// Seam traction objective (paper Sec. 5.4, Eq. 36): the total normal traction that the
-/// cloth pulls on its seams with,
+/// cloth pulls on its seams with (physics/seam_traction.hpp),
 ///   T_seam = Σ_{i ∈ 𝒯} l0_i t (S_i n_i · n_i)        (N)
 /// over every pair (seam edge, cloth triangle containing it) 𝒯, with l0_i the rest length
 /// of the seam edge (m), n_i the unit rest-frame normal of that edge in its pattern
@@ -13,12 +13,13 @@
 /// Depends on x and Xbar (through F, l0 and n). Derivatives by forward-mode automatic
 /// differentiation per element, with S's derivative from the law's closed-form Hessian
 /// in (I1, I2). C¹ in x and Xbar (the relaxed law is C²).
-#include <array>
+#include <memory>
 #include <vector>
 
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
 #include "tightfit/physics/relaxed_stvk.hpp"
+#include "tightfit/physics/seam_traction.hpp"
 
 namespace tightfit {
 
@@ -26,7 +27,7 @@ class SeamTractionObjective : public DesignTerm {
  public:
   /// Collects, for both sides of every seam, each seam edge and the pattern triangle that
   /// contains it. `material` must be the simulated cloth's. Throws InputError (source
-  /// "seam traction objective") when a seam edge is not an edge of any triangle.
+  /// "seam traction") when a seam edge is not an edge of any triangle.
   SeamTractionObjective(const Garment& garment, const ClothMaterial& material);
 
   std::string name() const override { return "seam traction"; }
@@ -34,12 +35,8 @@ class SeamTractionObjective : public DesignTerm {
   void add_gradient(const DesignState& state, VecX& d_x, VecX& d_rest) const override;
   bool depends_on_positions() const override { return true; }
 
-  /// One seam-adjacent element: the triangle (index into Garment::pattern_triangles) and
-  /// the seam edge as global pattern vertices.
-  struct SeamElement {
-    int triangle = -1;
-    std::array<int, 2> edge;
-  };
+  /// The seam-adjacent elements (physics/seam_traction.hpp), in the order of
+  /// tractions().
   const std::vector<SeamElement>& elements() const { return elements_; }
 
   /// Normal traction t S n·n per unit rest length (N/m) of every seam element.
@@ -48,8 +45,7 @@ class SeamTractionObjective : public DesignTerm {
  private:
   void check(const DesignState& state) const;
 
-  Triangles pattern_triangles_;
-  std::vector<int> pattern_to_garment_;
+  std::shared_ptr<const GarmentTopology> topology_;
   int num_garment_ = 0;
   int num_pattern_ = 0;
   RelaxedStVK law_;

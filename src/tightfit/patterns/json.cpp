@@ -5,10 +5,10 @@
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/json_fields.hpp"
-#include "tightfit/garment/pattern_record.hpp"
 #include "tightfit/patterns/drawing.hpp"
 #include "tightfit/patterns/validate.hpp"
 #include "tightfit/report/seam_statistics.hpp"
+#include "tightfit/scene/pattern_record.hpp"
 
 #include <stdexcept>
 

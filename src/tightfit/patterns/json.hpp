@@ -9,7 +9,7 @@
 
 namespace tightfit {
 
-/// Writes pieces.json (atomically): the pattern's record (garment/pattern_record.hpp) with
+/// Writes pieces.json (atomically): the pattern's record (scene/pattern_record.hpp) with
 /// the derived keys below beside its own. Format (version 1):
 /// {
 ///   "format": "tightfit-pieces", "version": 1,

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <utility>
 
-#include "tightfit/objectives/seam_traction_objective.hpp"
+#include "tightfit/physics/seam_traction.hpp"
 
 namespace tightfit {
 namespace {
@@ -74,13 +74,14 @@ std::vector<SeamStatistics> fit_seam_statistics(const Garment& garment, const Po
   }
   if (garment.pattern.seams.empty()) return out;
 
-  const SeamTractionObjective traction(garment, material);
+  const std::vector<SeamElement> elements = seam_elements(*garment.topology);
   const VecX flat_x = Eigen::Map<const VecX>(x.data(), x.size());  // row-major: x0 y0 z0 x1 ...
   const Points2 rest = garment.rest_positions();
-  const VecX per_element = traction.tractions({flat_x, rest});
+  const VecX per_element =
+      seam_normal_tractions(*garment.topology, elements, RelaxedStVK(material), flat_x, rest);
   std::vector<double> weighted(out.size(), 0.0), length(out.size(), 0.0);
-  for (size_t e = 0; e < traction.elements().size(); ++e) {
-    const auto& edge = traction.elements()[e].edge;
+  for (size_t e = 0; e < elements.size(); ++e) {
+    const auto& edge = elements[e].edge;
     const auto it = edge_seam.find(sorted_edge(edge[0], edge[1]));
     if (it == edge_seam.end()) continue;
     const double l0 = (rest.row(edge[1]) - rest.row(edge[0])).norm();

@@ -7,8 +7,9 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/json_fields.hpp"
-#include "tightfit/design/optimization_checkpoint.hpp"
-#include "tightfit/garment/pattern_record.hpp"
+#include "tightfit/garment/pattern_compare.hpp"
+#include "tightfit/scene/optimization_checkpoint.hpp"
+#include "tightfit/scene/pattern_record.hpp"
 
 namespace tightfit {
 namespace {

@@ -10,12 +10,12 @@
 ///   "scene": the scene document,
 ///   "pattern": {"pieces": [{"name", "rest": [[x, y], ...] (m), "triangles": [[a, b, c], ...]}]}
 ///     when the garment is the scene's (rest positions aside), or, when the run remeshed
-///     pieces, {"remeshed": true, the complete pattern (garment/pattern_record.hpp):
+///     pieces, {"remeshed": true, the complete pattern (scene/pattern_record.hpp):
 ///     "pieces" with boundaries, corners and grain, "seams", "pinned"},
 ///   "garment": [[face, u, v], ...] (one per garment vertex: its limit-surface point),
 ///   "body": [[x, y, z], ...] (m, deformed body vertices),
 ///   "history": {"terms": [names], "iterations": [records]} (optimize only; the records
-///     of history.json, design/optimization_checkpoint.hpp),
+///     of history.json, scene/optimization_checkpoint.hpp),
 ///   "result": the command's summary (result.json, or layout.json for layout)}
 /// Doubles are written in nlohmann::json's round-trip form (shortest digits that parse
 /// back to the same double), so a read state is bit-identical to the written one.

@@ -13,7 +13,7 @@
 ///     that factorization was made (DesignProblem::accepted_held_point): Newton's matrix
 ///     at that state and those parameters' rest positions, shifted by δ,
 ///   "remeshed" (only after a remeshing): {"pattern": the complete pattern with the
-///     reference rest positions (garment/pattern_record.hpp), "mesh_rest": per piece
+///     reference rest positions (scene/pattern_record.hpp), "mesh_rest": per piece
 ///     [[x, y], ...] (m), the rest positions its mesh was made with},
 ///   "inputs" (optional, written by `tightfit optimize`): {"files": {path: content hash}},
 ///     the files the run read; not read here}
@@ -34,10 +34,6 @@
 #include "tightfit/objectives/design_term.hpp"
 
 namespace tightfit {
-
-/// Names of the objective's entries for records and logs: the term names, made unique
-/// by appending " 2", " 3", ... to repeated ones.
-std::vector<std::string> term_names(const DesignTermSum& objective);
 
 /// One record; `term_names` name the entries of term_values (same length).
 nlohmann::json iteration_json(const OptimizationIteration& it,

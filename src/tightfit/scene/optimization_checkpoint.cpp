@@ -1,4 +1,4 @@
-#include "tightfit/design/optimization_checkpoint.hpp"
+#include "tightfit/scene/optimization_checkpoint.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include "tightfit/common/atomic_file.hpp"
 #include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/json_fields.hpp"
-#include "tightfit/garment/pattern_record.hpp"
+#include "tightfit/scene/pattern_record.hpp"
 
 namespace tightfit {
 namespace {
@@ -74,22 +74,6 @@ EmbeddedState read_state(JsonFields& fields, const std::string& source, const st
   fields.finish();
   return state;
 }
-
-}  // namespace
-
-std::vector<std::string> term_names(const DesignTermSum& objective) {
-  std::vector<std::string> names;
-  for (const DesignTermSum::Entry& e : objective.entries()) {
-    const std::string base = e.term->name();
-    std::string name = base;
-    for (int k = 2; std::find(names.begin(), names.end(), name) != names.end(); ++k)
-      name = base + " " + std::to_string(k);
-    names.push_back(name);
-  }
-  return names;
-}
-
-namespace {
 
 nlohmann::json terms_json(const std::vector<double>& values,
                           const std::vector<std::string>& term_names) {

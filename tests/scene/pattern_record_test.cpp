@@ -1,4 +1,5 @@
-#include "tightfit/garment/pattern_record.hpp"
+#include "tightfit/scene/pattern_record.hpp"
+#include "tightfit/garment/pattern_compare.hpp"
 
 #include <gtest/gtest.h>
 

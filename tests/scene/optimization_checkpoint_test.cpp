@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "adjoint_test_scene.hpp"
+#include "design/adjoint_test_scene.hpp"
 #include "tightfit/common/error.hpp"
-#include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
+#include "tightfit/scene/optimization_checkpoint.hpp"
 
 namespace tightfit::pattern_optimizer_checkpoint_test {
 

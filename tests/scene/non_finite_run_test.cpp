@@ -11,12 +11,12 @@
 #include <sstream>
 #include <string>
 
-#include "adjoint_test_scene.hpp"
+#include "design/adjoint_test_scene.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/finite_output.hpp"
 #include "tightfit/design/finite_state.hpp"
-#include "tightfit/design/optimization_checkpoint.hpp"
 #include "tightfit/design/pattern_optimizer.hpp"
+#include "tightfit/scene/optimization_checkpoint.hpp"
 
 namespace tightfit::non_finite_run_test {
 

@@ -1,4 +1,4 @@
-#include "resume_check.hpp"
+#include "tightfit/scene/checkpoint_inputs.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,9 +9,9 @@
 #include "tightfit/common/finite_output.hpp"
 #include "tightfit/common/input_file.hpp"
 #include "tightfit/common/json_fields.hpp"
-#include "tightfit/design/optimization_checkpoint.hpp"
+#include "tightfit/scene/optimization_checkpoint.hpp"
 
-namespace tightfit::app {
+namespace tightfit {
 
 namespace {
 
@@ -45,20 +45,25 @@ void drop_shared(FileHashes& a, FileHashes& b) {
 
 }  // namespace
 
-nlohmann::json run_inputs_json(std::uint64_t since, const std::string& scene_file) {
+nlohmann::json run_inputs_json(std::uint64_t since, nlohmann::json scene,
+                               const std::string& scene_key) {
   nlohmann::json files = nlohmann::json::object();
   for (const auto& [path, hash] : input_files_read(since)) files[path] = hash;
-  nlohmann::json scene = read_json_file(scene_file);
   if (scene.is_object()) {
     scene.erase("description");
     if (scene.contains("optimize") && scene["optimize"].is_object())
-      for (const char* key : {"max_iterations", "checkpoint_every"}) scene["optimize"].erase(key);
+      for (const char* key : {"max_iterations", "checkpoint_every", "time_limit"})
+        scene["optimize"].erase(key);
   }
+  files[scene_key] = "scene " + content_hash(scene.dump());
+  return {{"files", files}};
+}
+
+nlohmann::json run_inputs_json(std::uint64_t since, const std::string& scene_file) {
   std::error_code ec;
   std::filesystem::path key = std::filesystem::weakly_canonical(scene_file, ec);
   if (ec) key = std::filesystem::absolute(scene_file);
-  files[key.string()] = "scene " + content_hash(scene.dump());
-  return {{"files", files}};
+  return run_inputs_json(since, read_json_file(scene_file), key.string());
 }
 
 void check_same_inputs(const nlohmann::json& recorded, const nlohmann::json& now,
@@ -124,4 +129,4 @@ OptimizationCheckpoint read_checkpoint_for(const std::filesystem::path& file,
   return c;
 }
 
-}  // namespace tightfit::app
+}  // namespace tightfit

@@ -1,7 +1,7 @@
 #pragma once
-/// What `optimize --resume` checks before it continues from a checkpoint: that the
-/// checkpoint was written for the same inputs (the scene and every file it read, by a
-/// hash of their bytes) and holds coordinates of a garment and a body.
+/// The inputs a run's checkpoint records, and what `optimize --resume` checks before it continues
+/// from a checkpoint: that the checkpoint was written for the same inputs (the scene and every file
+/// it read, by a hash of their bytes) and holds coordinates of a garment and a body.
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -10,12 +10,16 @@
 
 #include "tightfit/design/optimization_state.hpp"
 
-namespace tightfit::app {
+namespace tightfit {
 
 /// {"files": {absolute path: content hash}}: the inputs this run read after the first
 /// `since` reads (common/input_file.hpp), recorded in every checkpoint as "inputs". The
-/// scene file `scene_file` counts by its content without the settings a resumed run may
-/// change (optimize/max_iterations, optimize/checkpoint_every, description).
+/// scene document `scene` counts under `scene_key` (for a file: its absolute path) by
+/// its content without the settings a resumed run may change (description,
+/// optimize/max_iterations, optimize/checkpoint_every, optimize/time_limit).
+nlohmann::json run_inputs_json(std::uint64_t since, nlohmann::json scene,
+                               const std::string& scene_key);
+/// The same for the scene file `scene_file` (read again; its key is its canonical path).
 nlohmann::json run_inputs_json(std::uint64_t since, const std::string& scene_file);
 
 /// Throws InputError naming `checkpoint_file` when the inputs recorded in it (`recorded`,
@@ -25,7 +29,7 @@ nlohmann::json run_inputs_json(std::uint64_t since, const std::string& scene_fil
 void check_same_inputs(const nlohmann::json& recorded, const nlohmann::json& now,
                        const std::filesystem::path& checkpoint_file);
 
-/// Writes the checkpoint (design/optimization_checkpoint.hpp) with `inputs` (from
+/// Writes the checkpoint (scene/optimization_checkpoint.hpp) with `inputs` (from
 /// run_inputs_json) as its member "inputs", atomically.
 void write_checkpoint_with_inputs(const std::filesystem::path& file,
                                   const OptimizationCheckpoint& c,
@@ -44,4 +48,4 @@ OptimizationCheckpoint read_checkpoint_for(const std::filesystem::path& file,
 void check_checkpoint_coordinates(const OptimizationCheckpoint& c,
                                   const std::filesystem::path& checkpoint_file);
 
-}  // namespace tightfit::app
+}  // namespace tightfit
