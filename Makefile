@@ -45,7 +45,8 @@ test-memcheck: build
 demo: build
 	bash scripts/demo.sh $(BUILD)/tightfit $(DEMO_OUT)
 
-# libFuzzer on every reader (scripts/fuzz.sh): FUZZ_SECONDS per target (default 60).
+# libFuzzer on every reader (scripts/fuzz.sh): FUZZ_SECONDS per target (default 60),
+# FUZZ_JOBS targets at once (default 1).
 fuzz: build
 	bash scripts/fuzz.sh
 

@@ -7,7 +7,9 @@
 # the script exits 1 when any target found one. Each finding, once fixed, goes into
 # tests/fuzz_regressions/READER/ (READER: the target's name without "_fuzz"), where
 # `make test` reads it again (tests/app/fuzz_regression_test.cpp).
-# Usage: scripts/fuzz.sh [TARGET...]   (default: all targets)
+# Usage: [FUZZ_SECONDS=S] [FUZZ_JOBS=N] scripts/fuzz.sh [TARGET...]   (default: all
+# targets, one at a time; FUZZ_JOBS runs N targets at once, each for S seconds of wall
+# time, so a slower machine runs fewer inputs: compare the executed-units counts printed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET="${FUZZ_SECONDS:-60}"
@@ -58,22 +60,39 @@ corpus_files() {
   esac
 }
 
-status=0
-for t in "${targets[@]}"; do
-  corpus="$BUILD/corpus/$t"
-  findings="$BUILD/findings/$t"
+# One target's run: its corpus, then libFuzzer for SECONDS_PER_TARGET seconds; its log in
+# $BUILD/TARGET.log, findings in $BUILD/findings/TARGET/. Exit status 1 on a finding.
+fuzz_target() {
+  local t="$1" corpus="$BUILD/corpus/$1" findings="$BUILD/findings/$1"
   mkdir -p "$corpus" "$findings"
   for f in $(corpus_files "$t"); do cp "$f" "$corpus/"; done
-  echo "fuzz: $t for ${SECONDS_PER_TARGET} s"
-  export TMPDIR="$BUILD/tmp"
-  mkdir -p "$TMPDIR"
-  if ! ASAN_OPTIONS=detect_leaks=0 "$BUILD/fuzz/$t" "$corpus" -max_total_time="$SECONDS_PER_TARGET" \
-      -max_len=262144 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-      -artifact_prefix="$findings/" > "$BUILD/$t.log" 2>&1; then
-    status=1
+  if ! TMPDIR="$BUILD/tmp" ASAN_OPTIONS=detect_leaks=0 "$BUILD/fuzz/$t" "$corpus" \
+      -max_total_time="$SECONDS_PER_TARGET" -max_len=262144 -timeout=10 -rss_limit_mb=2048 \
+      -print_final_stats=1 -artifact_prefix="$findings/" > "$BUILD/$t.log" 2>&1; then
     echo "fuzz: $t FOUND A PROBLEM: $(ls "$findings")"
+    return 1
   fi
-  grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$BUILD/$t.log" | tr '\n' ' '
-  echo
+}
+
+# FUZZ_JOBS targets run at once (default 1): each still runs FUZZ_SECONDS of wall time.
+JOBS="${FUZZ_JOBS:-1}"
+mkdir -p "$BUILD/tmp"
+status=0
+pids=()
+names=()
+report() {  # waits for the oldest running target and prints its line
+  local pid="${pids[0]}" t="${names[0]}"
+  pids=("${pids[@]:1}")
+  names=("${names[@]:1}")
+  wait "$pid" || status=1
+  echo "fuzz: $t: $(grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$BUILD/$t.log" | tr '\n' ' ')"
+}
+for t in "${targets[@]}"; do
+  [ "${#pids[@]}" -ge "$JOBS" ] && report
+  echo "fuzz: $t for ${SECONDS_PER_TARGET} s"
+  fuzz_target "$t" &
+  pids+=("$!")
+  names+=("$t")
 done
+while [ "${#pids[@]}" -gt 0 ]; do report; done
 exit $status

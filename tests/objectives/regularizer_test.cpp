@@ -14,6 +14,7 @@
 #include "tightfit/objectives/regularizer_corner_angle.hpp"
 #include "tightfit/objectives/regularizer_edge_lengths.hpp"
 #include "tightfit/objectives/regularizer_smoothness.hpp"
+#include "tightfit/objectives/resolution.hpp"
 
 namespace tightfit::regularizer_test {
 
@@ -92,12 +93,15 @@ void expect_rest_gradient(const DesignTerm& term, const Points2& rest, double h 
 
 TEST(SeamLengthRegularizer, ValueByHand) {
   const Garment g = two_pieces(0.26);
-  const EdgeLengthDifferenceTerm term = seam_length_regularizer(g);
+  // Weights refer to a reference boundary edge of 0.1 m: w = 0.1 / the pair's mean edge.
+  const EdgeLengthDifferenceTerm term = seam_length_regularizer(g, {1.0, 0.1});
   ASSERT_EQ(term.pairs().size(), 3u);
   const VecX x;
   const Points2 rest = g.rest_positions();
   // Three edges per side: each differs by (0.26 − 0.2)/3.
-  EXPECT_NEAR(term.value({x, rest}), 3.0 * std::pow(0.06 / 3.0, 2), 1e-15);
+  const double w = 0.1 / (0.5 * (0.26 / 3.0 + 0.2 / 3.0));
+  for (const auto& pair : term.pairs()) EXPECT_NEAR(pair.weight, w, 1e-12);
+  EXPECT_NEAR(term.value({x, rest}), w * 3.0 * std::pow(0.06 / 3.0, 2), 1e-15);
   EXPECT_FALSE(term.depends_on_positions());
   const Garment equal = two_pieces(0.2);
   EXPECT_EQ(seam_length_regularizer(equal).value({x, equal.rest_positions()}), 0.0);
@@ -110,10 +114,11 @@ TEST(SeamLengthRegularizer, GradientMatchesFiniteDifferences) {
 
 TEST(EvenSpacingRegularizer, ValueByHandOnGrids) {
   const Garment g = two_pieces(0.2);
-  const EdgeLengthDifferenceTerm term = even_spacing_regularizer(g);
+  const EdgeLengthDifferenceTerm term = even_spacing_regularizer(g, {1.0, 0.1});
   // A: 14 loop vertices; B: 12. Only corners join edges of different length.
   ASSERT_EQ(term.pairs().size(), 14u + 12u);
-  const double a = 4.0 * std::pow(0.3 / 4 - 0.2 / 3, 2);
+  const double w = 0.1 / (0.5 * (0.3 / 4 + 0.2 / 3));  // reference edge / mean edge
+  const double a = 4.0 * w * std::pow(0.3 / 4 - 0.2 / 3, 2);
   const double b = 0.0;  // B: 0.2/3 both ways
   const VecX x;
   EXPECT_NEAR(term.value({x, g.rest_positions()}), a + b, 1e-15);
@@ -221,7 +226,8 @@ TEST(CompactnessRegularizer, RatiosAndValueMatchBruteForceWithTheInitialPathKept
   // Break the symmetry so that no pair has two boundary arcs of equal length.
   pattern.pieces[0].rest = perturbed(pattern.pieces[0].rest, 0.003, 8);
   const Garment g = weld_pattern(pattern);
-  const CompactnessRegularizer term(g, {0.3, 1});
+  const double h = 0.05;  // reference boundary edge (m)
+  const CompactnessRegularizer term(g, {0.3, 1}, {1.0, h});
   const Points2 initial = g.rest_positions();
   // Bend the strip so that arcs change length unevenly.
   Points2 rest = perturbed(initial, 0.02, 5);
@@ -234,11 +240,18 @@ TEST(CompactnessRegularizer, RatiosAndValueMatchBruteForceWithTheInitialPathKept
   ASSERT_EQ(n, 24);
   // All pairs except the n neighbours (one-edge paths).
   EXPECT_EQ(loop.pairs.size(), static_cast<std::size_t>(n * (n - 1) / 2 - n));
+  // A pair weighs σ_i σ_j / h², σ half the two initial boundary edges at each end.
+  auto share = [&](int i) {
+    auto at = [&](int k) { return initial.row(loop.vertices[(k + n) % n]); };
+    return 0.5 * ((at(i + 1) - at(i)).norm() + (at(i) - at(i - 1)).norm()) / h;
+  };
   double expected = 0.0;
   for (std::size_t k = 0; k < rho.size(); ++k) {
-    const double b = brute_ratio(loop.vertices, initial, rest, loop.pairs[k].i, loop.pairs[k].j);
+    const auto& pair = loop.pairs[k];
+    const double b = brute_ratio(loop.vertices, initial, rest, pair.i, pair.j);
     EXPECT_NEAR(rho[k], b, 1e-14);
-    if (b < 0.3) expected += std::pow(b - 0.3, 4);
+    EXPECT_NEAR(pair.weight, share(pair.i) * share(pair.j), 1e-12);
+    if (b < 0.3) expected += pair.weight * std::pow(b - 0.3, 4);
   }
   const VecX x;
   EXPECT_GT(expected, 0.0);
@@ -289,6 +302,24 @@ TEST(DesignTermSum, WeightsValuesAndGradients) {
   ASSERT_EQ(parts.size(), 3u);
   EXPECT_EQ(parts[2], 0.0);
   expect_rest_gradient(sum, rest);
+}
+
+TEST(Resolution, VertexAreasBoundaryEdgesAndPinnedSharesByHand) {
+  // Piece A (0.3 x 0.2 m, 4 x 3 cells) sewn to B (0.2 x 0.2 m, 3 x 3 cells).
+  const Garment g = two_pieces(0.2);
+  const VecX areas = garment_vertex_areas(g);
+  EXPECT_NEAR(areas.sum(), 0.3 * 0.2 + 0.2 * 0.2, 1e-15);  // the pattern's rest area
+  const ResolutionReference r = resolution_of(g);
+  EXPECT_NEAR(r.vertex_area, areas.sum() / g.num_garment_vertices(), 1e-15);
+  // Boundary: A 1.0 m over 14 edges, B 0.8 m over 12.
+  EXPECT_NEAR(r.boundary_edge, (1.0 + 0.8) / 26.0, 1e-15);
+  EXPECT_TRUE(r.known());
+  EXPECT_FALSE(ResolutionReference{}.known());
+  const ResolutionReference given{2.0, 3.0};
+  EXPECT_EQ(resolution_or_own(given, g).boundary_edge, 3.0);
+  EXPECT_EQ(resolution_or_own({}, g).boundary_edge, r.boundary_edge);
+  // No pinned boundary: no pinned shares.
+  EXPECT_EQ(pinned_vertex_lengths(g).cwiseAbs().maxCoeff(), 0.0);
 }
 
 }  // namespace tightfit::regularizer_test

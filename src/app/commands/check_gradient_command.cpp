@@ -63,6 +63,8 @@ void run_check_gradient(const CheckArgs& args) {
   OptimizationScene input = read_optimization_scene(args.scene);
   auto scene = load_scene(input.scene);
   auto sim = make_simulation(*scene);
+  // The terms' weights refer to the scene's initial mesh, as in `tightfit optimize`.
+  input.optimization.resolution = resolution_of(sim->garment());
   const auto objective = build_objective(input.optimization, *sim);
   const std::vector<std::string> names = term_names(*objective);
   // Read before the initial solve, so that a bad file fails at once.

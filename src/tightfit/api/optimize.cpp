@@ -18,6 +18,9 @@ Optimization::Optimization(Scene& scene, const OptimizeOptions& options)
   if (options.max_iterations >= 0) spec_.optimizer.max_iterations = options.max_iterations;
   if (options.time_limit >= 0.0) spec_.optimizer.time_limit = options.time_limit;
   GarmentSimulation& sim = scene.simulation();
+  // The terms' weights refer to the scene's initial mesh, also after remeshings and on
+  // resume (which starts from the scene's garment too).
+  spec_.resolution = resolution_of(sim.garment());
   objective_ = build_objective(spec_, sim);
   names_ = tightfit::term_names(*objective_);
   inputs_ = scene.inputs_json();  // the scene and every file its loading read

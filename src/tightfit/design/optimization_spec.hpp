@@ -68,6 +68,7 @@
 #include "tightfit/design/pattern_optimizer.hpp"
 #include "tightfit/objectives/pressure_region.hpp"
 #include "tightfit/objectives/regularizer_compactness.hpp"
+#include "tightfit/objectives/resolution.hpp"
 
 namespace tightfit {
 
@@ -155,6 +156,10 @@ struct OptimizationSpec {
   int checkpoint_every = 5;
   PatternOptimizerOptions optimizer;  ///< max_iterations default 50 here
   DesignProblemOptions problem;
+  /// The resolution the terms' vertex and edge weights refer to (objectives/
+  /// resolution.hpp): the design's initial mesh, so that the objective rebuilt after a
+  /// remeshing measures the same; not read from the scene (unknown: each garment's own).
+  ResolutionReference resolution;
 };
 
 /// Parses `section` (the value of "optimize") of scene `file`; `path` is its JSON

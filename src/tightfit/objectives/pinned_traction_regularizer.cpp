@@ -16,13 +16,22 @@ struct PinnedTractionRegularizer::Evaluation {
 
 PinnedTractionRegularizer::PinnedTractionRegularizer(const Garment& garment,
                                                      const SimulationMaterials& materials,
-                                                     const LimitSurface& surface)
+                                                     const LimitSurface& surface,
+                                                     const ResolutionReference& reference)
     : surface_(surface),
       pinned_(garment.topology->pinned),
       topology_(garment.topology),
       fabric_(materials.fabric),
       seam_(materials.seam) {
   if (pinned_.empty()) throw InputError("pinned traction", "the garment has no pinned vertices");
+  // A pin holds the traction along its share of the pinned rim: w = reference edge / share.
+  const VecX lengths = pinned_vertex_lengths(garment);
+  const double edge = resolution_or_own(reference, garment).boundary_edge;
+  weights_.resize(pinned_.size());
+  for (std::size_t k = 0; k < pinned_.size(); ++k) {
+    const double share = lengths[pinned_[k]];
+    weights_[k] = share > 0.0 ? edge / share : 1.0;
+  }
 }
 
 PinnedTractionRegularizer::~PinnedTractionRegularizer() = default;
@@ -57,11 +66,12 @@ PinnedTractionRegularizer::Evaluation PinnedTractionRegularizer::evaluate(
     const Vec3 normal = xu.cross(xv).normalized();
     const Vec3 gi = g.segment<3>(3 * i);
     const Vec3 tangential = gi - normal * normal.dot(gi);
-    ev.value += tangential.squaredNorm();
-    ev.a.segment<3>(3 * i) = 2.0 * tangential;
+    const double wk = weights_[k];
+    ev.value += wk * tangential.squaredNorm();
+    ev.a.segment<3>(3 * i) = 2.0 * wk * tangential;
     ev.xu[k] = xu;
     ev.xv[k] = xv;
-    ev.gn[k] = -2.0 * normal.dot(gi) * gi;
+    ev.gn[k] = -2.0 * wk * normal.dot(gi) * gi;
   }
   return ev;
 }

@@ -1,7 +1,10 @@
 #pragma once
 /// Traction-free pinned boundaries (paper Sec. 4.1, Eq. 27): the tangential force that
 /// the pins of the pinned garment vertices F (cuffs, waistbands) hold,
-///   R_fixed = Σ_{i ∈ F} ‖P_i ∂U_g/∂x_i‖²,   P_i = I − n_i n_iᵀ      (N²),
+///   R_fixed = Σ_{i ∈ F} w_i ‖P_i ∂U_g/∂x_i‖²,   P_i = I − n_i n_iᵀ      (N²),
+/// with w_i the reference mesh's mean boundary edge over the vertex's share of the pinned
+/// rim's rest length (objectives/resolution.hpp: about 1 on the design's initial mesh; a
+/// pin holds the traction along its share, so the weighted sum is the same on any mesh),
 /// U_g the garment's elastic energy (cloth and seam springs) at the equilibrium and n_i
 /// the limit-surface normal there. The paper writes ‖dU/ds_i‖², the force in the face's
 /// (u, v) coordinates; its size then depends on each face's parametrization, so this
@@ -19,6 +22,7 @@
 
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
+#include "tightfit/objectives/resolution.hpp"
 #include "tightfit/physics/garment_energies.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
@@ -28,10 +32,11 @@ namespace tightfit {
 class PinnedTractionRegularizer : public DesignTerm {
  public:
   /// The garment's energies are rebuilt from `materials` as the simulation builds them;
-  /// `surface` must outlive the term. Throws InputError (source "pinned traction") for a
-  /// garment without pinned vertices.
+  /// `surface` must outlive the term. `reference`: the resolution of the weights w_i
+  /// (the garment's own when not known). Throws InputError (source "pinned traction")
+  /// for a garment without pinned vertices.
   PinnedTractionRegularizer(const Garment& garment, const SimulationMaterials& materials,
-                            const LimitSurface& surface);
+                            const LimitSurface& surface, const ResolutionReference& reference = {});
   ~PinnedTractionRegularizer() override;
 
   std::string name() const override { return "pinned traction"; }
@@ -55,6 +60,7 @@ class PinnedTractionRegularizer : public DesignTerm {
   std::shared_ptr<const GarmentTopology> topology_;
   ClothMaterial fabric_;
   SeamMaterial seam_;
+  std::vector<double> weights_;  ///< w_i per entry of pinned_
 };
 
 }  // namespace tightfit

@@ -35,13 +35,15 @@ double path_length(const LoopLengths& l, int start, int count) {
 
 }  // namespace
 
-CompactnessRegularizer::CompactnessRegularizer(const Garment& garment, CompactnessOptions options)
+CompactnessRegularizer::CompactnessRegularizer(const Garment& garment, CompactnessOptions options,
+                                               const ResolutionReference& reference)
     : options_(options), num_pattern_(garment.num_pattern_vertices()) {
   if (!(options_.min_ratio > 0.0 && options_.min_ratio <= 1.0))
     throw std::invalid_argument("compactness: r_D must lie in (0, 1]");
   if (options_.pair_stride < 1)
     throw std::invalid_argument("compactness: pair stride must be >= 1");
   const Points2 rest = garment.rest_positions();
+  const double reference_edge = resolution_or_own(reference, garment).boundary_edge;
   for (std::size_t k = 0; k < garment.pattern.pieces.size(); ++k)
     for (const std::vector<int>& piece_loop : garment.pattern.pieces[k].loops()) {
       Loop loop;
@@ -51,12 +53,18 @@ CompactnessRegularizer::CompactnessRegularizer(const Garment& garment, Compactne
       if (n < 4) continue;
       const LoopLengths l = loop_lengths(rest, loop.vertices);
       const int s = options_.pair_stride;
+      // A pair stands for the boundary around its two ends (a loop of n vertices has ~n²
+      // pairs): w = σ_i σ_j / h², σ the share of boundary length of an end (s edges).
+      auto share = [&](int i) {
+        return 0.5 * s * (l.length[i] + l.length[(i + n - 1) % n]) / reference_edge;
+      };
       for (int i = 0; i < n; i += s)
         for (int j = i + s; j < n; j += s) {
           const int forward = j - i, backward = n - forward;
           const bool use_forward =
               l.prefix[j] - l.prefix[i] <= l.prefix[n] - (l.prefix[j] - l.prefix[i]);
-          Pair p{i, j, use_forward ? i : j, use_forward ? forward : backward};
+          Pair p{i, j, use_forward ? i : j, use_forward ? forward : backward,
+                 reference_edge > 0.0 ? share(i) * share(j) : 1.0};
           if (p.count >= 2) loop.pairs.push_back(p);
         }
       loops_.push_back(std::move(loop));
@@ -78,8 +86,15 @@ double CompactnessRegularizer::value(const DesignState& state) const {
   check_rest_rows(name(), state.rest, num_pattern_);
   const double rd = options_.min_ratio;
   double total = 0.0;
-  for (double rho : ratios(state.rest))
-    if (rho < rd) total += std::pow(rho - rd, 4);
+  for (const Loop& loop : loops_) {
+    const LoopLengths l = loop_lengths(state.rest, loop.vertices);
+    for (const Pair& p : loop.pairs) {
+      const double rho =
+          (state.rest.row(loop.vertices[p.i]) - state.rest.row(loop.vertices[p.j])).norm() /
+          path_length(l, p.start, p.count);
+      if (rho < rd) total += p.weight * std::pow(rho - rd, 4);
+    }
+  }
   return total;
 }
 
@@ -101,7 +116,7 @@ void CompactnessRegularizer::add_gradient(const DesignState& state, VecX& /*d_x*
       const double len = path_length(l, p.start, p.count);
       const double rho = dist / len;
       if (!(rho < rd)) continue;
-      const double dr = 4.0 * std::pow(rho - rd, 3);  // dR/dρ
+      const double dr = 4.0 * p.weight * std::pow(rho - rd, 3);  // dR/dρ
       // ρ = dist/len: ∂ρ/∂dist = 1/len, ∂ρ/∂len = −ρ/len.
       const Vec2 g = dr / len * d / dist;
       d_rest.segment<2>(2 * vi) += g;

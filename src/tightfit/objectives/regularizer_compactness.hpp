@@ -3,8 +3,10 @@
 /// Eq. 25-26): keeps pieces from becoming arbitrarily thin. For two boundary vertices
 /// p_i, p_j of the same piece,
 ///   ρ_ij = ‖p_i − p_j‖ / (length of the boundary path from p_i to p_j),
-///   R = Σ_ij (ρ_ij − r_D)⁴ where ρ_ij < r_D, 0 otherwise        (dimensionless)
-/// where the path is whichever of the two boundary arcs between them was SHORTER at
+///   R = Σ_ij w_ij (ρ_ij − r_D)⁴ where ρ_ij < r_D, 0 otherwise   (dimensionless)
+/// with the pair weights w_ij of Pair (about 1 on the design's initial mesh,
+/// objectives/resolution.hpp), so that a remeshing does not change R.
+/// The path is whichever of the two boundary arcs between them was SHORTER at
 /// construction; the choice is kept afterwards (paper). r_D is the minimum admissible
 /// ratio (a straight path has ρ = 1, the opposite points of a circle 2/π ≈ 0.64, the
 /// middles of the long sides of a 1:5 rectangle ≈ 0.17). R is C³ in ρ.
@@ -18,6 +20,7 @@
 
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
+#include "tightfit/objectives/resolution.hpp"
 
 namespace tightfit {
 
@@ -28,9 +31,12 @@ struct CompactnessOptions {
 
 class CompactnessRegularizer : public DesignTerm {
  public:
-  /// Chooses the pairs and their paths from the garment's current rest positions.
-  /// Throws std::invalid_argument for r_D outside (0, 1] or a stride < 1.
-  explicit CompactnessRegularizer(const Garment& garment, CompactnessOptions options = {});
+  /// Chooses the pairs and their paths from the garment's current rest positions, and
+  /// each loop's weight from its mean rest edge and `reference` (the garment's own
+  /// resolution when not known). Throws std::invalid_argument for r_D outside (0, 1] or a
+  /// stride < 1.
+  explicit CompactnessRegularizer(const Garment& garment, CompactnessOptions options = {},
+                                  const ResolutionReference& reference = {});
 
   std::string name() const override { return "compactness"; }
   double value(const DesignState& state) const override;
@@ -44,6 +50,10 @@ class CompactnessRegularizer : public DesignTerm {
     int j = 0;  ///< loop position of the other end
     int start = 0;
     int count = 0;
+    /// w_ij = σ_i σ_j / h²: σ the rest boundary length around each end at construction
+    /// (half its two edges, times the stride), h the reference boundary edge. A loop has
+    /// ~n² pairs; so weighted, R is the same on any mesh of the loop.
+    double weight = 1.0;
   };
   /// One boundary loop: its global pattern vertices and pairs.
   struct Loop {

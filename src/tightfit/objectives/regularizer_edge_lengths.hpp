@@ -1,7 +1,10 @@
 #pragma once
 /// Edge-length regularizers on the pattern rest positions Xbar (paper Sec. 4.1, Eq. 24):
-///   R = Σ_i (‖e_i^1‖ − ‖e_i^2‖)²      (m²)
-/// over a fixed list of edge pairs. Two instances:
+///   R = Σ_i w_i (‖e_i^1‖ − ‖e_i^2‖)²      (m²)
+/// over a fixed list of edge pairs, with w_i a reference boundary edge over the pair's
+/// mean rest length at construction (objectives/resolution.hpp: about 1 on the design's
+/// initial mesh), so that a seam whose sides differ by the same fraction of their length
+/// costs the same on any mesh. Two instances:
 ///  * seam compatibility: the i-th edge of one side of a seam against the i-th edge of
 ///    the other side (the sides are sewn vertex by vertex, so equal edges keep the
 ///    seam lengths equal edge by edge);
@@ -14,6 +17,7 @@
 
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
+#include "tightfit/objectives/resolution.hpp"
 
 namespace tightfit {
 
@@ -23,6 +27,7 @@ class EdgeLengthDifferenceTerm : public DesignTerm {
   struct EdgePair {
     std::array<int, 2> first;
     std::array<int, 2> second;
+    double weight = 1.0;  ///< w_i ≥ 0
   };
 
   /// `pairs` over global pattern vertices in [0, num_pattern_vertices). Throws
@@ -44,10 +49,12 @@ class EdgeLengthDifferenceTerm : public DesignTerm {
 
 /// Seam compatibility (Eq. 24, name "seam length"): for every seam, edge
 /// (a_i, a_{i+1}) of side a against edge (b_i, b_{i+1}) of side b.
-EdgeLengthDifferenceTerm seam_length_regularizer(const Garment& garment);
+EdgeLengthDifferenceTerm seam_length_regularizer(const Garment& garment,
+                                                 const ResolutionReference& reference = {});
 
 /// Even boundary spacing (Eq. 24 reused, name "boundary spacing"): for every boundary
 /// loop and every loop vertex v, its incoming edge against its outgoing edge.
-EdgeLengthDifferenceTerm even_spacing_regularizer(const Garment& garment);
+EdgeLengthDifferenceTerm even_spacing_regularizer(const Garment& garment,
+                                                  const ResolutionReference& reference = {});
 
 }  // namespace tightfit

@@ -9,10 +9,15 @@
 namespace tightfit {
 
 ShapeObjective::ShapeObjective(ImlsSurface target, int num_garment_vertices,
-                               std::vector<int> vertices)
+                               std::vector<int> vertices, VecX weights)
     : target_(std::move(target)),
       num_garment_(num_garment_vertices),
-      vertices_(std::move(vertices)) {
+      vertices_(std::move(vertices)),
+      weights_(std::move(weights)) {
+  if (weights_.size() == 0) weights_ = VecX::Ones(num_garment_);
+  if (weights_.size() != num_garment_ || !weights_.allFinite() || weights_.minCoeff() < 0.0)
+    throw std::invalid_argument("shape objective: expected " + std::to_string(num_garment_) +
+                                " finite, non-negative vertex weights");
   if (vertices_.empty()) {
     vertices_.resize(num_garment_);
     std::iota(vertices_.begin(), vertices_.end(), 0);
@@ -38,7 +43,12 @@ VecX ShapeObjective::distances(const VecX& x) const {
 }
 
 double ShapeObjective::value(const DesignState& state) const {
-  return distances(state.x).squaredNorm();
+  const VecX f = distances(state.x);
+  double total = 0.0;
+  for (std::size_t i = 0; i < vertices_.size(); ++i)
+    total +=
+        weights_[vertices_[i]] * f[static_cast<Eigen::Index>(i)] * f[static_cast<Eigen::Index>(i)];
+  return total;
 }
 
 void ShapeObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& /*d_rest*/) const {
@@ -47,8 +57,12 @@ void ShapeObjective::add_gradient(const DesignState& state, VecX& d_x, VecX& /*d
     throw std::invalid_argument("shape objective: position gradient has the wrong size");
   for (int v : vertices_) {
     const ImlsSurface::Evaluation ev = target_.evaluate(state.x.segment<3>(3 * v));
-    d_x.segment<3>(3 * v) += 2.0 * ev.value * ev.gradient;
+    d_x.segment<3>(3 * v) += 2.0 * weights_[v] * ev.value * ev.gradient;
   }
+}
+
+VecX shape_vertex_weights(const Garment& garment, const ResolutionReference& reference) {
+  return garment_vertex_areas(garment) / resolution_or_own(reference, garment).vertex_area;
 }
 
 std::vector<int> unpinned_vertices(const Garment& garment) {

@@ -19,7 +19,7 @@ struct SlidingObjective::PoseEvaluation {
 
 SlidingObjective::SlidingObjective(const Garment& garment, const SimulationMaterials& materials,
                                    const LimitSurface& surface, int num_body_vertices,
-                                   std::vector<PoseMotions> poses, double friction)
+                                   std::vector<PoseMotions> poses, double friction, VecX weights)
     : surface_(surface),
       num_garment_(garment.num_garment_vertices()),
       num_body_(num_body_vertices),
@@ -28,8 +28,13 @@ SlidingObjective::SlidingObjective(const Garment& garment, const SimulationMater
       friction_(friction),
       topology_(garment.topology),
       fabric_(materials.fabric),
-      seam_(materials.seam) {
+      seam_(materials.seam),
+      weights_(std::move(weights)) {
   const std::string source = "sliding objective";
+  if (weights_.size() == 0) weights_ = VecX::Ones(num_garment_);
+  if (weights_.size() != num_garment_ || !weights_.allFinite() || weights_.minCoeff() < 0.0)
+    throw std::invalid_argument("SlidingObjective: expected " + std::to_string(num_garment_) +
+                                " finite, non-negative vertex weights");
   if (!std::isfinite(friction) || friction < 0.0)
     throw InputError(source, "the friction coefficient must be finite and >= 0");
   if (poses_.empty()) throw InputError(source, "no poses to evaluate");
@@ -84,13 +89,14 @@ SlidingObjective::PoseEvaluation SlidingObjective::evaluate(const DesignState& s
     const double excess = ft - friction_ * (pressing ? -fr : 0.0);
     if (!(excess > 0.0)) continue;
     ev.forces.excess[j] = excess;
-    ev.value += excess * excess;
+    const double w = weights_[j];
+    ev.value += w * excess * excess;
     if (!with_gradient) continue;
     const Vec3 u = ft_vec / ft;  // ft > 0 since excess > 0
     const double mu = pressing ? friction_ : 0.0;
     // T = f_t − μ max(−f·n, 0): ∂f_t/∂f = u, ∂f_t/∂n = −(f·n) u.
-    ev.a.segment<3>(3 * j) = 2.0 * excess * (u + mu * normal);
-    ev.gn.row(j) = (2.0 * excess * (-fr * u + mu * f)).transpose();
+    ev.a.segment<3>(3 * j) = 2.0 * w * excess * (u + mu * normal);
+    ev.gn.row(j) = (2.0 * w * excess * (-fr * u + mu * f)).transpose();
   }
   return ev;
 }
@@ -155,6 +161,15 @@ void SlidingObjective::add_embedding_gradient(const DesignState& state, VecX& d_
 SlidingObjective::PoseView SlidingObjective::pose_view(const DesignState& state, int pose) const {
   PoseEvaluation ev = evaluate(state, energies_at(state.rest), pose, false);
   return {std::move(ev.forces), std::move(ev.posed)};
+}
+
+VecX sliding_vertex_weights(const Garment& garment, const ResolutionReference& reference) {
+  const VecX areas = garment_vertex_areas(garment);
+  const double reference_area = resolution_or_own(reference, garment).vertex_area;
+  VecX w(areas.size());
+  for (Eigen::Index j = 0; j < areas.size(); ++j)
+    w[j] = areas[j] > 0.0 ? reference_area / areas[j] : 0.0;
+  return w;
 }
 
 }  // namespace tightfit

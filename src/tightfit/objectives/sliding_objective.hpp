@@ -12,8 +12,10 @@
 /// coefficient μ holds up to f_c = μ max(f_n, 0) (only fabric pressing on the body gives
 /// friction; the paper's f_c = μ f·n with f the force on the body); what exceeds it would
 /// slide:
-///   T_slide = Σ_i Σ_j T_ij²,   T_ij = max(f_t − f_c, 0)      (N²),
-/// over the free (unpinned) garment vertices (the pinned ones are held by their pins).
+///   T_slide = Σ_i Σ_j w_j T_ij²,   T_ij = max(f_t − f_c, 0)      (N²),
+/// over the free (unpinned) garment vertices (the pinned ones are held by their pins),
+/// with vertex weights w_j (sliding_vertex_weights: about 1 on the design's initial mesh)
+/// that keep T the same when a remeshing changes the vertices' areas.
 ///
 /// Gradient (Eq. 38): T depends on the design through Xbar (the forces' rest shape:
 /// ∂T/∂Xbar = −Σ_i (∂²U/∂x∂Xbar)ᵀ a_i with a_i = ∂T/∂f_i) and on the neutral equilibrium
@@ -31,6 +33,7 @@
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
 #include "tightfit/objectives/posed_garment.hpp"
+#include "tightfit/objectives/resolution.hpp"
 #include "tightfit/physics/garment_energies.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 #include "tightfit/subdiv/limit_surface.hpp"
@@ -50,10 +53,12 @@ class SlidingObjective : public DesignTerm {
   /// n_b, `poses` at least one, each with n_b motions; `friction` μ ≥ 0. The garment's
   /// energies are rebuilt here from `materials` exactly as the simulation builds them.
   /// Throws InputError (source "sliding objective") for a negative or non-finite μ, no
-  /// poses, or motions of the wrong count.
+  /// poses, or motions of the wrong count. `weights`: w_j per garment vertex
+  /// (sliding_vertex_weights; empty: 1 each), std::invalid_argument when of the wrong
+  /// size, negative or not finite.
   SlidingObjective(const Garment& garment, const SimulationMaterials& materials,
                    const LimitSurface& surface, int num_body_vertices,
-                   std::vector<PoseMotions> poses, double friction);
+                   std::vector<PoseMotions> poses, double friction, VecX weights = {});
   ~SlidingObjective() override;
 
   std::string name() const override { return "sliding"; }
@@ -92,6 +97,14 @@ class SlidingObjective : public DesignTerm {
   std::shared_ptr<const GarmentTopology> topology_;
   ClothMaterial fabric_;
   SeamMaterial seam_;
+  VecX weights_;
 };
+
+/// w_j of every garment vertex of `garment`: `reference`'s rest area per vertex over the
+/// vertex's share of the rest area (garment_vertex_areas; the garment's own per-vertex
+/// area when `reference` is not known). A vertex's force grows with its area, so T_ij²
+/// w_j is its area times the squared excess traction over the reference area: T is the
+/// same on any mesh of the same fit.
+VecX sliding_vertex_weights(const Garment& garment, const ResolutionReference& reference);
 
 }  // namespace tightfit

@@ -156,7 +156,8 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
                            "the shape objective has no unpinned garment vertex to act on");
       }
       return std::make_shared<ShapeObjective>(read_shape_target(*spec.shape),
-                                              g.num_garment_vertices(), vertices);
+                                              g.num_garment_vertices(), vertices,
+                                              shape_vertex_weights(g, spec.resolution));
     });
   if (spec.pressure)
     add(spec.pressure->weight, [&]() -> std::shared_ptr<const DesignTerm> {
@@ -180,19 +181,24 @@ std::shared_ptr<DesignTermSum> build_objective(const OptimizationSpec& spec,
     add(spec.sliding->weight, [&] {
       return std::make_shared<SlidingObjective>(
           g, sim.materials(), sim.surface(), sim.body().num_vertices(),
-          pose_motions(spec.poses, sim.body(), spec.sliding->poses), spec.sliding->friction);
+          pose_motions(spec.poses, sim.body(), spec.sliding->poses), spec.sliding->friction,
+          sliding_vertex_weights(g, spec.resolution));
     });
   const RegularizerWeights& w = spec.regularizers;
-  add(w.seam_length,
-      [&] { return std::make_shared<EdgeLengthDifferenceTerm>(seam_length_regularizer(g)); });
-  add(w.boundary_spacing,
-      [&] { return std::make_shared<EdgeLengthDifferenceTerm>(even_spacing_regularizer(g)); });
+  add(w.seam_length, [&] {
+    return std::make_shared<EdgeLengthDifferenceTerm>(seam_length_regularizer(g, spec.resolution));
+  });
+  add(w.boundary_spacing, [&] {
+    return std::make_shared<EdgeLengthDifferenceTerm>(even_spacing_regularizer(g, spec.resolution));
+  });
   add(w.boundary_smoothness, [&] { return std::make_shared<BoundarySmoothnessRegularizer>(g); });
   add(w.corner_angle, [&] { return std::make_shared<CornerAngleRegularizer>(g); });
-  add(w.compactness,
-      [&] { return std::make_shared<CompactnessRegularizer>(g, w.compactness_options); });
+  add(w.compactness, [&] {
+    return std::make_shared<CompactnessRegularizer>(g, w.compactness_options, spec.resolution);
+  });
   add(w.pinned_traction, [&] {
-    return std::make_shared<PinnedTractionRegularizer>(g, sim.materials(), sim.surface());
+    return std::make_shared<PinnedTractionRegularizer>(g, sim.materials(), sim.surface(),
+                                                       spec.resolution);
   });
   return sum;
 }
