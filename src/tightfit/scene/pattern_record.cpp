@@ -11,9 +11,11 @@ namespace {
 
 using nlohmann::json;
 
-std::string at(const std::string& path, size_t i) { return path + "/" + std::to_string(i); }
+std::string element_path(const std::string& path, size_t i) {
+  return path + "/" + std::to_string(i);
+}
 
-json rows_json(const auto& m) {
+json record_rows_json(const auto& m) {
   json a = json::array();
   for (Eigen::Index i = 0; i < m.rows(); ++i) {
     json row = json::array();
@@ -45,7 +47,7 @@ std::vector<int> read_indices(JsonFields& f, const std::string& key, int n) {
   if (!j.is_array()) f.fail("expected an array of vertex indices", key);
   std::vector<int> out;
   for (size_t i = 0; i < j.size(); ++i) {
-    check_index(j[i], n, f.source(), at(f.child_path(key), i));
+    check_index(j[i], n, f.source(), element_path(f.child_path(key), i));
     out.push_back(j[i].get<int>());
   }
   return out;
@@ -69,7 +71,8 @@ PatternPiece read_piece(JsonFields& f, const std::vector<std::string>& extra) {
     const json& row = rest[i];
     if (!row.is_array() || row.size() != 2 || !row[0].is_number() || !row[1].is_number() ||
         !std::isfinite(row[0].get<double>()) || !std::isfinite(row[1].get<double>()))
-      throw InputError(f.source(), at(rest_path, i) + ": expected [x, y] (finite numbers)");
+      throw InputError(f.source(),
+                       element_path(rest_path, i) + ": expected [x, y] (finite numbers)");
     piece.rest(static_cast<Eigen::Index>(i), 0) = row[0].get<double>();
     piece.rest(static_cast<Eigen::Index>(i), 1) = row[1].get<double>();
   }
@@ -82,9 +85,10 @@ PatternPiece read_piece(JsonFields& f, const std::vector<std::string>& extra) {
   for (size_t t = 0; t < triangles.size(); ++t) {
     const json& row = triangles[t];
     if (!row.is_array() || row.size() != 3)
-      throw InputError(f.source(), at(tri_path, t) + ": expected [a, b, c]");
+      throw InputError(f.source(), element_path(tri_path, t) + ": expected [a, b, c]");
     for (int c = 0; c < 3; ++c) {
-      check_index(row[c], n, f.source(), at(at(tri_path, t), static_cast<size_t>(c)));
+      check_index(row[c], n, f.source(),
+                  element_path(element_path(tri_path, t), static_cast<size_t>(c)));
       piece.triangles(static_cast<Eigen::Index>(t), c) = row[c].get<int>();
     }
   }
@@ -98,15 +102,16 @@ PatternPiece read_piece(JsonFields& f, const std::vector<std::string>& extra) {
     if (!holes.is_array()) f.fail("expected an array of vertex loops", "holes");
     std::set<int> used(piece.boundary.begin(), piece.boundary.end());
     for (size_t h = 0; h < holes.size(); ++h) {
-      const std::string path = at(f.child_path("holes"), h);
+      const std::string path = element_path(f.child_path("holes"), h);
       if (!holes[h].is_array() || holes[h].size() < 3)
         throw InputError(f.source(), path + ": expected a loop of at least 3 vertex indices");
       std::vector<int> loop;
       for (size_t i = 0; i < holes[h].size(); ++i) {
         const json& v = holes[h][i];
-        check_index(v, n, f.source(), at(path, i));
+        check_index(v, n, f.source(), element_path(path, i));
         if (!used.insert(v.get<int>()).second)
-          throw InputError(f.source(), at(path, i) + ": vertex " + std::to_string(v.get<int>()) +
+          throw InputError(f.source(), element_path(path, i) + ": vertex " +
+                                           std::to_string(v.get<int>()) +
                                            " is already on a boundary loop");
         loop.push_back(v.get<int>());
       }
@@ -145,8 +150,8 @@ json pattern_record_json(const Pattern& pattern) {
   json pieces = json::array();
   for (const PatternPiece& p : pattern.pieces)
     pieces.push_back({{"name", p.name},
-                      {"rest", rows_json(p.rest)},
-                      {"triangles", rows_json(p.triangles)},
+                      {"rest", record_rows_json(p.rest)},
+                      {"triangles", record_rows_json(p.triangles)},
                       {"boundary", p.boundary},
                       {"holes", p.holes},
                       {"corners", p.corners},
