@@ -51,9 +51,9 @@ SlidingScene sliding_scene(double friction) {
   std::vector<PoseMotions> poses{twist_pose(s.scene->body, 25.0, 10.0),
                                  twist_pose(s.scene->body, -15.0, 20.0)};
   poses[1].name = "bend";
-  s.term =
-      std::make_shared<SlidingObjective>(sim.garment(), sim.materials(), *s.scene->surface,
-                                         s.scene->body.num_vertices(), std::move(poses), friction);
+  s.term = std::make_shared<SlidingObjective>(sim.garment(), sim.materials(), *s.scene->surface,
+                                              s.scene->body.num_vertices(), std::move(poses),
+                                              friction, sliding_vertex_weights(sim.garment(), {}));
   return s;
 }
 

@@ -156,6 +156,16 @@ TEST(ShapeObjective, ValueAndGradientOnASleeve) {
                            {0, 5, 7});
   EXPECT_NEAR(sub.value({x, rest}), f[0] * f[0] + f[5] * f[5] + f[7] * f[7], 1e-15);
   EXPECT_THROW(ShapeObjective(ImlsSurface(pts, nrm, 0.008), 3, {3}), std::invalid_argument);
+  // Vertex weights (each vertex's share of the rest area over the mean share).
+  const VecX w = shape_vertex_weights(s.garment, {});
+  EXPECT_NEAR(w.mean(), 1.0, 1e-12);
+  const ShapeObjective weighted(ImlsSurface(pts, nrm, 0.008), s.garment.num_garment_vertices(), {},
+                                w);
+  EXPECT_NEAR(weighted.value({x, rest}), (w.array() * f.array().square()).sum(), 1e-15);
+  const test::GradientErrors ew = test::gradient_errors(weighted, x, rest, 1e-7, 1e-7);
+  EXPECT_LT(ew.x, 1e-6);
+  EXPECT_THROW(ShapeObjective(ImlsSurface(pts, nrm, 0.008), 3, {}, VecX::Ones(2)),
+               std::invalid_argument);
 }
 
 TEST(ShapeObjective, UnpinnedVerticesLeaveThePinnedRingsOut) {
