@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <optional>
 
 #include "physics_test_util.hpp"
 #include "support/energy_assembly.hpp"
@@ -364,6 +366,123 @@ TEST(ClothEnergy, RejectsBadInput) {
   Points2 flat = rest;
   flat(2, 1) = 0.0;
   EXPECT_THROW(ok.bind_rest(flat), InputError);
+}
+
+/// A measured knit with a soft toe and a stiff rise, wale about twice the course.
+ClothMaterial measured_knit(double coupling) {
+  auto fabric = std::make_shared<MeasuredFabric>(
+      MeasuredFabric{"test knit", FabricCurve({0.0, 0.2, 0.5, 1.0}, {0.0, 40.0, 130.0, 420.0}),
+                     FabricCurve({0.0, 0.2, 0.5, 1.0}, {0.0, 25.0, 80.0, 260.0}), std::nullopt,
+                     std::nullopt, coupling, 30.0});
+  ClothMaterial m;
+  m.thickness = 5e-4;
+  m.measured = fabric;
+  return m;
+}
+
+TEST(ClothEnergy, MeasuredFabricDerivativesMatchFiniteDifferences) {
+  for (double coupling : {0.0, 0.4}) {
+    const ClothMaterial m = measured_knit(coupling);
+    // Taut both ways, stretched one way (the other slack), slack, near the toe.
+    for (auto [s1, s2] : {std::pair{1.3, 1.15}, std::pair{1.4, 0.9}, std::pair{0.95, 0.9},
+                          std::pair{1.0005, 1.0002}, std::pair{2.1, 1.6}}) {
+      for (unsigned seed : {1u, 2u, 3u}) {
+        const Triangle t = stretched_triangle(s1, s2, seed);
+        expect_fd_ok(single(t, m), t.x,
+                     "measured c=" + std::to_string(coupling) + " s=" + std::to_string(s1) + "," +
+                         std::to_string(s2) + " seed " + std::to_string(seed));
+      }
+    }
+  }
+}
+
+TEST(ClothEnergy, MeasuredStripCarriesTheMeasuredTension) {
+  // A rest rectangle W × H (two triangles) stretched by λ along one material direction,
+  // unchanged across: with coupling 0 the force per unit rest width, (dU/dλ)/(W H), is
+  // the strip curve T(λ − 1) of that direction.
+  const ClothMaterial m = measured_knit(0.0);
+  const MeasuredFabric& f = *m.measured;
+  const double w = 0.03, h = 0.05;
+  Points2 rest(4, 2);
+  rest << 0, 0, w, 0, w, h, 0, h;
+  Triangles tri(2, 3);
+  tri << 0, 1, 2, 0, 2, 3;
+  const ClothEnergy energy(tri, rest, {0, 1, 2, 3}, 4, m);
+  for (int axis : {0, 1}) {
+    const FabricCurve& curve = axis == 0 ? f.course : f.wale;
+    for (double strain : {0.05, 0.2, 0.35, 0.7, 1.0, 1.3}) {
+      auto u = [&](double lambda) {
+        VecX x(12);
+        for (int k = 0; k < 4; ++k) {
+          Vec2 p = rest.row(k).transpose();
+          p[axis] *= lambda;
+          x.segment<3>(3 * k) = Vec3(p.x(), p.y(), 0.0);
+        }
+        return energy.value(x);
+      };
+      const double l = 1.0 + strain, step = 1e-6;
+      const double tension = (u(l + step) - u(l - step)) / (2 * step) / (w * h);
+      EXPECT_NEAR(tension / curve.tension(strain), 1.0, 5e-3) << axis << " " << strain;
+    }
+  }
+}
+
+TEST(FabricCurve, InterpolatesMonotonicallyAndExtrapolatesWithTheLastSlope) {
+  const FabricCurve c({0.0, 0.1, 0.3, 0.6}, {0.0, 5.0, 40.0, 200.0}, 1e-3);
+  for (std::size_t k = 1; k < c.strains().size(); ++k)
+    EXPECT_NEAR(c.tension(c.strains()[k]), c.tensions()[k], 1e-9);
+  double previous = 0.0;
+  for (double e = 0.0; e < 0.9; e += 0.001) {
+    const FabricCurve::Evaluation v = c.evaluate(e);
+    EXPECT_GE(v.tension, previous - 1e-12);
+    EXPECT_GE(v.stiffness, -1e-9);
+    previous = v.tension;
+    const double step = 1e-7;
+    EXPECT_NEAR((c.evaluate(e + step).energy - c.evaluate(e - step).energy) / (2 * step), v.tension,
+                1e-5 * (1.0 + v.tension));
+    EXPECT_NEAR((c.tension(e + step) - c.tension(e - step)) / (2 * step), v.stiffness,
+                1e-4 * (1.0 + v.stiffness));
+  }
+  EXPECT_NEAR(c.tension(0.8) - c.tension(0.7), 0.1 * (200.0 - 40.0) / 0.3, 1e-9);
+  EXPECT_EQ(c.evaluate(-0.01).energy, 0.0);
+  EXPECT_EQ(c.evaluate(-0.01).tension, 0.0);
+  // A curve given from a first strain above 0 starts at (0, 0).
+  EXPECT_EQ(FabricCurve({0.1, 0.2}, {3.0, 9.0}).strains().size(), 3u);
+}
+
+TEST(FabricCurve, RefusesCurvesThatAreNoStripTest) {
+  EXPECT_THROW(FabricCurve({0.0, 0.2, 0.1}, {0.0, 1.0, 2.0}), std::invalid_argument);
+  EXPECT_THROW(FabricCurve({0.0, 0.1, 0.2}, {0.0, 2.0, 1.0}), std::invalid_argument);
+  EXPECT_THROW(FabricCurve({-0.1, 0.2}, {0.0, 1.0}), std::invalid_argument);
+  EXPECT_THROW(FabricCurve({0.0, 0.2}, {0.0, -1.0}), std::invalid_argument);
+  EXPECT_THROW(FabricCurve({0.0}, {0.0}), std::invalid_argument);
+  EXPECT_THROW(FabricCurve({0.0, 0.1}, {0.0, 1.0, 2.0}), std::invalid_argument);
+  EXPECT_THROW(FabricCurve({0.0, 0.1}, {1.0, 2.0}), std::invalid_argument);
+}
+
+TEST(FabricLaw, MeasuredStressMatchesTheEnergyAndCouplingMustBeBelowOne) {
+  const ClothMaterial m = measured_knit(0.3);
+  const FabricLaw law(m);
+  Mat2 c;
+  c << 1.3, 0.08, 0.08, 1.6;
+  const Mat2 s = law.second_piola(c);
+  const double step = 1e-7;
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) {
+      Mat2 cp = c, cm = c;
+      cp(a, b) += step;
+      cm(a, b) -= step;
+      if (a != b) {
+        cp(b, a) += step;
+        cm(b, a) -= step;
+      }
+      const double dw = (law.evaluate(strain_components(cp), 0).value -
+                         law.evaluate(strain_components(cm), 0).value) /
+                        (2 * step);
+      EXPECT_NEAR(a == b ? 2.0 * dw : dw, s(a, b), 1e-4 * s.norm()) << a << b;
+    }
+  ClothMaterial bad = measured_knit(1.0);
+  EXPECT_THROW(FabricLaw{bad}, InputError);
 }
 
 }  // namespace tightfit::test::cloth_energy_test

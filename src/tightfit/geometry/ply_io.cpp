@@ -272,15 +272,17 @@ PlyData read_ply(const std::filesystem::path& path) {
   }
   // Reject element counts the file cannot hold before allocating for them: an ascii
   // instance takes at least two bytes, a binary one the sizes of its scalars and
-  // list counts.
+  // list counts (at least one byte).
   {
     const double available = static_cast<double>(data.size() - cursor.position());
     double needed = 0.0;
     for (const auto& el : elements) {
       std::size_t bytes = 0;
       for (const auto& p : el.properties) bytes += type_size(p.is_list ? p.count_type : p.type);
-      needed +=
-          static_cast<double>(el.count) * static_cast<double>(*format == Format::ascii ? 2 : bytes);
+      // An instance without properties is charged one byte: a header may not ask for
+      // billions of empty instances.
+      needed += static_cast<double>(el.count) *
+                static_cast<double>(*format == Format::ascii ? 2 : std::max<std::size_t>(bytes, 1));
     }
     if (needed > available || vertex_el->count > std::numeric_limits<int>::max() ||
         (face_el && face_el->count > std::numeric_limits<int>::max()))

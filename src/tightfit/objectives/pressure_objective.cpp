@@ -37,7 +37,7 @@ Mat32T<S> deformation_gradient(const std::array<Vec3T<S>, 3>& x, const std::arra
 /// Young-Laplace pressure t tr(σ Λ) of a cloth element with deformed corners x, rest
 /// corners r, and shape operator lambda (physics/element_pressure.hpp).
 template <typename S>
-S element_pressure(const RelaxedStVK& law, const std::array<Vec3T<S>, 3>& x,
+S element_pressure(const FabricLaw& law, const std::array<Vec3T<S>, 3>& x,
                    const std::array<Vec2T<S>, 3>& r, const Mat3T<S>& lambda, int face) {
   const std::optional<S> p =
       tightfit::element_pressure<S>(law, deformation_gradient<S>(x, r), lambda);
@@ -167,9 +167,8 @@ std::array<bool, 3> has_across(const std::array<int, 3>& across) {
 Eigen::Map<const Points3> as_points(const VecX& x) { return {x.data(), x.size() / 3, 3}; }
 
 /// p_e of every element given its shape operator.
-VecX element_pressures(const RelaxedStVK& law, const DesignState& state,
-                       const Triangles& garment_tri, const Triangles& pattern_tri,
-                       const std::vector<Mat3>& lambda) {
+VecX element_pressures(const FabricLaw& law, const DesignState& state, const Triangles& garment_tri,
+                       const Triangles& pattern_tri, const std::vector<Mat3>& lambda) {
   VecX p(garment_tri.rows());
   for (int f = 0; f < static_cast<int>(garment_tri.rows()); ++f) {
     std::array<Vec3, 3> x;

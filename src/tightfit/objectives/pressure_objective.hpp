@@ -32,8 +32,8 @@
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
 #include "tightfit/objectives/pressure_regions.hpp"
+#include "tightfit/physics/fabric_law.hpp"
 #include "tightfit/physics/mid_edge_topology.hpp"
-#include "tightfit/physics/relaxed_stvk.hpp"
 
 namespace tightfit {
 
@@ -69,7 +69,7 @@ class PressureObjective : public DesignTerm {
   Triangles garment_triangles_;
   int num_garment_ = 0;
   int num_pattern_ = 0;
-  RelaxedStVK law_;
+  FabricLaw law_;
   // Per-element range (±infinity where the regions give the targets) and the regions.
   VecX min_pressure_;
   VecX max_pressure_;

@@ -18,7 +18,7 @@
 
 #include "tightfit/garment/garment.hpp"
 #include "tightfit/objectives/design_term.hpp"
-#include "tightfit/physics/relaxed_stvk.hpp"
+#include "tightfit/physics/fabric_law.hpp"
 #include "tightfit/physics/seam_traction.hpp"
 
 namespace tightfit {
@@ -48,7 +48,7 @@ class SeamTractionObjective : public DesignTerm {
   std::shared_ptr<const GarmentTopology> topology_;
   int num_garment_ = 0;
   int num_pattern_ = 0;
-  RelaxedStVK law_;
+  FabricLaw law_;
   std::vector<SeamElement> elements_;
 };
 

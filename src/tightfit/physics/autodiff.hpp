@@ -5,12 +5,14 @@
 /// derivative directions, plus the chain rule through the cloth law (whose derivatives
 /// are known in closed form). Every helper also takes plain double, so one template
 /// serves both the value (S = double) and its derivatives (S = Scalar<N>).
+#include <array>
 #include <cmath>
 #include <type_traits>
 
 #include <unsupported/Eigen/AutoDiff>
 
 #include "tightfit/common/types.hpp"
+#include "tightfit/physics/fabric_law.hpp"
 #include "tightfit/physics/relaxed_stvk.hpp"
 
 namespace tightfit::autodiff {
@@ -77,6 +79,37 @@ Mat2T<S> second_piola(const RelaxedStVK& law, const Mat2T<S>& c) {
   s(1, 1) = 2.0 * (w1 + w2 * c(0, 0));
   s(0, 1) = -2.0 * w2 * c(1, 0);
   s(1, 0) = -2.0 * w2 * c(0, 1);
+  return s;
+}
+
+/// S = 2 ∂W/∂C (2×2, Pa) of a fabric law (fabric_law.hpp) at the symmetric 2×2 C in the
+/// material frame, differentiable in C: the isotropic law as above; the measured law from
+/// its gradient in c = (C_xx, C_yy, C_xy) (S_xx = 2 W_xx, S_yy = 2 W_yy, S_xy = W_xy),
+/// chained through its closed-form Hessian.
+template <typename S>
+Mat2T<S> second_piola(const FabricLaw& law, const Mat2T<S>& c) {
+  if (!law.measured()) return second_piola<S>(law.isotropic(), c);
+  const Vec3 cv(value_of(c(0, 0)), value_of(c(1, 1)),
+                0.5 * (value_of(c(0, 1)) + value_of(c(1, 0))));
+  const FabricLaw::Derivatives d = law.evaluate(cv, std::is_same_v<S, double> ? 1 : 2);
+  std::array<S, 3> g;
+  if constexpr (std::is_same_v<S, double>) {
+    for (int k = 0; k < 3; ++k) g[k] = d.gradient[k];
+  } else {
+    const std::array<S, 3> comp = {c(0, 0), c(1, 1), S(0.5 * (c(0, 1) + c(1, 0)))};
+    for (int k = 0; k < 3; ++k) {
+      auto derivs =
+          (d.hessian(k, 0) * comp[0].derivatives() + d.hessian(k, 1) * comp[1].derivatives() +
+           d.hessian(k, 2) * comp[2].derivatives())
+              .eval();
+      g[k] = S(d.gradient[k], derivs);
+    }
+  }
+  Mat2T<S> s;
+  s(0, 0) = 2.0 * g[0];
+  s(1, 1) = 2.0 * g[1];
+  s(0, 1) = g[2];
+  s(1, 0) = g[2];
   return s;
 }
 

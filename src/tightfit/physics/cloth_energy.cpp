@@ -10,6 +10,7 @@
 #include "tightfit/common/error.hpp"
 #include "tightfit/common/parallel.hpp"
 #include "tightfit/physics/assembly.hpp"
+#include "tightfit/physics/autodiff.hpp"
 
 namespace tightfit {
 namespace {
@@ -185,6 +186,7 @@ struct ClothElement {
   std::array<int, 3> pattern;  // pattern vertex ids
   EdgeMetric<3> deformed;
   EdgeMetric<2> rest;
+  std::array<Vec2, 3> rest_corners;
 };
 
 ClothElement gather_element(const Triangles& triangles, const Points2& rest,
@@ -196,9 +198,72 @@ ClothElement gather_element(const Triangles& triangles, const Points2& rest,
   }
   el.deformed = edge_metric<3>(x.segment<3>(3 * el.garment[0]), x.segment<3>(3 * el.garment[1]),
                                x.segment<3>(3 * el.garment[2]));
-  el.rest = edge_metric<2>(rest.row(el.pattern[0]).transpose(), rest.row(el.pattern[1]).transpose(),
-                           rest.row(el.pattern[2]).transpose());
+  for (int k = 0; k < 3; ++k) el.rest_corners[k] = rest.row(el.pattern[k]).transpose();
+  el.rest = edge_metric<2>(el.rest_corners[0], el.rest_corners[1], el.rest_corners[2]);
   return el;
+}
+
+/// The linear map c = L g from the deformed edge metric g = (G11, G22, G12) to the
+/// material-frame strain components c = (C_xx, C_yy, C_xy) of C = Pᵀ G P, P = Dm⁻¹.
+template <typename S>
+Eigen::Matrix<S, 3, 3> strain_map(const autodiff::Mat2T<S>& p) {
+  Eigen::Matrix<S, 3, 3> l;
+  l << p(0, 0) * p(0, 0), p(1, 0) * p(1, 0), 2.0 * p(0, 0) * p(1, 0),  //
+      p(0, 1) * p(0, 1), p(1, 1) * p(1, 1), 2.0 * p(0, 1) * p(1, 1),   //
+      p(0, 0) * p(0, 1), p(1, 0) * p(1, 1), p(0, 0) * p(1, 1) + p(1, 0) * p(0, 1);
+  return l;
+}
+
+/// Dm⁻¹ and the rest area |det Dm|/2 of rest corners r.
+template <typename S>
+std::pair<autodiff::Mat2T<S>, S> rest_frame(const std::array<autodiff::Vec2T<S>, 3>& r) {
+  autodiff::Mat2T<S> dm;
+  dm.col(0) = r[1] - r[0];
+  dm.col(1) = r[2] - r[0];
+  const S det = dm(0, 0) * dm(1, 1) - dm(0, 1) * dm(1, 0);
+  return {autodiff::inverse2(dm), autodiff::value_of(det) >= 0.0 ? S(0.5 * det) : S(-0.5 * det)};
+}
+
+/// Φ of a measured (orthotropic) fabric element, per unit thickness: A W(c), c = L g. The
+/// same layout as Phi over (g, rest metric) is not enough (the energy depends on the rest
+/// triangle's orientation), so the rest derivatives are taken with respect to the three
+/// rest corners: `rest_gradient` (6) and `mixed` = ∂²Φ/∂g∂corners (3×6).
+struct MeasuredPhi {
+  Phi phi;  // value, and gradient/Hessian in g (the first three entries / top-left block)
+  Vec6 rest_gradient = Vec6::Zero();
+  Eigen::Matrix<double, 3, 6> mixed = Eigen::Matrix<double, 3, 6>::Zero();
+};
+
+MeasuredPhi measured_phi(const ClothElement& el, const FabricLaw& law, int order,
+                         bool rest_derivatives) {
+  MeasuredPhi out;
+  std::array<Vec2, 3> r = el.rest_corners;
+  const auto [p, area] = rest_frame<double>(r);
+  const Mat3 l = strain_map<double>(p);
+  const Vec3& g = el.deformed.value;
+  const Vec3 c = l * g;
+  const FabricLaw::Derivatives w = law.evaluate(c, rest_derivatives ? 2 : order);
+  out.phi.value = area * w.value;
+  if (order >= 1) out.phi.gradient.head<3>() = area * l.transpose() * w.gradient;
+  if (order >= 2) out.phi.hessian.topLeftCorner<3, 3>() = area * l.transpose() * w.hessian * l;
+  if (!rest_derivatives) return out;
+  using S = autodiff::Scalar<6>;
+  std::array<autodiff::Vec2T<S>, 3> ra;
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 2; ++i) ra[k](i) = autodiff::variable<6>(r[k](i), 2 * k + i);
+  const auto [ps, as] = rest_frame<S>(ra);
+  const Eigen::Matrix<S, 3, 3> ls = strain_map<S>(ps);
+  Eigen::Matrix<S, 3, 1> cs = ls * g.cast<S>();
+  Eigen::Matrix<double, 3, 6> dc;
+  for (int k = 0; k < 3; ++k) dc.row(k) = cs(k).derivatives().transpose();
+  const S value(w.value, dc.transpose() * w.gradient);
+  out.rest_gradient = (as * value).derivatives();
+  Eigen::Matrix<S, 3, 1> grad;
+  for (int k = 0; k < 3; ++k)
+    grad(k) = S(w.gradient[k], dc.transpose() * w.hessian.row(k).transpose());
+  const Eigen::Matrix<S, 3, 1> v = as * (ls.transpose() * grad);
+  for (int k = 0; k < 3; ++k) out.mixed.row(k) = v(k).derivatives().transpose();
+  return out;
 }
 
 /// True when the element Hessian t·(Jᵀ Φ_GG J + K(w) ⊗ I₃) is positive semi-definite by
@@ -218,8 +283,10 @@ bool psd_by_construction(const Phi& phi) {
 /// The element's 9×9 Hessian (over its three garment vertices), projected onto the PSD
 /// cone with `project_psd` (an eigen-decomposition, skipped where the Hessian is PSD by
 /// construction).
-Mat9 cloth_element_hessian(const ClothElement& el, const RelaxedStVK& law, bool project_psd) {
-  const Phi phi = element_phi(el.deformed.value, el.rest.value, law, 2);
+Mat9 cloth_element_hessian(const ClothElement& el, const FabricLaw& law, bool project_psd) {
+  const Phi phi = law.measured()
+                      ? measured_phi(el, law, 2, false).phi
+                      : element_phi(el.deformed.value, el.rest.value, law.isotropic(), 2);
   const Mat3x9& j = el.deformed.jacobian;
   Mat9 local = law.material().thickness * (j.transpose() * phi.hessian.topLeftCorner<3, 3>() * j +
                                            metric_curvature<3>(phi.gradient.head<3>()));
@@ -256,10 +323,12 @@ void assemble_gradient(const Triangles& triangles, const Points2& rest,
 double ClothEnergy::value(const VecX& x) const {
   check_x(x);
   VecX values(triangles().rows());
-  for_each_element(triangles(), rest(), pattern_to_garment(), x,
-                   [&](std::int64_t e, const ClothElement& el) {
-                     values[e] = element_phi(el.deformed.value, el.rest.value, law_, 0).value;
-                   });
+  for_each_element(
+      triangles(), rest(), pattern_to_garment(), x, [&](std::int64_t e, const ClothElement& el) {
+        values[e] = law_.measured()
+                        ? measured_phi(el, law_, 0, false).phi.value
+                        : element_phi(el.deformed.value, el.rest.value, law_.isotropic(), 0).value;
+      });
   return material().thickness * values.sum();
 }
 
@@ -269,7 +338,10 @@ void ClothEnergy::add_gradient(const VecX& x, VecX& g) const {
   const double t = material().thickness;
   assemble_gradient<3>(triangles(), rest(), pattern_to_garment(), x, g,
                        [&](const ClothElement& el, Vec9& local, std::array<int, 3>& ids) {
-                         const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
+                         const Phi phi = law_.measured()
+                                             ? measured_phi(el, law_, 1, false).phi
+                                             : element_phi(el.deformed.value, el.rest.value,
+                                                           law_.isotropic(), 1);
                          local = t * el.deformed.jacobian.transpose() * phi.gradient.head<3>();
                          ids = el.garment;
                        });
@@ -309,8 +381,13 @@ void ClothEnergy::add_gradient_rest(const VecX& x, VecX& g_rest) const {
   const double t = material().thickness;
   assemble_gradient<2>(triangles(), rest(), pattern_to_garment(), x, g_rest,
                        [&](const ClothElement& el, Vec6& local, std::array<int, 3>& ids) {
-                         const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 1);
-                         local = t * el.rest.jacobian.transpose() * phi.gradient.tail<3>();
+                         if (law_.measured()) {
+                           local = t * measured_phi(el, law_, 1, true).rest_gradient;
+                         } else {
+                           const Phi phi =
+                               element_phi(el.deformed.value, el.rest.value, law_.isotropic(), 1);
+                           local = t * el.rest.jacobian.transpose() * phi.gradient.tail<3>();
+                         }
                          ids = el.pattern;
                        });
 }
@@ -323,10 +400,14 @@ void ClothEnergy::add_mixed_rest(const VecX& x, std::vector<Triplet>& H) const {
   const double t = material().thickness;
   for_each_element(
       triangles(), rest(), pattern_to_garment(), x, [&](std::int64_t e, const ClothElement& el) {
-        const Phi phi = element_phi(el.deformed.value, el.rest.value, law_, 2);
-        const Eigen::Matrix<double, 9, 6> local = t * el.deformed.jacobian.transpose() *
-                                                  phi.hessian.topRightCorner<3, 3>() *
-                                                  el.rest.jacobian;
+        Eigen::Matrix<double, 3, 6> mixed;
+        if (law_.measured()) {
+          mixed = measured_phi(el, law_, 2, true).mixed;
+        } else {
+          const Phi phi = element_phi(el.deformed.value, el.rest.value, law_.isotropic(), 2);
+          mixed = phi.hessian.topRightCorner<3, 3>() * el.rest.jacobian;
+        }
+        const Eigen::Matrix<double, 9, 6> local = t * el.deformed.jacobian.transpose() * mixed;
         scatter_block<3, 3, 2, 3>(el.garment, el.pattern, local,
                                   H.data() + first + kPerElement * static_cast<size_t>(e));
       });

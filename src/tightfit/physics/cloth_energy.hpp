@@ -1,7 +1,8 @@
 #pragma once
 /// Cloth: relaxed StVK constant-strain triangles (paper Eq. 5-11),
 ///   U = Σ_e t A_e W_cloth(C_e),   C_e = F_eᵀF_e,   F_e = Ds Dm⁻¹ (3×2),
-/// with A_e the rest area and W_cloth the smoothed relaxed density of relaxed_stvk.hpp.
+/// with A_e the rest area and W_cloth the smoothed relaxed density of relaxed_stvk.hpp, or
+/// the measured orthotropic density of fabric_law.hpp in the piece's grain frame.
 ///
 /// Triangles are over PATTERN vertices (each with its own 2D rest position Xbar); a map
 /// sends each pattern vertex to its GARMENT vertex, where seams weld several pattern
@@ -11,13 +12,15 @@
 /// G = DsᵀDs (deformed) and M = DmᵀDm (rest): C has I1 = tr(G M⁻¹), I2 = det G / det M and
 /// A = sqrt(det M)/2, so U_e = t Φ(G, M). Derivatives with respect to x and Xbar go
 /// through G and M only (quadratic in positions), which gives the x-Hessian and the
-/// mixed ∂²U/∂x∂Xbar from one 6×6 Hessian of Φ. The energy does not depend on the rest
-/// triangle's orientation in the plane.
+/// mixed ∂²U/∂x∂Xbar from one 6×6 Hessian of Φ. The isotropic energy does not depend on
+/// the rest triangle's orientation in the plane; the measured one does (C = Pᵀ G P,
+/// P = Dm⁻¹, in the pattern frame), and its rest derivatives are taken with respect to
+/// the rest corners by forward automatic differentiation.
 #include <memory>
 #include <vector>
 
 #include "tightfit/garment/garment_topology.hpp"
-#include "tightfit/physics/relaxed_stvk.hpp"
+#include "tightfit/physics/fabric_law.hpp"
 #include "tightfit/physics/rest_dependent_energy.hpp"
 
 namespace tightfit {
@@ -60,7 +63,7 @@ class ClothEnergy : public RestDependentEnergy {
   const Triangles& garment_triangles() const { return topology_->garment_triangles; }
   const std::vector<int>& pattern_to_garment() const { return topology_->pattern_to_garment; }
   const ClothMaterial& material() const { return law_.material(); }
-  const RelaxedStVK& law() const { return law_; }
+  const FabricLaw& law() const { return law_; }
   /// Rest area of triangle e (m²).
   double rest_area(int e) const;
   /// Deformation gradient F = Ds Dm⁻¹ (3×2) of triangle e at x, in the rest frame of
@@ -71,7 +74,7 @@ class ClothEnergy : public RestDependentEnergy {
   void check_x(const VecX& x) const;
 
   std::shared_ptr<const GarmentTopology> topology_;
-  RelaxedStVK law_;
+  FabricLaw law_;
 };
 
 }  // namespace tightfit

@@ -5,15 +5,15 @@
 ///   σ = F S Fᵀ / J   (Cauchy stress, 3×3, Pa),   T = t σ   (membrane tension, N/m),
 ///   p = tr(T Λ) = t tr(σ Λ)   (Pa),
 /// with F the 3×2 deformation gradient of a cloth element, S = 2 ∂W/∂C the second
-/// Piola-Kirchhoff stress of the relaxed StVK law at C = FᵀF, J = √det C the area ratio,
-/// t the rest thickness (m) and Λ the element's 3×3 world-frame shape operator (1/m;
-/// e.g. mid_edge_kernel.hpp). p is positive when the fabric presses onto a convex body
-/// (outward normals).
+/// Piola-Kirchhoff stress of the fabric law (fabric_law.hpp, in the piece's grain frame) at C =
+/// FᵀF, J = √det C the area ratio, t the rest thickness (m) and Λ the element's 3×3 world-frame
+/// shape operator (1/m; e.g. mid_edge_kernel.hpp). p is positive when the fabric presses onto a
+/// convex body (outward normals).
 #include <optional>
 #include <utility>
 
 #include "tightfit/physics/autodiff.hpp"
-#include "tightfit/physics/relaxed_stvk.hpp"
+#include "tightfit/physics/fabric_law.hpp"
 
 namespace tightfit {
 
@@ -24,7 +24,7 @@ inline constexpr double kMinElementAreaRatio = 1e-12;
 /// relaxed law for the deformation gradient `F` (3×2). Returns nothing for a degenerate
 /// element (J ≤ kMinElementAreaRatio).
 template <typename S>
-std::optional<autodiff::Mat3T<S>> cauchy_stress(const RelaxedStVK& law,
+std::optional<autodiff::Mat3T<S>> cauchy_stress(const FabricLaw& law,
                                                 const autodiff::Mat32T<S>& F) {
   using autodiff::value_of;
   using std::sqrt;
@@ -48,7 +48,7 @@ S young_laplace_pressure(const autodiff::Mat3T<S>& tension, const autodiff::Mat3
 /// operator `lambda` (3×3, 1/m), t = law.material().thickness. Returns nothing for a
 /// degenerate element (see cauchy_stress).
 template <typename S>
-std::optional<S> element_pressure(const RelaxedStVK& law, const autodiff::Mat32T<S>& F,
+std::optional<S> element_pressure(const FabricLaw& law, const autodiff::Mat32T<S>& F,
                                   const autodiff::Mat3T<S>& lambda) {
   const std::optional<autodiff::Mat3T<S>> sigma = cauchy_stress<S>(law, F);
   if (!sigma) return std::nullopt;

@@ -27,9 +27,13 @@
 /// beyond the band); exactly W_StVK + (k1+k2)δ²/6 + (k1 + k2(1-ν')²)ε²/2 (a constant)
 /// when z1, z2 >= δ (taut beyond the band), so stresses there are exact StVK; in the
 /// wrinkled regime z1 exceeds e1 by about ε²/|e1-e2|; converges to Eq. 10 as δ → 0.
+#include <memory>
+
 #include "tightfit/common/types.hpp"
 
 namespace tightfit {
+
+struct MeasuredFabric;  // physics/fabric_law.hpp
 
 /// Cloth material (paper Sec. 6.2 defaults: pants and wetsuit fabric).
 struct ClothMaterial {
@@ -37,6 +41,9 @@ struct ClothMaterial {
   double poisson_ratio = 0.33;     ///< ν, in (-1, 1)
   double thickness = 1e-4;         ///< t, m
   double regime_smoothing = 1e-3;  ///< δ > 0, Green strain; width of the regime transitions
+  /// A measured orthotropic knit (physics/fabric_law.hpp) instead of E and ν; null: the
+  /// isotropic relaxed StVK law. `thickness` is the measured fabric's.
+  std::shared_ptr<const MeasuredFabric> measured;
 
   /// Plane-stress membrane Lamé λ = Eν/(1-ν²), Pa.
   double lame_lambda() const {

@@ -36,7 +36,7 @@ int triangle_corner(const Triangles& tri, int e, int v) {
 }
 
 VecX seam_normal_tractions(const GarmentTopology& topology,
-                           const std::vector<SeamElement>& elements, const RelaxedStVK& law,
+                           const std::vector<SeamElement>& elements, const FabricLaw& law,
                            const VecX& x, const Points2& rest) {
   const Triangles& triangles = topology.pattern_triangles;
   VecX out(static_cast<Eigen::Index>(elements.size()));

@@ -15,7 +15,7 @@
 #include "tightfit/common/types.hpp"
 #include "tightfit/garment/garment_topology.hpp"
 #include "tightfit/physics/autodiff.hpp"
-#include "tightfit/physics/relaxed_stvk.hpp"
+#include "tightfit/physics/fabric_law.hpp"
 
 namespace tightfit {
 
@@ -40,7 +40,7 @@ int triangle_corner(const Triangles& tri, int e, int v);
 /// corner `a` to corner `b`. With d = r_b − r_a and n = perp(d)/l0,
 /// l0 S n·n = perp(d)ᵀ S perp(d) / l0.
 template <typename S>
-S seam_traction_term(const RelaxedStVK& law, const std::array<autodiff::Vec3T<S>, 3>& x,
+S seam_traction_term(const FabricLaw& law, const std::array<autodiff::Vec3T<S>, 3>& x,
                      const std::array<autodiff::Vec2T<S>, 3>& r, int a, int b, bool per_length) {
   using std::sqrt;
   autodiff::Mat2T<S> dm;
@@ -64,7 +64,7 @@ S seam_traction_term(const RelaxedStVK& law, const std::array<autodiff::Vec3T<S>
 /// `elements`, for garment positions `x` (3·n_g, x0 y0 z0 x1 ..., m) and pattern rest
 /// positions `rest` (n_p×2, m) of `topology`'s garment.
 VecX seam_normal_tractions(const GarmentTopology& topology,
-                           const std::vector<SeamElement>& elements, const RelaxedStVK& law,
+                           const std::vector<SeamElement>& elements, const FabricLaw& law,
                            const VecX& x, const Points2& rest);
 
 }  // namespace tightfit

@@ -78,7 +78,7 @@ std::vector<SeamStatistics> fit_seam_statistics(const Garment& garment, const Po
   const VecX flat_x = Eigen::Map<const VecX>(x.data(), x.size());  // row-major: x0 y0 z0 x1 ...
   const Points2 rest = garment.rest_positions();
   const VecX per_element =
-      seam_normal_tractions(*garment.topology, elements, RelaxedStVK(material), flat_x, rest);
+      seam_normal_tractions(*garment.topology, elements, FabricLaw(material), flat_x, rest);
   std::vector<double> weighted(out.size(), 0.0), length(out.size(), 0.0);
   for (size_t e = 0; e < elements.size(); ++e) {
     const auto& edge = elements[e].edge;
