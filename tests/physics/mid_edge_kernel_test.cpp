@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -203,8 +205,19 @@ Mat3 some_shape_operator() {
 constexpr int kEntries = 6;  // entries of F
 using AdF = autodiff::Scalar<kEntries>;
 
-TEST(ElementPressure, AutodiffScalarGivesTheDoubleValuesAndTheirDerivatives) {
-  const FabricLaw law(ClothMaterial{});
+/// A measured knit (fabric_law.hpp) with unloading branches, so the worn curves are used.
+ClothMaterial measured_knit() {
+  ClothMaterial m;
+  m.thickness = 5e-4;
+  m.measured = std::make_shared<MeasuredFabric>(
+      MeasuredFabric{"test knit", FabricCurve({0.0, 0.2, 0.5, 1.0}, {0.0, 40.0, 130.0, 420.0}),
+                     FabricCurve({0.0, 0.2, 0.5, 1.0}, {0.0, 25.0, 80.0, 260.0}),
+                     FabricCurve({0.0, 0.2, 0.5, 1.0}, {0.0, 30.0, 100.0, 400.0}),
+                     FabricCurve({0.0, 0.2, 0.5, 1.0}, {0.0, 18.0, 60.0, 250.0}), 0.3, 30.0});
+  return m;
+}
+
+void expect_autodiff_pressure_matches(const FabricLaw& law) {
   const Mat32 F = taut_gradient();
   const Mat3 lambda = some_shape_operator();
   const Mat2 C = F.transpose() * F;
@@ -228,6 +241,11 @@ TEST(ElementPressure, AutodiffScalarGivesTheDoubleValuesAndTheirDerivatives) {
   const VecX f0 = Eigen::Map<const VecX>(F.data(), kEntries);
   const test::FdCheck check = test::check_gradient(pressure, pa.derivatives(), f0, 1e-6);
   EXPECT_LT(check.relative_error, 1e-7) << check.analytic << "\n\n" << check.numeric;
+}
+
+TEST(ElementPressure, AutodiffScalarGivesTheDoubleValuesAndTheirDerivatives) {
+  expect_autodiff_pressure_matches(FabricLaw(ClothMaterial{}));
+  expect_autodiff_pressure_matches(FabricLaw(measured_knit()));
 }
 
 TEST(ElementPressure, DegenerateElementHasNoStress) {

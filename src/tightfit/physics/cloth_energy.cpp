@@ -1,5 +1,6 @@
 #include "tightfit/physics/cloth_energy.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -227,7 +228,8 @@ std::pair<autodiff::Mat2T<S>, S> rest_frame(const std::array<autodiff::Vec2T<S>,
 /// Φ of a measured (orthotropic) fabric element, per unit thickness: A W(c), c = L g. The
 /// same layout as Phi over (g, rest metric) is not enough (the energy depends on the rest
 /// triangle's orientation), so the rest derivatives are taken with respect to the three
-/// rest corners: `rest_gradient` (6) and `mixed` = ∂²Φ/∂g∂corners (3×6).
+/// rest corners: `rest_gradient` (6, with `rest_derivatives`) and `mixed` = ∂²Φ/∂g∂corners
+/// (3×6, with `rest_derivatives` and order 2).
 struct MeasuredPhi {
   Phi phi;  // value, and gradient/Hessian in g (the first three entries / top-left block)
   Vec6 rest_gradient = Vec6::Zero();
@@ -237,12 +239,12 @@ struct MeasuredPhi {
 MeasuredPhi measured_phi(const ClothElement& el, const FabricLaw& law, int order,
                          bool rest_derivatives) {
   MeasuredPhi out;
-  std::array<Vec2, 3> r = el.rest_corners;
+  const std::array<Vec2, 3>& r = el.rest_corners;
   const auto [p, area] = rest_frame<double>(r);
   const Mat3 l = strain_map<double>(p);
   const Vec3& g = el.deformed.value;
   const Vec3 c = l * g;
-  const FabricLaw::Derivatives w = law.evaluate(c, rest_derivatives ? 2 : order);
+  const FabricLaw::Derivatives w = law.evaluate(c, rest_derivatives ? std::max(order, 1) : order);
   out.phi.value = area * w.value;
   if (order >= 1) out.phi.gradient.head<3>() = area * l.transpose() * w.gradient;
   if (order >= 2) out.phi.hessian.topLeftCorner<3, 3>() = area * l.transpose() * w.hessian * l;
@@ -258,6 +260,7 @@ MeasuredPhi measured_phi(const ClothElement& el, const FabricLaw& law, int order
   for (int k = 0; k < 3; ++k) dc.row(k) = cs(k).derivatives().transpose();
   const S value(w.value, dc.transpose() * w.gradient);
   out.rest_gradient = (as * value).derivatives();
+  if (order < 2) return out;  // the mixed derivative needs the law's Hessian
   Eigen::Matrix<S, 3, 1> grad;
   for (int k = 0; k < 3; ++k)
     grad(k) = S(w.gradient[k], dc.transpose() * w.hessian.row(k).transpose());
