@@ -594,6 +594,75 @@ function drawRegions() {
     });
 }
 
+/// The fabric: for a measured knit its course and wale curves (loading solid, worn
+/// dashed) with each region's working point; for every fabric a table of the working
+/// strains (and tensions, measured knits).
+function drawFabric() {
+  const f = data.fabric;
+  if (!f || typeof f !== 'object') return;
+  document.getElementById('fabric-section').hidden = false;
+  const host = document.getElementById('fabric');
+  const escape = (t) => String(t).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
+  const title = document.createElement('p');
+  title.textContent = f.model === 'measured'
+    ? `${f.name} (measured knit, ${fmt(f.thickness_m * 1e3)} mm; coupling ${fmt(f.coupling)}, shear ${fmt(f.shear_n_per_m)} N/m` +
+      (f.relaxation > 0 ? `, relaxation ${percent(f.relaxation)}` : '') + ')'
+    : `${f.name ? f.name + ': ' : ''}isotropic knit, E ${fmt(f.youngs_modulus_pa_simulated / 1e6)} MPa worn` +
+      (f.relaxation > 0 ? ` (${fmt(f.youngs_modulus_pa_new / 1e6)} MPa new, relaxation ${percent(f.relaxation)})` : '') +
+      `, ν ${fmt(f.poisson_ratio)}, ${fmt(f.thickness_m * 1e3)} mm`;
+  host.appendChild(title);
+  const points = Array.isArray(f.working_points) ? f.working_points : [];
+  const colors = { course: '#2a6fdb', wale: '#e08a1e' };
+  if (f.model === 'measured' && f.curves) {
+    const W = 640, H = 300, L = 56, R = 96, T = 14, B = 40;
+    const dirs = ['course', 'wale'];
+    const xMax = Math.max(...dirs.map((d) => f.curves[d].sampled.strain.at(-1))) || 1;
+    const yMax = Math.max(...dirs.flatMap((d) => f.curves[d].sampled.loading.concat(f.curves[d].sampled.worn))) || 1;
+    const sx = (x) => L + (x / xMax) * (W - L - R);
+    const sy = (y) => H - B - (y / yMax) * (H - T - B);
+    let body = `<rect x="${L}" y="${T}" width="${W - L - R}" height="${H - T - B}" fill="#f7f8fa" stroke="#d5dae0"/>`;
+    for (const d of dirs) {
+      const c = f.curves[d].sampled;
+      const line = (ys) => c.strain.map((x, k) => `${sx(x).toFixed(1)},${sy(ys[k]).toFixed(1)}`).join(' ');
+      body += `<polyline class="curve ${d}" points="${line(c.loading)}" fill="none" stroke="${colors[d]}" stroke-width="2"><title>${d} loading</title></polyline>`;
+      if (c.worn.some((v, k) => Math.abs(v - c.loading[k]) > 1e-9 * yMax))
+        body += `<polyline class="curve ${d} worn" points="${line(c.worn)}" fill="none" stroke="${colors[d]}" stroke-width="2" stroke-dasharray="6 4"><title>${d} unloading (worn)</title></polyline>`;
+      body += `<text x="${W - R + 6}" y="${sy(c.loading.at(-1)) + 4}" font-size="11" fill="${colors[d]}">${d}</text>`;
+      for (const p of points) {
+        const w = p[d];
+        if (!w || typeof w.strain !== 'number' || typeof w.tension_n_per_m !== 'number') continue;
+        body += `<circle class="working-point" cx="${sx(Math.max(w.strain, 0))}" cy="${sy(w.tension_n_per_m)}" r="4" fill="#fff" stroke="${colors[d]}" stroke-width="2">` +
+          `<title>${escape(p.region)}, ${d}: strain ${percent(w.strain)}, ${fmt(w.tension_n_per_m)} N/m</title></circle>`;
+      }
+    }
+    for (const v of [0, xMax / 2, xMax])
+      body += `<text x="${sx(v)}" y="${H - B + 14}" text-anchor="middle" font-size="11">${percent(v)}</text>`;
+    body += `<text x="${(L + W - R) / 2}" y="${H - 6}" text-anchor="middle" font-size="11">strain</text>` +
+      `<text x="${L - 6}" y="${T + 10}" text-anchor="end" font-size="11">${fmt(yMax)}</text>` +
+      `<text x="${L - 6}" y="${H - B}" text-anchor="end" font-size="11">0</text>` +
+      `<text x="${L - 6}" y="${(T + H - B) / 2}" text-anchor="end" font-size="11">N/m</text>`;
+    const plot = document.createElement('div');
+    plot.innerHTML = `<svg class="fabric-curves" viewBox="0 0 ${W} ${H}" width="${W}" height="${H}" xmlns="${SVG_NS}">${body}</svg>`;
+    host.appendChild(plot);
+  }
+  const table = document.createElement('div');
+  host.appendChild(table);
+  table.id = 'fabric-working-points';
+  const measured = f.model === 'measured';
+  drawTable('fabric-working-points', points, 'No working points.',
+    '<thead><tr><th class="name">region</th><th>area (cm²)</th><th>course strain</th>' +
+    (measured ? '<th>course tension (N/m)</th>' : '') + '<th>wale strain</th>' +
+    (measured ? '<th>wale tension (N/m)</th>' : '') + '</tr></thead>',
+    (tr, p) => {
+      cell(tr, p.region, 'name');
+      cell(tr, fmt(p.area_m2 * 1e4));
+      cell(tr, percent(p.course.strain));
+      if (measured) cell(tr, fmt(p.course.tension_n_per_m));
+      cell(tr, percent(p.wale.strain));
+      if (measured) cell(tr, fmt(p.wale.tension_n_per_m));
+    });
+}
+
 /// The ease table: per measurement level the body and pattern circumferences (cm), the
 /// ease (%), the fitted garment's circumference and stretch, and each piece's width.
 function drawMeasurements() {
@@ -973,6 +1042,7 @@ drawStats();
 drawSilhouettes();
 drawSeams();
 drawMeasurements();
+drawFabric();
 drawRegions();
 drawHistogram();
 drawHistory();

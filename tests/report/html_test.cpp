@@ -12,6 +12,7 @@
 #include "report/support/fit_test_view.hpp"
 #include "tightfit/common/error.hpp"
 #include "tightfit/report/data.hpp"
+#include "tightfit/report/fabric_outputs.hpp"
 
 namespace tightfit::report_html_test {
 
@@ -195,8 +196,31 @@ TEST(ReportHtml, OpensInHeadlessChromiumSlow) {
     knee.skipped = "the garment does not go all the way around here";
     view.measurements.levels = {calf, knee};
   }
+  // A measured knit with an unloading branch across the grain: the fabric section plots
+  // both directions' curves (course twice: loading and worn) and the working points of
+  // the garment and the two regions.
+  {
+    ClothMaterial knit;
+    knit.thickness = 5e-4;
+    knit.measured = std::make_shared<MeasuredFabric>(MeasuredFabric{
+        "power-net <78/22>", FabricCurve({0.0, 0.2, 0.5, 1.0}, {0.0, 40.0, 130.0, 420.0}),
+        FabricCurve({0.0, 0.2, 0.5, 1.0}, {0.0, 25.0, 80.0, 260.0}), std::nullopt,
+        FabricCurve({0.0, 0.2, 0.5, 1.0}, {0.0, 15.0, 60.0, 240.0}), 0.0, 30.0});
+    std::vector<ClothElementFit> elements(static_cast<std::size_t>(view.garment.num_faces()));
+    for (std::size_t f = 0; f < elements.size(); ++f) {
+      elements[f].grain_stretch = Vec2(1.2 + 0.001 * static_cast<double>(f % 7), 1.05);
+      elements[f].deformed_area = 1e-4;
+    }
+    view.fabric = fabric_json(knit, nlohmann::json::object(), elements, view.pressure_regions);
+  }
   const auto summary = check_in_browser(view, "report_browser");
   ASSERT_TRUE(summary.at("failures").empty()) << summary.dump(2);
+  EXPECT_EQ(summary.at("fabricCurves"), 3);
+  EXPECT_EQ(summary.at("fabricPoints"), 6);
+  EXPECT_EQ(summary.at("fabricRows"), 3);
+  EXPECT_NE(summary.at("fabricText").get<std::string>().find("power-net <78/22>"),
+            std::string::npos)
+      << summary.dump(2);
   EXPECT_EQ(summary.at("poses"), (nlohmann::json{"neutral", "turned"}));
   EXPECT_TRUE(summary.at("poseSwitchVisible").get<bool>());
   EXPECT_NE(summary.at("poseHint")

@@ -155,6 +155,10 @@ try {
   summary.seamsText = await page.locator('#seams').textContent();
   summary.measurementRows = await page.locator('#measurements tbody tr').count();
   summary.measurementsText = await page.locator('#measurements').textContent();
+  summary.fabricCurves = await page.locator('#fabric polyline.curve').count();
+  summary.fabricPoints = await page.locator('#fabric circle.working-point').count();
+  summary.fabricRows = await page.locator('#fabric-working-points tbody tr').count();
+  summary.fabricText = await page.locator('#fabric').textContent();
   summary.histogramBars = await page.locator('#histogram rect.bar').count();
   summary.liftoffBars = await page.locator('#histogram rect.bar.liftoff').count();
   summary.targetLines = await page.locator('#histogram line.target').count();

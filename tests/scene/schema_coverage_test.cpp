@@ -25,6 +25,7 @@ const fs::path kSource(TIGHTFIT_SOURCE_DIR);
 
 /// Sources whose JsonFields read scene keys (the scene, its layout file, its optimize section).
 const std::set<std::string> kSceneReaders = {"src/tightfit/scene/spec.cpp",
+                                             "src/tightfit/scene/fabric_spec.cpp",
                                              "src/tightfit/scene/pattern_export_spec.cpp",
                                              "src/tightfit/scene/poses.cpp",
                                              "src/tightfit/design/optimization_spec.cpp",

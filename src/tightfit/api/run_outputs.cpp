@@ -11,6 +11,7 @@
 #include "tightfit/patterns/scene_options.hpp"
 #include "tightfit/report/ease_json.hpp"
 #include "tightfit/report/ease_outputs.hpp"
+#include "tightfit/report/fabric_outputs.hpp"
 #include "tightfit/report/pose_outputs.hpp"
 #include "tightfit/report/pressure_statistics.hpp"
 #include "tightfit/report/shape_outputs.hpp"
@@ -33,18 +34,6 @@ std::string pattern_date(const RunState& state) {
       return date->get<std::string>().substr(0, 10);
   }
   return utc_timestamp().substr(0, 10);
-}
-
-/// result.json's "fabric": the relaxation of the scene's fabric and the Young's moduli
-/// of the simulated (worn) and the new fabric.
-nlohmann::json fabric_json(const GarmentSimulation& sim, const RunState& state) {
-  double relaxation = 0.0;
-  if (state.scene.contains("fabric") && state.scene["fabric"].contains("relaxation"))
-    relaxation = state.scene["fabric"]["relaxation"].get<double>();
-  const double simulated = sim.materials().fabric.youngs_modulus;
-  return {{"relaxation", relaxation},
-          {"youngs_modulus_pa_simulated", simulated},
-          {"youngs_modulus_pa_new", simulated / (1.0 - relaxation)}};
 }
 
 /// The report's per-face field of the unbalanced force (N, the mean of the face's
@@ -103,10 +92,11 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
           return write_pattern_files(folder, sim.garment().pattern, pattern_options, &seams);
         });
   }
-  state.result["fabric"] = fabric_json(sim, state);
   const std::vector<FitRegion> regions = resolve_fit_regions(
       sim, {scene.pressure_regions, scene.pressure_rig.get(), scene.pressure_rig_radius},
       state.scene_file);
+  state.result["fabric"] = fabric_json(
+      sim.materials().fabric, state.scene.value("fabric", nlohmann::json()), fit.elements, regions);
   state.result["fit"] = fit_statistics(sim, fit, pressure_operator, regions);
   const std::optional<ShapeComparison> shape =
       compare_to_shape_target(scene, state.scene_file, sim.garment_positions(),
@@ -153,6 +143,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
     if (state.initial_garment) view.initial_garment = *state.initial_garment;
   }
   view.summary = report_summary(state);
+  view.fabric = state.result["fabric"];
   view.measurements = std::move(ease);
   if (initial_pattern && state.command == "optimize")
     view.initial_outlines = initial_outlines(view.pattern, *initial_pattern);

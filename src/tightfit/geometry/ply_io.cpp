@@ -357,9 +357,9 @@ PlyData read_ply(const std::filesystem::path& path) {
       if (&el == vertex_el) {
         for (int d = 0; d < 3; ++d) out.mesh.vertices(i, d) = polygon_values[xyz[d]];
         if (has_colors)
-          for (int d = 0; d < 3; ++d)
+          for (int d = 0; d < 3; ++d)  // clamped into 0..255 like any colour; NaN gives 0
             out.attributes.vertex_colors(i, d) = static_cast<std::uint8_t>(
-                std::clamp(std::round(polygon_values[rgb[d]]), 0.0, 255.0));
+                std::fmin(std::fmax(std::round(polygon_values[rgb[d]]), 0.0), 255.0));
         for (int k = 0; k < static_cast<int>(el.properties.size()); ++k)
           if (vertex_field_of[k] >= 0)
             out.attributes.vertex_fields[vertex_field_of[k]].values(i, 0) = polygon_values[k];

@@ -81,6 +81,17 @@ std::vector<TextLine> piece_label_lines(const PieceDrawing& d,
     }
     lines.push_back({fabric, 3.0, false});
   }
+  if (!info.fabric_name.empty()) {
+    lines.push_back(
+        {"fabric " + info.fabric_name + ", " + label_number(info.thickness * kMmPerM, 2) + " mm",
+         3.0, false});
+    if (info.course_stretch[1] > 0.0 && info.wale_stretch[1] > 0.0)
+      lines.push_back({"worn stretch course " + label_number(info.course_stretch[0], 2) + " to " +
+                           label_number(info.course_stretch[1], 2) + ", wale " +
+                           label_number(info.wale_stretch[0], 2) + " to " +
+                           label_number(info.wale_stretch[1], 2),
+                       3.0, false});
+  }
   if (!info.size.empty()) lines.push_back({"size " + info.size, 3.0, false});
   if (!info.date.empty()) lines.push_back({info.date, 3.0, false});
   if (!d.annotation.empty()) lines.push_back({d.annotation, 3.0, false});

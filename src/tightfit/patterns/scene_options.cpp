@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <utility>
+#include <vector>
 
+#include "tightfit/physics/fabric_law.hpp"
 #include "tightfit/scene/body_up.hpp"
 
 namespace tightfit {
@@ -82,6 +85,57 @@ std::map<std::string, bool> seam_upper_ends(const Garment& garment, const Points
   return out;
 }
 
+namespace {
+
+/// The [5th, 95th] rest-area percentiles of a stretch per pattern triangle.
+std::array<double, 2> percentile_range(std::vector<std::pair<double, double>> value_area) {
+  std::sort(value_area.begin(), value_area.end());
+  double total = 0.0;
+  for (const auto& [v, a] : value_area) total += a;
+  std::array<double, 2> out = {0.0, 0.0};
+  if (!(total > 0.0)) return out;
+  double below = 0.0;
+  bool low_set = false;
+  for (const auto& [v, a] : value_area) {
+    below += a;
+    if (!low_set && below >= 0.05 * total) {
+      out[0] = v;
+      low_set = true;
+    }
+    if (below >= 0.95 * total) {
+      out[1] = v;
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+GrainStretchRanges grain_stretch_ranges(const Garment& garment, const Points3& positions) {
+  const GarmentTopology& topology = *garment.topology;
+  const Points2 rest = garment.rest_positions();
+  std::vector<std::pair<double, double>> course, wale;
+  for (Eigen::Index t = 0; t < topology.pattern_triangles.rows(); ++t) {
+    const auto corner = [&](int k) { return topology.pattern_triangles(t, k); };
+    Mat2 dm;
+    dm.col(0) = (rest.row(corner(1)) - rest.row(corner(0))).transpose();
+    dm.col(1) = (rest.row(corner(2)) - rest.row(corner(0))).transpose();
+    const double area = 0.5 * std::abs(dm.determinant());
+    if (!(area > 0.0)) continue;
+    const auto placed = [&](int k) {
+      return Vec3(positions.row(topology.pattern_to_garment[static_cast<std::size_t>(corner(k))]));
+    };
+    Mat32 ds;
+    ds.col(0) = placed(1) - placed(0);
+    ds.col(1) = placed(2) - placed(0);
+    const Mat32 f = ds * dm.inverse();
+    course.emplace_back(f.col(0).norm(), area);
+    wale.emplace_back(f.col(1).norm(), area);
+  }
+  return {percentile_range(std::move(course)), percentile_range(std::move(wale))};
+}
+
 PatternExportOptions scene_pattern_export_options(const SceneSpec& scene, const Garment& garment,
                                                   const Points3& positions,
                                                   const std::string& date) {
@@ -116,8 +170,15 @@ PatternExportOptions scene_pattern_export_options(const SceneSpec& scene, const 
   if (const auto fabric = scene.document.find("fabric");
       fabric != scene.document.end() && fabric->is_object())
     relaxation = fabric->value("relaxation", 0.0);
-  label.youngs_modulus = scene.materials.fabric.youngs_modulus / (1.0 - relaxation);
   label.thickness = scene.materials.fabric.thickness;
+  if (const MeasuredFabric* knit = scene.materials.fabric.measured.get()) {
+    label.fabric_name = knit->name;
+    const GrainStretchRanges ranges = grain_stretch_ranges(garment, positions);
+    label.course_stretch = ranges.course;
+    label.wale_stretch = ranges.wale;
+  } else {
+    label.youngs_modulus = scene.materials.fabric.youngs_modulus / (1.0 - relaxation);
+  }
   if (scene.optimize.is_object()) {
     if (const auto objectives = scene.optimize.find("objectives");
         objectives != scene.optimize.end() && objectives->is_object()) {

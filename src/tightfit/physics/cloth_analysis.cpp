@@ -25,6 +25,7 @@ std::vector<ClothElementFit> analyze_cloth(const ClothEnergy& cloth, const VecX&
     const Mat2 C = F.transpose() * F;
     const Vec2 ev = symmetric_eigenvalues(C).cwiseMax(0.0);
     fit.stretch = ev.cwiseSqrt();
+    fit.grain_stretch = Vec2(std::sqrt(C(0, 0)), std::sqrt(C(1, 1)));
     fit.regime = cloth.law().regime(C);
     fit.rest_area = cloth.rest_area(e);
     const Vec3 a = x.segment<3>(3 * tri(e, 0));

@@ -18,7 +18,10 @@ namespace tightfit {
 
 /// State of one cloth element.
 struct ClothElementFit {
-  Vec2 stretch = Vec2::Ones();               ///< principal stretches s1 >= s2 (sqrt of eig(C))
+  Vec2 stretch = Vec2::Ones();  ///< principal stretches s1 >= s2 (sqrt of eig(C))
+  /// Stretches of the pattern's axes, (√C_xx, √C_yy): across the grain (the course of a
+  /// knit) and along it (the wale), every piece lying in its grain frame.
+  Vec2 grain_stretch = Vec2::Ones();
   Vec3 direction1 = Vec3::UnitX();           ///< unit 3D direction of s1 in the deformed element
   Vec3 direction2 = Vec3::UnitY();           ///< unit 3D direction of s2 (= normal × direction1)
   Vec3 normal = Vec3::UnitZ();               ///< unit normal of the deformed element (vertex order)

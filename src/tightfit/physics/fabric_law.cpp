@@ -86,6 +86,13 @@ FabricLaw::Derivatives FabricLaw::evaluate(const Vec3& c, int order) const {
   return out;
 }
 
+double FabricLaw::reference_stiffness() const {
+  if (!measured()) return material_.youngs_modulus * material_.thickness;
+  auto secant = [](const FabricCurve& c) { return c.tensions().back() / c.strains().back(); };
+  const MeasuredFabric& m = *material_.measured;
+  return std::sqrt(secant(m.worn_course()) * secant(m.worn_wale()));
+}
+
 Mat2 FabricLaw::second_piola(const Mat2& C) const {
   if (!measured()) return isotropic_.second_piola(C);
   const Vec3 g = evaluate(strain_components(C), 1).gradient;

@@ -67,6 +67,11 @@ class FabricLaw {
   /// when both material directions are stretched, wrinkled when one is, slack otherwise.
   ClothRegime regime(const Mat2& C) const;
 
+  /// A characteristic membrane stiffness (N/m), for solver tolerances: E t for the
+  /// isotropic law; for a measured knit the geometric mean of the worn course and wale
+  /// curves' secant stiffnesses at their last measured points.
+  double reference_stiffness() const;
+
   /// Whether the law is a measured orthotropic knit (else isotropic relaxed StVK).
   bool measured() const { return material_.measured != nullptr; }
   const ClothMaterial& material() const { return material_; }

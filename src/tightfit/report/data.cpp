@@ -164,6 +164,7 @@ nlohmann::json report_data_json(const FitView& view, const std::vector<FieldColo
           {"parameters", view.parameters},
           {"history", view.history},
           {"summary", view.summary},
+          {"fabric", view.fabric},
           {"pressure_regions", regions},
           {"pressure_histogram", histogram},
           {"seams", seam_statistics_json(view.seams)},

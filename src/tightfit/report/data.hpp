@@ -19,6 +19,8 @@
 ///                          initial_outline: f32 n×2 (m), optional: before optimization,
 ///                          edges: [{kind: "seam" | "pinned", name, vertices: [vertex]}]}
 ///   summary               the run at a glance (FitView::summary), an object
+///   fabric                the fabric, its curves and working points (fabric_outputs.hpp),
+///                         or null
 ///   stats                 fit_statistics_json
 ///   parameters, history   as in FitView
 ///   pressure_regions[]    region_statistics_json of each FitView region (pressure_statistics.hpp)

@@ -114,6 +114,8 @@ struct FitView {
   /// "iterations", "seconds", "force_residual_n", "objective_initial",
   /// "objective_final"}.
   nlohmann::json summary = nlohmann::json::object();
+  /// The fabric, its curves and working points (report/fabric_outputs.hpp); null: none.
+  nlohmann::json fabric = nullptr;
   /// The scene's poses (empty without poses).
   std::vector<FitPose> poses;
   /// Per seam of the pattern (or empty): side lengths, mismatch, sewn length, sewing

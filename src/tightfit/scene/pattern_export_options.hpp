@@ -2,6 +2,7 @@
 /// Options of the pattern exports (SVG, tiled/full-size PDF, AAMA DXF, pieces.json).
 /// Lengths are in metres like everything inside tightfit; the writers convert to mm
 /// (or PDF points, 1 mm = 72/25.4 pt) when they write.
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -42,6 +43,12 @@ struct PatternLabelInfo {
   /// Fabric Young's modulus (Pa) and thickness (m); 0: no fabric line.
   double youngs_modulus = 0.0;
   double thickness = 0.0;
+  /// A measured knit's name (fabric line "fabric NAME, t mm" instead of E); empty: none.
+  std::string fabric_name;
+  /// The worn stretch across the grain (course) and along it (wale) of the fitted
+  /// garment, 5th to 95th area percentile, [lo, hi]; {0, 0}: not known (no line).
+  std::array<double, 2> course_stretch = {0.0, 0.0};
+  std::array<double, 2> wale_stretch = {0.0, 0.0};
   /// Stretch range (stretched / rest length) the pattern was designed for; 0: not
   /// given (only a minimum: "stretch from min").
   double stretch_min = 0.0;

@@ -5,6 +5,7 @@
 
 #include "tightfit/common/json_fields.hpp"
 #include "tightfit/common/mesh_budget.hpp"
+#include "tightfit/scene/fabric_spec.hpp"
 
 namespace tightfit {
 namespace {
@@ -84,21 +85,6 @@ constexpr const char* kModulusWhy = "stiffer than steel, about 2e11 Pa: not a ga
 /// The thickest fabric or seam a scene may name (m).
 constexpr double kMaxThickness = 0.1;
 
-void parse_fabric(JsonFields& f, ClothMaterial& m) {
-  m.youngs_modulus = f.at_most("youngs_modulus", f.positive("youngs_modulus", m.youngs_modulus),
-                               kMaxModulus, kModulusWhy);
-  m.poisson_ratio = f.number("poisson_ratio", m.poisson_ratio);
-  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 1.0))
-    f.fail("must lie in (-1, 1) for a membrane", "poisson_ratio");
-  m.thickness = f.at_most("thickness", f.positive("thickness", m.thickness), kMaxThickness,
-                          "a fabric is thinner than 10 cm");
-  m.regime_smoothing = f.positive("regime_smoothing", m.regime_smoothing);
-  const double relaxation = f.number("relaxation", 0.0);
-  if (!(relaxation >= 0.0 && relaxation < 1.0)) f.fail("must lie in [0, 1)", "relaxation");
-  m.youngs_modulus *= 1.0 - relaxation;
-  f.finish();
-}
-
 void parse_seam(JsonFields& f, SeamMaterial& m) {
   m.youngs_modulus =
       f.at_most("youngs_modulus", f.positive("youngs_modulus", m.youngs_modulus, true), kMaxModulus,
@@ -158,7 +144,14 @@ SceneSpec parse_scene(const nlohmann::json& document, const std::string& file,
   }
   auto garment = root.object("garment", true);
   s.garment = parse_garment(*garment, base_dir);
-  if (auto f = root.object("fabric")) parse_fabric(*f, s.materials.fabric);
+  if (root.has("fabric")) {
+    // A fabric file is read once and inlined, so that the run's saved scene (state.json,
+    // checkpoints, --resume) carries the curves it was run with.
+    FabricSpec fabric = parse_fabric_spec(root.raw("fabric"), file, "/fabric", base_dir);
+    s.materials.fabric = fabric.material;
+    s.fabric_file = fabric.file;
+    s.document["fabric"] = fabric.document;
+  }
   if (auto f = root.object("seam")) parse_seam(*f, s.materials.seam);
   if (auto f = root.object("body_material"))
     parse_body_material(*f, s.materials.body, s.materials.rigid_body);

@@ -12,11 +12,13 @@
 ///       a layout anchored on the skeleton (bones instead of points) takes the skeleton
 ///       and skin weights of the scene's "rig";
 ///     "fabric": {"youngs_modulus": 5.4e6, "poisson_ratio": 0.33, "thickness": 1e-4,
-///                "regime_smoothing": 1e-3, "relaxation": 0},
+///                "regime_smoothing": 1e-3, "relaxation": 0}
+///             | {"model": "measured", ...} | "fabric.json"   (scene/fabric_spec.hpp),
 ///       relaxation r in [0, 1): the share of its tension a knit loses with wear; every
-///       simulation (and so every design) uses the worn fabric, E (1 − r), so that
-///       pressure targets hold after relaxation (the new garment presses about
-///       1/(1 − r) times harder). materials.fabric holds the scaled modulus.
+///       simulation (and so every design) uses the worn fabric, E (1 − r) or the
+///       unloading curves, so that pressure targets hold after relaxation (the new
+///       garment presses about 1/(1 − r) times harder). materials.fabric holds the worn
+///       fabric.
 ///     "seam": {"youngs_modulus": 0, "width": 0.005, "thickness": 2e-4},
 ///     "body_material": {"youngs_modulus": 24780, "poisson_ratio": 0.49, "rigid": false},
 ///     "solver": {"relative_force_tolerance": 1e-9, "max_iterations": 100,
@@ -68,6 +70,9 @@ struct SceneSpec {
   BodySpec body;
   GarmentSpec garment;
   SimulationMaterials materials;
+  /// The fabric file the scene named ("fabric": "FILE", scene/fabric_spec.hpp), resolved;
+  /// empty when the fabric is inline. `document` holds the file's object in its place.
+  std::filesystem::path fabric_file;
   NewtonOptions newton;
   LimitSurfaceOptions limit;
   ShapeOperatorKind pressure_operator = ShapeOperatorKind::kMidEdge;

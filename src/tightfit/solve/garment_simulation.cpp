@@ -1,10 +1,10 @@
 #include "tightfit/solve/garment_simulation.hpp"
 
 #include <algorithm>
-
 #include <numeric>
 
 #include "tightfit/common/error.hpp"
+#include "tightfit/physics/fabric_law.hpp"
 #include "tightfit/physics/mid_edge_shape_operator.hpp"
 #include "tightfit/subdiv/limit_projector.hpp"
 
@@ -43,7 +43,7 @@ void GarmentSimulation::adopt_garment(Garment garment) {
   auto rest = std::make_unique<Points2>(garment.rest_positions());
   auto energies = std::make_unique<GarmentEnergies>(garment.topology, *rest, materials_.fabric,
                                                     materials_.seam);
-  force_scale_ = materials_.fabric.youngs_modulus * materials_.fabric.thickness *
+  force_scale_ = FabricLaw(materials_.fabric).reference_stiffness() *
                  mean_rest_edge_length(garment.topology->pattern_triangles, *rest);
   garment_ = std::move(garment);
   rest_ = std::move(rest);

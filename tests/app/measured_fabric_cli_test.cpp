@@ -1,0 +1,86 @@
+/// `tightfit simulate` with a measured knit named by file: the pressure on a rigid
+/// cylinder against Laplace with the strip curve, result.json's fabric and working point,
+/// the pattern labels, and a bad fabric refused with exit 2 and nothing written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "report/support/fit_test_tools.hpp"
+#include "tightfit/common/json_fields.hpp"
+#include "tightfit/physics/fabric_curve.hpp"
+
+namespace tightfit::measured_fabric_cli_test {
+
+namespace fs = std::filesystem;
+
+TEST(MeasuredFabricCli, ASleeveOnARigidCylinderPressesTheCurvesTensionOverItsRadius) {
+  test::TempDir dir("measured_fabric_cli");
+  const fs::path scene = test::source_path("examples/sleeve_measured_knit.json");
+  const auto run =
+      test::run_command(std::string(TIGHTFIT_CLI) + " simulate " + test::shell_quote(scene) +
+                            " --out " + test::shell_quote(dir / "run"),
+                        dir / "simulate.log");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json result = read_json_file((dir / "run/result.json").string());
+  const nlohmann::json& fabric = result.at("fabric");
+  EXPECT_EQ(fabric.at("model"), "measured");
+  const nlohmann::json& garment = fabric.at("working_points").at(0);
+  EXPECT_EQ(garment.at("region"), "garment");
+  // The working point lies on the file's course curve.
+  const nlohmann::json file =
+      read_json_file(test::source_path("data/fabrics/warp_knit_powernet.json").string());
+  const FabricCurve course(file["course"]["strain"].get<std::vector<double>>(),
+                           file["course"]["tension_n_per_m"].get<std::vector<double>>());
+  const double hoop_strain = garment["course"]["strain"].get<double>();
+  const double axial_stretch = 1.0 + garment["wale"]["strain"].get<double>();
+  EXPECT_NEAR(hoop_strain, 1.0 / 0.85 - 1.0, 0.01);  // the sleeve's hoop scale, less chords
+  EXPECT_NEAR(axial_stretch, 1.0 / 0.95, 1e-3);
+  const double tension = course.tension(hoop_strain);
+  EXPECT_NEAR(garment["course"]["tension_n_per_m"].get<double>(), tension, 1e-9 * tension);
+  // Laplace on a cylinder, T per unit rest width: p = T / (λ_a R).
+  const double laplace = tension / (axial_stretch * 0.05);
+  const double median = result["fit"]["pressure_pa"]["median"].get<double>();
+  EXPECT_NEAR(median, laplace, 5e-3 * laplace);
+  // The labels name the fabric and the worn stretch per direction.
+  std::ifstream svg(dir / "run/pattern.svg");
+  const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("fabric power-net"), std::string::npos);
+  EXPECT_NE(text.find("worn stretch course 1.17 to 1.17, wale 1.05 to 1.05"), std::string::npos);
+  EXPECT_EQ(text.find("fabric E "), std::string::npos);
+}
+
+TEST(MeasuredFabricCli, ABadFabricIsExitTwoNamingTheFileAndPathWithNothingWritten) {
+  test::TempDir dir("measured_fabric_bad");
+  std::ofstream(dir / "knit.json") << R"({"model": "measured", "name": "bad",
+    "wale": {"strain": [0, 0.2, 0.5], "tension_n_per_m": [0, 40, 30]},
+    "course": {"strain": [0, 0.2, 0.5], "tension_n_per_m": [0, 20, 60]},
+    "shear_n_per_m": 20})";
+  std::ofstream(dir / "scene.json") << R"({
+    "body": {"generator": "cylinder", "radius": 0.05, "length": 0.16, "edge_length": 0.014},
+    "garment": {"sleeve": {"radius": 0.05, "axial_begin": -0.04, "axial_end": 0.04,
+                           "edge_length": 0.016, "pin_first_ring": true}},
+    "fabric": "knit.json", "body_material": {"rigid": true}})";
+  const auto run = test::run_command(std::string(TIGHTFIT_CLI) + " simulate " +
+                                         test::shell_quote(dir / "scene.json") + " --out " +
+                                         test::shell_quote(dir / "run"),
+                                     dir / "simulate.log");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("knit.json: /wale: tension_n_per_m must be strictly increasing"),
+            std::string::npos)
+      << run.output;
+  EXPECT_FALSE(fs::exists(dir / "run"));
+  std::ofstream(dir / "scene.json") << R"({
+    "body": {"generator": "cylinder", "radius": 0.05, "length": 0.16},
+    "garment": {"sleeve": {"radius": 0.05}}, "fabric": "missing.json"})";
+  const auto missing = test::run_command(std::string(TIGHTFIT_CLI) + " simulate " +
+                                             test::shell_quote(dir / "scene.json") + " --out " +
+                                             test::shell_quote(dir / "run"),
+                                         dir / "simulate2.log");
+  EXPECT_EQ(missing.exit_code, 2) << missing.output;
+  EXPECT_NE(missing.output.find("scene.json: /fabric: no such fabric file"), std::string::npos)
+      << missing.output;
+  EXPECT_FALSE(fs::exists(dir / "run"));
+}
+
+}  // namespace tightfit::measured_fabric_cli_test
