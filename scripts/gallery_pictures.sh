@@ -54,6 +54,8 @@ examples=(
   "sleeve_two_panels simulate stretch 360 turn=55"
   "sleeve_soft_cylinder simulate pressure 180 turn=55"
   "sleeve_rigid_cylinder simulate pressure 180 turn=55"
+  "sleeve_measured_knit simulate pressure 180 turn=55"
+  "optimize_calf_sleeve_measured optimize pressure 180"
   "cover_sphere simulate stretch 180"
   "cover_sphere_three_pieces simulate stretch 180"
   "pants_legs simulate stretch 360"

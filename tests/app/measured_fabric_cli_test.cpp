@@ -50,6 +50,29 @@ TEST(MeasuredFabricCli, ASleeveOnARigidCylinderPressesTheCurvesTensionOverItsRad
   EXPECT_EQ(text.find("fabric E "), std::string::npos);
 }
 
+TEST(MeasuredFabricCli, APressureDesignReachesTheTutorialsTargetBandsSlow) {
+  // The tutorial's graduated calf sleeve in a measured power-net: at the start the lower
+  // calf presses below its 20–25 mmHg band; the optimized pattern puts both regions'
+  // medians in their bands.
+  test::TempDir dir("measured_fabric_optimize");
+  const auto run = test::run_command(
+      std::string(TIGHTFIT_CLI) + " optimize " +
+          test::shell_quote(test::source_path("examples/optimize_calf_sleeve_measured.json")) +
+          " --out " + test::shell_quote(dir / "run"),
+      dir / "optimize.log");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json result = read_json_file((dir / "run/result.json").string());
+  int regions = 0;
+  for (const nlohmann::json& r : result["fit"]["pressure_regions"]) {
+    const double median = r["pressure_mmhg"]["median"].get<double>();
+    EXPECT_GE(median, r["target_mmhg"]["min"].get<double>()) << r["name"];
+    EXPECT_LE(median, r["target_mmhg"]["max"].get<double>()) << r["name"];
+    ++regions;
+  }
+  EXPECT_EQ(regions, 2);
+  EXPECT_EQ(result["fabric"]["working_points"].size(), 3u);
+}
+
 TEST(MeasuredFabricCli, ABadFabricIsExitTwoNamingTheFileAndPathWithNothingWritten) {
   test::TempDir dir("measured_fabric_bad");
   std::ofstream(dir / "knit.json") << R"({"model": "measured", "name": "bad",

@@ -14,6 +14,7 @@
 #include "tightfit/objectives/regularizer_edge_lengths.hpp"
 #include "tightfit/objectives/regularizer_smoothness.hpp"
 #include "tightfit/physics/cloth_energy.hpp"
+#include "tightfit/physics/fabric_law.hpp"
 #include "tightfit/solve/garment_simulation.hpp"
 
 namespace tightfit::test {
@@ -33,6 +34,8 @@ struct SleeveSceneOptions {
   double edge_length = 0.016;  ///< sleeve rest edge (m)
   double jitter = 0.3;         ///< irregularity of the sleeve mesh (SleeveParams::jitter)
   double relative_force_tolerance = 1e-12;
+  /// A measured knit instead of the isotropic fabric (null: isotropic).
+  std::shared_ptr<const MeasuredFabric> measured;
 };
 
 /// A sleeve of length 8 cm around a capsule of radius 5 cm, both end rings pinned.
@@ -62,6 +65,10 @@ inline std::unique_ptr<SleeveScene> make_sleeve_scene(const SleeveSceneOptions& 
   Garment garment = make_sleeve(sleeve, *scene->surface, scene->body.surface.vertices);
   SimulationMaterials materials;
   materials.rigid_body = !o.soft_body;
+  if (o.measured) {
+    materials.fabric.measured = o.measured;
+    materials.fabric.thickness = 5e-4;
+  }
   materials.seam.youngs_modulus = 1e6;  // seam springs on: a second rest-dependent energy
   NewtonOptions newton;
   newton.relative_force_tolerance = o.relative_force_tolerance;

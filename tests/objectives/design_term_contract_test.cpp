@@ -21,6 +21,7 @@
 #include "tightfit/objectives/seam_traction_objective.hpp"
 #include "tightfit/objectives/shape_objective.hpp"
 #include "tightfit/objectives/stretch_objective.hpp"
+#include "tightfit/physics/fabric_law.hpp"
 
 namespace tightfit::design_term_contract_test {
 
@@ -30,6 +31,18 @@ using TermFactory = std::function<std::shared_ptr<const DesignTerm>(const Garmen
 ImlsSurface sphere_target() {
   const test::OrientedPoints sphere = test::fibonacci_sphere(Vec3(0, 0, 0.05), 0.06, 2000);
   return ImlsSurface(sphere.points, sphere.normals, 0.008);
+}
+
+/// A measured knit with unloading branches and coupling (physics/fabric_law.hpp).
+ClothMaterial measured_knit() {
+  ClothMaterial m;
+  m.thickness = 5e-4;
+  m.measured = std::make_shared<MeasuredFabric>(
+      MeasuredFabric{"knit", FabricCurve({0.0, 0.1, 0.3, 0.6}, {0.0, 20.0, 90.0, 300.0}),
+                     FabricCurve({0.0, 0.1, 0.3, 0.6}, {0.0, 10.0, 50.0, 160.0}),
+                     FabricCurve({0.0, 0.1, 0.3, 0.6}, {0.0, 14.0, 70.0, 260.0}),
+                     FabricCurve({0.0, 0.1, 0.3, 0.6}, {0.0, 7.0, 40.0, 140.0}), 0.2, 25.0});
+  return m;
 }
 
 const std::vector<std::pair<std::string, TermFactory>> kTerms = {
@@ -46,8 +59,14 @@ const std::vector<std::pair<std::string, TermFactory>> kTerms = {
      [](const Garment& g) {
        return std::make_shared<PressureObjective>(g, ClothMaterial{}, 200.0, 800.0);
      }},
+    {"pressure_measured_knit",
+     [](const Garment& g) {
+       return std::make_shared<PressureObjective>(g, measured_knit(), 200.0, 800.0);
+     }},
     {"seam_traction",
      [](const Garment& g) { return std::make_shared<SeamTractionObjective>(g, ClothMaterial{}); }},
+    {"seam_traction_measured_knit",
+     [](const Garment& g) { return std::make_shared<SeamTractionObjective>(g, measured_knit()); }},
     {"shape",
      [](const Garment& g) {
        return std::make_shared<ShapeObjective>(sphere_target(), g.num_garment_vertices());
