@@ -101,9 +101,10 @@ TEST(MeasuredSleevePressure, TheGrainTurnedChangesThePressureByTheCurvesRatio) {
     std::sort(p.begin(), p.end());
     return p[p.size() / 2];
   };
-  const MeasuredFabric& knit = *soft_toe_knit();
+  const std::shared_ptr<const MeasuredFabric> knit = soft_toe_knit();
   const double chord = std::sin(M_PI / 96) / (M_PI / 96);
-  const double ratio = knit.wale.tension(hoop * chord - 1) / knit.course.tension(hoop * chord - 1);
+  const double ratio =
+      knit->wale.tension(hoop * chord - 1) / knit->course.tension(hoop * chord - 1);
   EXPECT_NEAR(median_pressure(wale) / median_pressure(course), ratio, 5e-3 * ratio);
 }
 
