@@ -20,6 +20,8 @@
 #include "tightfit/geometry/mesh_io.hpp"
 #include "tightfit/geometry/tet_mesh_io.hpp"
 #include "tightfit/patterns/json.hpp"
+#include "tightfit/scene/fabric_fit.hpp"
+#include "tightfit/scene/fabric_spec.hpp"
 #include "tightfit/scene/optimization_checkpoint.hpp"
 #include "tightfit/scene/run_state.hpp"
 #include "tightfit/scene/spec.hpp"
@@ -45,7 +47,7 @@ inline std::filesystem::path small_mesh() {
 
 /// Every reader by name. JSON documents are read as their commands read them (text →
 /// parse_json_text → the document's parser); checkpoints for an objective with the
-/// terms "stretch", "seam length", "boundary spacing".
+/// terms "stretch", "seam length", "boundary spacing"; strip tests are read and fitted.
 inline const std::map<std::string, Reader>& readers() {
   static const std::map<std::string, Reader> all = {
       {"json", {".json", [](const auto& f) { read_json_file(f.string()); }}},
@@ -73,6 +75,14 @@ inline const std::map<std::string, Reader>& readers() {
       {"skin_weights", {".mhw", [](const auto& f) { read_skin_weights(small_mesh(), f); }}},
       {"layout", {".json", [](const auto& f) { read_layout_spec(f.string()); }}},
       {"bvh", {".bvh", [](const auto& f) { read_bvh(f); }}},
+      {"fabric", {".json", [](const auto& f) { read_fabric_file(f); }}},
+      {"strip_csv",
+       {".csv",
+        [](const auto& f) {
+          FabricFitOptions options;
+          options.shear_n_per_m = 30.0;
+          fit_fabric(read_strip_test_csv(f), options);
+        }}},
   };
   return all;
 }

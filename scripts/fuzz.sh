@@ -57,6 +57,8 @@ corpus_files() {
     skin_weights_fuzz) printf '%s\n' '{"name": "w", "weights": {"root": [[0, 0.5], [1, 1.0]], "spine05": [[0, 0.5], [2, 1], [3, 1]]}}' > "$seeds/weights.mhw"; ls "$seeds/weights.mhw" ;;
     layout_fuzz) ls tests/garment/data/*.json ;;
     bvh_fuzz) ls data/rig/*.bvh ;;
+    fabric_fuzz) ls data/fabrics/*.json ;;
+    strip_csv_fuzz) ls tests/scene/data/strip_tests/*.csv ;;
   esac
 }
 

@@ -106,4 +106,50 @@ TEST(MeasuredFabricCli, ABadFabricIsExitTwoNamingTheFileAndPathWithNothingWritte
   EXPECT_FALSE(fs::exists(dir / "run"));
 }
 
+TEST(FabricFitCli, StripTestsBecomeAFabricFileThatASceneSimulates) {
+  test::TempDir dir("fabric_fit_cli");
+  const std::string csv =
+      test::shell_quote(test::source_path("tests/scene/data/strip_tests/knit_cycles.csv"));
+  const std::string fit = std::string(TIGHTFIT_CLI) + " fabric fit " + csv +
+                          " --width 50 --gauge 100 --thickness 0.6 --out " +
+                          test::shell_quote(dir / "knit.json");
+  const auto run = test::run_command(fit, dir / "fit.log");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_TRUE(fs::is_regular_file(dir / "knit.svg"));
+  const nlohmann::json fabric = read_json_file((dir / "knit.json").string());
+  EXPECT_EQ(fabric["name"], "knit");
+  EXPECT_DOUBLE_EQ(fabric["thickness"].get<double>(), 6e-4);
+  EXPECT_NE(fabric["source"].get<std::string>().find("knit_cycles.csv"), std::string::npos);
+  // Again: the files exist and are not replaced without --force.
+  const auto again = test::run_command(fit, dir / "fit2.log");
+  EXPECT_EQ(again.exit_code, 2) << again.output;
+  EXPECT_NE(again.output.find("exists: not replaced"), std::string::npos) << again.output;
+  EXPECT_EQ(test::run_command(fit + " --force", dir / "fit3.log").exit_code, 0);
+  // A bad file: exit 2, nothing written.
+  std::ofstream(dir / "bad.csv") << "direction,extension_mm,force_n\nwale,1,oops\n";
+  const auto bad = test::run_command(
+      std::string(TIGHTFIT_CLI) + " fabric fit " + test::shell_quote(dir / "bad.csv") +
+          " --width 50 --gauge 100 --out " + test::shell_quote(dir / "bad_knit.json"),
+      dir / "bad.log");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("bad.csv: line 2"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir / "bad_knit.json"));
+  EXPECT_FALSE(fs::exists(dir / "bad_knit.svg"));
+  // The fitted fabric in a scene: a sleeve on a rigid cylinder.
+  std::ofstream(dir / "scene.json") << R"({
+    "body": {"generator": "cylinder", "radius": 0.05, "length": 0.16, "edge_length": 0.014},
+    "garment": {"sleeve": {"radius": 0.05, "axial_begin": -0.04, "axial_end": 0.04,
+                           "hoop_scale": 0.85, "edge_length": 0.016,
+                           "pin_first_ring": true, "pin_last_ring": true}},
+    "fabric": "knit.json", "body_material": {"rigid": true}})";
+  const auto sim = test::run_command(std::string(TIGHTFIT_CLI) + " simulate " +
+                                         test::shell_quote(dir / "scene.json") + " --out " +
+                                         test::shell_quote(dir / "run"),
+                                     dir / "simulate.log");
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  const nlohmann::json result = read_json_file((dir / "run/result.json").string());
+  EXPECT_EQ(result["fabric"]["name"], "knit");
+  EXPECT_GT(result["fit"]["pressure_pa"]["median"].get<double>(), 0.0);
+}
+
 }  // namespace tightfit::measured_fabric_cli_test
