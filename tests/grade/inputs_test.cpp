@@ -93,6 +93,7 @@ TEST_F(GradeInputs, ABodysSceneReplacesBodyAndRigAndKeepsEveryOtherPathResolving
     "garment": {"layout": "layouts/leg.json", "pattern": {"edge_length": 0.02}},
     "rig": {"mesh": "bodies/design_body.obj", "weights": "rig/w.mhw", "joints": "rig/design.joints.json"},
     "pressure": {"rig": {"mesh": "bodies/design_body.obj", "weights": "rig/w.mhw"}},
+    "fabric": "fabrics/knit.json",
     "optimize": {"objectives": {"shape": {"weight": 1, "target": "/abs/target.obj"}}}})");
   const GradeDesign design = read_grade_design(design_file);
   const GradeBody body{"tall", dir_ / "pop/tall.obj", dir_ / "pop/tall.joints.json",
@@ -109,6 +110,7 @@ TEST_F(GradeInputs, ABodysSceneReplacesBodyAndRigAndKeepsEveryOtherPathResolving
   EXPECT_EQ(resolved(scene["rig"]["weights"]), dir_ / "designs/rig/w.mhw");
   EXPECT_EQ(resolved(scene["garment"]["layout"]), dir_ / "designs/layouts/leg.json");
   EXPECT_EQ(resolved(scene["body"]["core"]["skeleton"]), dir_ / "designs/rig/s.joints.json");
+  EXPECT_EQ(resolved(scene["fabric"]), dir_ / "designs/fabrics/knit.json");
   EXPECT_EQ(scene["optimize"]["objectives"]["shape"]["target"], "/abs/target.obj");
   EXPECT_EQ(scene["body"]["edge_length"], 0.02);
   EXPECT_EQ(scene["garment"]["pattern"], design.document["garment"]["pattern"]);

@@ -73,7 +73,7 @@ struct Fnv1a {
 
 bool is_scene_path_key(const std::string& key) {
   static const std::set<std::string> keys = {"mesh",   "weights", "joints", "skeleton",
-                                             "layout", "bvh",     "target"};
+                                             "layout", "bvh",     "target", "fabric"};
   return keys.contains(key);
 }
 

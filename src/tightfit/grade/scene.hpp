@@ -28,7 +28,7 @@ struct GradeDesign {
 GradeDesign read_grade_design(const std::filesystem::path& file);
 
 /// The keys whose string values are file paths in a scene (body mesh, core skeleton,
-/// layout file, rig files, pose BVH files, shape target).
+/// layout file, rig files, pose BVH files, shape target, fabric file).
 bool is_scene_path_key(const std::string& key);
 
 /// The scene of `design` on `body`, to be written as a file in folder `scene_dir`:
