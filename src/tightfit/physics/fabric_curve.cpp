@@ -49,7 +49,8 @@ SmoothRamp smooth_ramp(double strain, double width) {
   if (strain >= width) return {strain, 1.0, 0.0};
   const double t = strain / width;
   return {0.25 * width * (1.5 * t * t - 0.25 * t * t * t * t + 2.0 * t + 0.75),
-          0.25 * (3.0 * t - t * t * t + 2.0), 0.75 * (1.0 - t * t) / width};
+          0.25 * (3.0 * t - t * t * t + 2.0), 0.75 * (1.0 - t * t) / width,
+          -1.5 * t / (width * width)};
 }
 
 FabricCurve::FabricCurve(std::vector<double> strain, std::vector<double> tension_n_per_m,

@@ -18,10 +18,10 @@
 
 namespace tightfit {
 
-/// The C² ramp s(ε) ≈ max(ε, 0) of width δ and its first two derivatives:
+/// The C² ramp s(ε) ≈ max(ε, 0) of width δ and its first three derivatives:
 /// s = 0 for ε ≤ −δ, ε for ε ≥ δ, and δ/4 (3t²/2 − t⁴/4 + 2t + 3/4), t = ε/δ, between.
 struct SmoothRamp {
-  double value = 0.0, d1 = 0.0, d2 = 0.0;
+  double value = 0.0, d1 = 0.0, d2 = 0.0, d3 = 0.0;
 };
 SmoothRamp smooth_ramp(double strain, double width);
 

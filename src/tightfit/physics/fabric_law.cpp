@@ -68,21 +68,32 @@ FabricLaw::Derivatives FabricLaw::evaluate(const Vec3& c, int order) const {
   const double shear = m.shear_n_per_m;
   const Direction x = direction(m.worn_course(), c[0], order);
   const Direction y = direction(m.worn_wale(), c[1], order);
-  out.value = inv_t * (x.curve.energy + y.curve.energy + coupling_ * x.ramp.value * y.ramp.value +
-                       0.5 * shear * c[2] * c[2]);
+  // Shear acts unless both directions are slack: G C_xy²/2 times g = h_x + h_y − h_x h_y,
+  // h = s'(ε) (1 stretched, 0 slack).
+  const double hx = x.ramp.d1, hy = y.ramp.d1;
+  const double g = hx + hy - hx * hy;
+  const double q = 0.5 * shear * c[2] * c[2];
+  out.value =
+      inv_t * (x.curve.energy + y.curve.energy + coupling_ * x.ramp.value * y.ramp.value + q * g);
   if (order < 1) return out;
-  const double fx = x.curve.tension + coupling_ * x.ramp.d1 * y.ramp.value;
-  const double fy = y.curve.tension + coupling_ * y.ramp.d1 * x.ramp.value;
-  out.gradient = inv_t * Vec3(fx * x.de, fy * y.de, shear * c[2]);
+  const double fx =
+      x.curve.tension + coupling_ * x.ramp.d1 * y.ramp.value + q * x.ramp.d2 * (1.0 - hy);
+  const double fy =
+      y.curve.tension + coupling_ * y.ramp.d1 * x.ramp.value + q * y.ramp.d2 * (1.0 - hx);
+  out.gradient = inv_t * Vec3(fx * x.de, fy * y.de, shear * c[2] * g);
   if (order < 2) return out;
-  const double fxx = x.curve.stiffness + coupling_ * x.ramp.d2 * y.ramp.value;
-  const double fyy = y.curve.stiffness + coupling_ * y.ramp.d2 * x.ramp.value;
-  const double fxy = coupling_ * x.ramp.d1 * y.ramp.d1;
+  const double fxx =
+      x.curve.stiffness + coupling_ * x.ramp.d2 * y.ramp.value + q * x.ramp.d3 * (1.0 - hy);
+  const double fyy =
+      y.curve.stiffness + coupling_ * y.ramp.d2 * x.ramp.value + q * y.ramp.d3 * (1.0 - hx);
+  const double fxy = coupling_ * x.ramp.d1 * y.ramp.d1 - q * x.ramp.d2 * y.ramp.d2;
   out.hessian.setZero();
   out.hessian(0, 0) = inv_t * (fxx * x.de * x.de + fx * x.d2e);
   out.hessian(1, 1) = inv_t * (fyy * y.de * y.de + fy * y.d2e);
   out.hessian(0, 1) = out.hessian(1, 0) = inv_t * fxy * x.de * y.de;
-  out.hessian(2, 2) = inv_t * shear;
+  out.hessian(0, 2) = out.hessian(2, 0) = inv_t * shear * c[2] * x.ramp.d2 * (1.0 - hy) * x.de;
+  out.hessian(1, 2) = out.hessian(2, 1) = inv_t * shear * c[2] * y.ramp.d2 * (1.0 - hx) * y.de;
+  out.hessian(2, 2) = inv_t * shear * g;
   return out;
 }
 

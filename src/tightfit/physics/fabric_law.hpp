@@ -8,7 +8,7 @@
 /// c = (C_xx, C_yy, C_xy):
 ///  * the isotropic relaxed StVK law (relaxed_stvk.hpp), the default;
 ///  * a measured orthotropic knit (MeasuredFabric below), from strip-test curves:
-///      t W = w_course(ε_x) + w_wale(ε_y) + κ s(ε_x) s(ε_y) + G C_xy² / 2,
+///      t W = w_course(ε_x) + w_wale(ε_y) + κ s(ε_x) s(ε_y) + G C_xy² r(ε_x, ε_y) / 2,
 ///      ε_x = √C_xx − 1, ε_y = √C_yy − 1 (engineering strains of the two directions),
 ///    w the strip energies of the curves (fabric_curve.hpp: ∂w/∂ε = T, the measured
 ///    tension per unit rest width), s their C² compression ramp, κ = c √(k_course k_wale)
@@ -16,7 +16,10 @@
 ///    quadratic form of the small-strain law stays positive definite) and G the in-plane
 ///    shear stiffness (N/m). A strip pulled along one direction with the other free
 ///    (c = 0) carries exactly the measured T; both directions are tension-only (no
-///    compression below −δ), the shear term is linear.
+///    compression below −δ), and the shear is relaxed with them: r = h_x + h_y − h_x h_y,
+///    h = s'(ε) (1 for ε ≥ δ, 0 for ε ≤ −δ), so a slack knit (both directions below
+///    −δ) carries nothing at all, a wrinkled one (one direction stretched) keeps its
+///    shear stiffness (without it, sliding along the slack direction would cost nothing).
 #include <memory>
 #include <optional>
 #include <string>
