@@ -764,7 +764,7 @@ function drawSeams() {
   drawTable('seams', data.seams, 'No seams in this garment.',
     '<thead><tr><th class="name" rowspan="2">seam</th><th rowspan="2">pieces</th>' +
     '<th colspan="3">pattern length (mm)</th><th rowspan="2">on the body (mm)</th><th colspan="2">sewing stretch</th>' +
-    '<th colspan="2">traction (N/m)</th><th rowspan="2">angle to y (°)</th></tr>' +
+    '<th colspan="2">traction (N/m)</th><th rowspan="2">angle to up (°)</th></tr>' +
     '<tr><th>side a</th><th>side b</th><th>mismatch</th><th>side a</th><th>side b</th><th>mean</th><th>max</th></tr></thead>',
     (tr, s) => {
       cell(tr, s.name, 'name');
@@ -773,7 +773,7 @@ function drawSeams() {
       cell(tr, fmt(s.length_b_mm));
       cell(tr, fmt(s.mismatch_mm), s.mismatch_mm > 1 ? 'liftoff' : '');
       for (const key of ['sewn_length_mm', 'stretch_a', 'stretch_b', 'traction_mean_n_per_m',
-        'traction_max_n_per_m', 'angle_to_y_deg']) cell(tr, fmt(s[key]));
+        'traction_max_n_per_m', 'angle_to_up_deg']) cell(tr, fmt(s[key]));
     });
 }
 

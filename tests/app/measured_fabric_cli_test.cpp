@@ -42,6 +42,8 @@ TEST(MeasuredFabricCli, ASleeveOnARigidCylinderPressesTheCurvesTensionOverItsRad
   const double laplace = tension / (axial_stretch * 0.05);
   const double median = result["fit"]["pressure_pa"]["median"].get<double>();
   EXPECT_NEAR(median, laplace, 5e-3 * laplace);
+  // The sleeve's seam runs along the cylinder's axis, the body's up axis: 0°.
+  EXPECT_LT(result["fit"]["seams"][0]["angle_to_up_deg"].get<double>(), 1.0);
   // The labels name the fabric and the worn stretch per direction.
   std::ifstream svg(dir / "run/pattern.svg");
   const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());

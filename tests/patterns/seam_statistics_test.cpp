@@ -43,7 +43,11 @@ TEST(SeamStatistics, UniformSleeveByHand) {
   EXPECT_NEAR(seam.traction_mean, traction, 1e-9 * traction);
   EXPECT_NEAR(seam.traction_max, traction, 1e-9 * traction);
   EXPECT_NEAR(seam.traction_total, 2.0 * h * traction, 1e-9 * traction);
-  EXPECT_NEAR(seam.angle_to_y_deg, 90.0, 1e-9);  // the sleeve's axis is z: the seam lies across y
+  EXPECT_NEAR(seam.angle_to_up_deg, 90.0, 1e-9);  // the sleeve's axis is z: the seam lies across y
+  // Against the body's up axis when it is the sleeve's (a generated cylinder along z): 0.
+  EXPECT_NEAR(
+      fit_seam_statistics(s.garment, seam_test_positions(s), m, Vec3::UnitZ())[0].angle_to_up_deg,
+      0.0, 1e-9);
 
   // The sleeve turned so that its axis is y: the seam runs up, angle 0; sheared into a
   // helix of pitch angle 30° from the axis: 30°.
@@ -54,8 +58,8 @@ TEST(SeamStatistics, UniformSleeveByHand) {
     const double a = std::atan2(x(i, 1), x(i, 0)) + x(i, 2) * std::tan(std::numbers::pi / 6) / r;
     helix.row(i) << r * std::cos(a), x(i, 2), r * std::sin(a);
   }
-  EXPECT_NEAR(fit_seam_statistics(s.garment, turned, m)[0].angle_to_y_deg, 0.0, 1e-9);
-  EXPECT_NEAR(fit_seam_statistics(s.garment, helix, m)[0].angle_to_y_deg, 30.0, 0.5);
+  EXPECT_NEAR(fit_seam_statistics(s.garment, turned, m)[0].angle_to_up_deg, 0.0, 1e-9);
+  EXPECT_NEAR(fit_seam_statistics(s.garment, helix, m)[0].angle_to_up_deg, 30.0, 0.5);
 }
 
 TEST(SeamStatistics, MismatchAndSewingStretchOfUnequalSides) {

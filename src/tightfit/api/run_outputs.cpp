@@ -83,7 +83,8 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   PatternExportOptions pattern_options;
   std::future<std::vector<std::string>> pattern_files;
   if (sim.garment().pattern.pieces.size() <= kMaxPatternPieces) {
-    seams = fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
+    seams = fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric,
+                                body_up_direction(scene.body));
     pattern_options = scene_pattern_export_options(scene, sim.garment(), sim.garment_positions(),
                                                    pattern_date(state));
     pattern_options.piece_notes = ease_label_lines(ease);
@@ -97,7 +98,8 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
       state.scene_file);
   state.result["fabric"] = fabric_json(
       sim.materials().fabric, state.scene.value("fabric", nlohmann::json()), fit.elements, regions);
-  state.result["fit"] = fit_statistics(sim, fit, pressure_operator, regions);
+  state.result["fit"] =
+      fit_statistics(sim, fit, pressure_operator, regions, body_up_direction(scene.body));
   const std::optional<ShapeComparison> shape =
       compare_to_shape_target(scene, state.scene_file, sim.garment_positions(),
                               state.initial_garment ? &*state.initial_garment : nullptr);
@@ -124,7 +126,8 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
   }
   write_run_state(folder / "state.json", state);
   files.push_back("state.json");
-  FitView view = make_fit_view(sim, fit, pressure_operator, state.scene, records);
+  FitView view = make_fit_view(sim, fit, pressure_operator, state.scene, records,
+                               body_up_direction(scene.body));
   view.pressure_regions = regions;
   view.up = body_up_direction(scene.body);
   if (!poses.views.empty()) {

@@ -44,7 +44,7 @@ std::vector<SeamStatistics> pattern_seam_statistics(const Pattern& pattern) {
 }
 
 std::vector<SeamStatistics> fit_seam_statistics(const Garment& garment, const Points3& x,
-                                                const ClothMaterial& material) {
+                                                const ClothMaterial& material, const Vec3& up) {
   std::vector<SeamStatistics> out = pattern_seam_statistics(garment.pattern);
   // Which seam every seam edge (global pattern vertices, either side) belongs to.
   std::map<std::pair<int, int>, size_t> edge_seam;
@@ -66,10 +66,10 @@ std::vector<SeamStatistics> fit_seam_statistics(const Garment& garment, const Po
       const Vec3 d = (x.row(q) - x.row(p)).transpose();
       const double l = d.norm();
       sewn += l;
-      if (l > 0.0) weighted_angle += l * std::acos(std::min(1.0, std::abs(d.y()) / l));
+      if (l > 0.0) weighted_angle += l * std::acos(std::min(1.0, std::abs(d.dot(up)) / l));
     }
     out[k].sewn_length = sewn;
-    out[k].angle_to_y_deg = sewn > 0.0 ? weighted_angle / sewn * 180.0 / std::numbers::pi : 0.0;
+    out[k].angle_to_up_deg = sewn > 0.0 ? weighted_angle / sewn * 180.0 / std::numbers::pi : 0.0;
     out[k].has_fit = true;
   }
   if (garment.pattern.seams.empty()) return out;
@@ -111,7 +111,7 @@ nlohmann::json seam_statistics_json(const SeamStatistics& s) {
     j["traction_mean_n_per_m"] = s.traction_mean;
     j["traction_max_n_per_m"] = s.traction_max;
     j["traction_total_n"] = s.traction_total;
-    j["angle_to_y_deg"] = s.angle_to_y_deg;
+    j["angle_to_up_deg"] = s.angle_to_up_deg;
   }
   return j;
 }

@@ -29,10 +29,10 @@ struct SeamStatistics {
   double traction_mean = 0.0;   ///< length-weighted mean normal traction, both sides (N/m)
   double traction_max = 0.0;    ///< largest normal traction of a seam element (N/m)
   double traction_total = 0.0;  ///< Σ l0 · traction over both sides (N): its share of T_seam
-  /// Length-weighted mean angle of the sewn seam's edges to the y axis (the body's up
-  /// axis in MakeHuman and glTF), degrees: 0 for a seam running up the body, 90 for one
-  /// around it; a seam turning helical around a leg lies in between.
-  double angle_to_y_deg = 0.0;
+  /// Length-weighted mean angle of the sewn seam's edges to the body's up axis
+  /// (scene/body_up.hpp: y for a mesh body, a generated cylinder's axis), degrees: 0 for a
+  /// seam running up the body, 90 for one around it; a helical seam lies in between.
+  double angle_to_up_deg = 0.0;
 
   /// |length_a − length_b| (m).
   double mismatch() const;
@@ -47,13 +47,15 @@ std::vector<SeamStatistics> pattern_seam_statistics(const Pattern& pattern);
 /// The statistics of every seam on a fit: garment positions `x` (n_g×3, m) over the
 /// garment's pattern, tractions with the simulated cloth `material`. Every mean and the
 /// total are over the seam-adjacent elements of both sides (each seam edge with the
-/// triangle that holds it), weighted by the edge's rest length.
+/// triangle that holds it), weighted by the edge's rest length; seam angles against the
+/// unit direction `up`.
 std::vector<SeamStatistics> fit_seam_statistics(const Garment& garment, const Points3& x,
-                                                const ClothMaterial& material);
+                                                const ClothMaterial& material,
+                                                const Vec3& up = Vec3::UnitY());
 
 /// One seam as JSON: {"name", "piece_a", "piece_b", "length_a_mm", "length_b_mm",
 /// "mismatch_mm"} and, on a fit, {"sewn_length_mm", "stretch_a", "stretch_b",
-/// "traction_mean_n_per_m", "traction_max_n_per_m", "traction_total_n", "angle_to_y_deg"}.
+/// "traction_mean_n_per_m", "traction_max_n_per_m", "traction_total_n", "angle_to_up_deg"}.
 nlohmann::json seam_statistics_json(const SeamStatistics& seam);
 
 /// All seams as a JSON array (seam_statistics_json each).

@@ -66,7 +66,8 @@ std::vector<MeshField> garment_vertex_fields(const FitAnalysis& fit) {
 }
 
 nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
-                              ShapeOperatorKind op, const std::vector<FitRegion>& regions) {
+                              ShapeOperatorKind op, const std::vector<FitRegion>& regions,
+                              const Vec3& up) {
   const VecX& p = chosen_pressure(fit, op);
   const int n = static_cast<int>(fit.elements.size());
   const int pieces = static_cast<int>(sim.garment().pattern.pieces.size());
@@ -118,7 +119,7 @@ nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& f
                     {"pressure_pa", range_json(per_piece[k])},
                     {"pressure_mmhg", range_json(per_piece[k], kPascalPerMmHg)}});
     j["seams"] = seam_statistics_json(
-        fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric));
+        fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric, up));
   }
   if (!regions.empty()) {
     std::vector<double> areas(n);
@@ -185,7 +186,8 @@ Points3 body_limit_positions(const Body& body, const LimitSurface& surface, cons
 }
 
 FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, ShapeOperatorKind op,
-                      const nlohmann::json& parameters, const nlohmann::json& history) {
+                      const nlohmann::json& parameters, const nlohmann::json& history,
+                      const Vec3& up) {
   FitView view;
   // The body as its limit surface (the control mesh pokes out of it, through the
   // garment that lies on it).
@@ -218,7 +220,7 @@ FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit, Shap
   view.pattern = sim.garment().pattern;
   if (view.pattern.pieces.size() <= kMaxReportedPieces)
     view.seams =
-        fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric);
+        fit_seam_statistics(sim.garment(), sim.garment_positions(), sim.materials().fabric, up);
   view.parameters = parameters;
   view.history = history;
   return view;

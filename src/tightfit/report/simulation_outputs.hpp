@@ -38,10 +38,12 @@ const VecX& chosen_pressure(const FitAnalysis& fit, ShapeOperatorKind op);
 /// stretch ranges, and per pressure region (pressure_statistics.hpp) its statistics
 /// against the target and the compression class reached ("pressure_regions", only
 /// when `regions` is not empty; resolve_fit_regions gives them), and with "pieces" per
-/// seam its lengths, mismatch, sewing stretch and traction ("seams", seam_statistics.hpp).
+/// seam its lengths, mismatch, sewing stretch, traction and angle to the body's unit up
+/// direction `up` ("seams", seam_statistics.hpp).
 nlohmann::json fit_statistics(const GarmentSimulation& sim, const FitAnalysis& fit,
                               ShapeOperatorKind pressure_operator,
-                              const std::vector<FitRegion>& regions = {});
+                              const std::vector<FitRegion>& regions = {},
+                              const Vec3& up = Vec3::UnitY());
 
 /// JSON of a Newton report (iterations, residuals, time split).
 nlohmann::json newton_report_json(const NewtonReport& report);
@@ -53,10 +55,12 @@ Points3 body_limit_positions(const Body& body, const LimitSurface& surface, cons
 
 /// The fit as the report and glTF writers see it: deformed body, garment with the
 /// standard face fields (fit_view.hpp), the pattern, the scene parameters and an
-/// optimization history (may be an empty array).
+/// optimization history (may be an empty array); seam angles against the body's unit up
+/// direction `up`.
 FitView make_fit_view(const GarmentSimulation& sim, const FitAnalysis& fit,
                       ShapeOperatorKind pressure_operator, const nlohmann::json& parameters,
-                      const nlohmann::json& history = nlohmann::json::array());
+                      const nlohmann::json& history = nlohmann::json::array(),
+                      const Vec3& up = Vec3::UnitY());
 
 /// The report's colourings of a fit: the standard ones (fit_colormap.hpp), then sliding
 /// (fits with poses) and the distance to the shape target (fits with a shape objective)
