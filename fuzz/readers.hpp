@@ -81,6 +81,7 @@ inline const std::map<std::string, Reader>& readers() {
         [](const auto& f) {
           FabricFitOptions options;
           options.shear_n_per_m = 30.0;
+          options.files = f.string();
           fit_fabric(read_strip_test_csv(f), options);
         }}},
   };

@@ -78,6 +78,7 @@ void run_fit(FabricFitCommand o) {
   std::snprintf(settings, sizeof settings, "strips %g mm wide, gauge length %g mm", o.fit.width_mm,
                 o.fit.gauge_mm);
   o.fit.source = "fitted by tightfit fabric fit from " + read + " (" + settings + ")";
+  o.fit.files = read;
   const FabricFit fit = fit_fabric(samples, o.fit);
   for (const std::string& w : fit.warnings) std::printf("  note: %s\n", w.c_str());
   write_together(out, fit.fabric.dump(2) + "\n", svg,

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <utility>
 
 #include "tightfit/common/error.hpp"
@@ -15,7 +16,6 @@
 namespace tightfit {
 namespace {
 
-constexpr const char* kSource = "fabric fit";
 /// The largest strip-test file read (a tester samples at 10–100 Hz: hours of data).
 constexpr std::uintmax_t kMaxCsvBytes = std::uintmax_t{256} << 20;
 
@@ -170,6 +170,17 @@ std::vector<Cycle> cycles_of(const std::vector<StripSample>& rows, const FabricF
   return out;
 }
 
+/// The curve of fitted points; InputError naming the direction when the fabric law
+/// refuses it (e.g. a strain beyond 2000 %: a gauge length in the wrong unit).
+FabricCurve checked_curve(const std::string& source, const std::string& what,
+                          const std::vector<double>& strain, const std::vector<double>& tension) {
+  try {
+    return FabricCurve(strain, tension);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(source, what + ": " + e.what());
+  }
+}
+
 nlohmann::json curve_json(const std::vector<double>& strain, const std::vector<double>& tension) {
   auto round = [](double v) { return std::round(v * 1e6) / 1e6; };
   nlohmann::json s = nlohmann::json::array(), t = nlohmann::json::array();
@@ -242,9 +253,10 @@ std::vector<StripSample> read_strip_test_csv(const std::filesystem::path& file) 
 }
 
 FabricFit fit_fabric(const std::vector<StripSample>& samples, const FabricFitOptions& o) {
+  const std::string source = o.files.empty() ? "fabric fit" : o.files;
   if (!(o.width_mm > 0.0) || !(o.gauge_mm > 0.0))
-    throw InputError(kSource, "--width and --gauge must be > 0 (mm)");
-  if (o.points < 2 || o.points > 100) throw InputError(kSource, "--points must be in 2..100");
+    throw InputError(source, "--width and --gauge must be > 0 (mm)");
+  if (o.points < 2 || o.points > 100) throw InputError(source, "--points must be in 2..100");
   FabricFit fit;
   nlohmann::json& fabric = fit.fabric;
   fabric = {{"model", "measured"}, {"name", o.name}, {"source", o.source}};
@@ -257,7 +269,7 @@ FabricFit fit_fabric(const std::vector<StripSample>& samples, const FabricFitOpt
       if (s.direction == direction) rows.push_back(s);
     if (rows.empty()) {
       if (std::string(direction) != "bias")
-        throw InputError(kSource, std::string("no ") + direction + " samples in the files");
+        throw InputError(source, std::string("no ") + direction + " samples in the files");
       continue;
     }
     const std::vector<Cycle> cycles = cycles_of(rows, o);
@@ -269,9 +281,9 @@ FabricFit fit_fabric(const std::vector<StripSample>& samples, const FabricFitOpt
     }
     if (chosen < 1 || chosen > static_cast<int>(cycles.size()) ||
         cycles[static_cast<std::size_t>(chosen - 1)].loading.empty())
-      throw InputError(kSource, std::string(direction) + ": there is no cycle " +
-                                    std::to_string(chosen) + " (the data have " +
-                                    std::to_string(cycles.size()) + ")");
+      throw InputError(source, std::string(direction) + ": there is no cycle " +
+                                   std::to_string(chosen) + " (the data have " +
+                                   std::to_string(cycles.size()) + ")");
     const Cycle& c = cycles[static_cast<std::size_t>(chosen - 1)];
     FittedDirection d;
     d.direction = direction;
@@ -281,14 +293,15 @@ FabricFit fit_fabric(const std::vector<StripSample>& samples, const FabricFitOpt
     d.samples.insert(d.samples.end(), c.unloading.begin(), c.unloading.end());
     std::tie(d.loading_strain, d.loading_tension) = sample_branch(c.loading, o.points);
     if (d.loading_strain.size() < 2)
-      throw InputError(kSource, std::string(direction) + ": the loading branch of cycle " +
-                                    std::to_string(chosen) +
-                                    " has fewer than two points under tension");
+      throw InputError(source, std::string(direction) + ": the loading branch of cycle " +
+                                   std::to_string(chosen) +
+                                   " has fewer than two points under tension");
     if (std::string(direction) != "bias") {
       std::tie(d.unloading_strain, d.unloading_tension) = sample_branch(c.unloading, o.points);
       if (d.unloading_strain.size() >= 2) {
         unloading[direction] = curve_json(d.unloading_strain, d.unloading_tension);
-        const FabricCurve load(d.loading_strain, d.loading_tension);
+        const FabricCurve load = checked_curve(source, std::string(direction) + " loading",
+                                               d.loading_strain, d.loading_tension);
         for (std::size_t k = 0; k < d.unloading_strain.size(); ++k)
           if (d.unloading_tension[k] > 1.02 * load.tension(d.unloading_strain[k])) {
             fit.warnings.push_back(std::string(direction) + ": the unloading curve lies above " +
@@ -306,12 +319,12 @@ FabricFit fit_fabric(const std::vector<StripSample>& samples, const FabricFitOpt
   }
   if (!fabric.contains("bias")) {
     if (!(o.shear_n_per_m > 0.0))
-      throw InputError(kSource, "no bias samples: give the shear stiffness (--shear N/m)");
+      throw InputError(source, "no bias samples: give the shear stiffness (--shear N/m)");
     fabric["shear_n_per_m"] = o.shear_n_per_m;
   }
   if (!unloading.empty()) fabric["unloading"] = unloading;
   // The fabric reader's checks, on the file as it will be written.
-  parse_fabric_spec(fabric, kSource, "", std::filesystem::current_path());
+  parse_fabric_spec(fabric, source, "", std::filesystem::current_path());
   return fit;
 }
 

@@ -47,6 +47,7 @@ struct FabricFitOptions {
   double shear_n_per_m = 0.0;  ///< needed without bias samples
   double coupling = 0.0;       ///< c in [0, 1)
   std::string source;          ///< provenance text (the files read)
+  std::string files;           ///< the files read, naming errors ("fabric fit" when empty)
 };
 
 /// One direction's data and fit, for the plot: the chosen cycle's samples (strain,
@@ -65,7 +66,7 @@ struct FabricFit {
   std::vector<std::string> warnings;        ///< e.g. a direction without an unloading branch
 };
 
-/// Fits the samples (of every file). InputError (source "fabric fit") when wale or course
+/// Fits the samples (of every file). InputError (naming `files`) when wale or course
 /// has no samples, a cycle is missing, a branch has fewer than two points with tension,
 /// or neither bias samples nor a shear stiffness are given. The result is checked by
 /// the fabric reader (a fabric it would refuse is an error here).
