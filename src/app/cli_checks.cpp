@@ -67,15 +67,26 @@ std::string parse_error_message(const CLI::App& root, const CLI::ParseError& e,
   }
   std::vector<std::string> options = long_options(*command);
   for (const std::string& n : long_options(root)) options.push_back(n);
+  std::string unknown;
   for (const std::string& a : args) {
     if (!a.starts_with("--")) continue;
     const std::string name = a.substr(0, a.find('='));
     if (std::find(options.begin(), options.end(), name) != options.end()) continue;
+    // An option of other commands: say whose (the commonest mix-up, e.g.
+    // `simulate --max-iterations`, an option of optimize).
+    std::string owners;
+    for (const CLI::App* sub : root.get_subcommands([](const CLI::App*) { return true; })) {
+      const std::vector<std::string> theirs = long_options(*sub);
+      if (sub != command && std::find(theirs.begin(), theirs.end(), name) != theirs.end())
+        owners += (owners.empty() ? "" : ", ") + sub->get_name();
+    }
     const std::string near = nearest_word(name, options);
-    message += "\nunknown option '" + name + "' for '" + command->get_name() + "'" +
-               (near.empty() ? "" : "; did you mean '" + near + "'?");
+    unknown += std::string(unknown.empty() ? "" : "\n") + "'" + command->get_name() +
+               "' has no option '" + name + "'" +
+               (!owners.empty() ? " (it is an option of " + owners + ")"
+                                : (near.empty() ? "" : "; did you mean '" + near + "'?"));
   }
-  return message;
+  return unknown.empty() ? message : unknown;
 }
 
 }  // namespace tightfit::app

@@ -143,7 +143,9 @@ TEST_F(OptimizeCli, CommandLineMistakesExitTwoWithASuggestion) {
            {"optimze " + scene.string(), "unknown command 'optimze'; did you mean 'optimize'?"},
            {"--threads 2 simulte x", "did you mean 'simulate'?"},
            {"optimize " + scene.string() + " --outt x",
-            "unknown option '--outt' for 'optimize'; did you mean '--out'?"},
+            "'optimize' has no option '--outt'; did you mean '--out'?"},
+           {"simulate " + scene.string() + " --out x --max-iterations 3",
+            "'simulate' has no option '--max-iterations' (it is an option of grade, optimize)"},
            {"optimize " + scene.string() + " --out x --max-iterations -3",
             "--max-iterations: must be a number >= 0, got -3"},
            {"", "A subcommand is required"}}) {
@@ -153,6 +155,23 @@ TEST_F(OptimizeCli, CommandLineMistakesExitTwoWithASuggestion) {
   }
   EXPECT_FALSE(fs::exists(dir_ / "x"));
   EXPECT_EQ(run_cli("optimize --help").exit_code, 0);
+}
+
+TEST_F(OptimizeCli, HelpExplainsTightfitAndEachCommand) {
+  const CliRun all = run_cli("help");
+  EXPECT_EQ(all.exit_code, 0) << all.output;
+  EXPECT_NE(all.output.find("optimize"), std::string::npos) << all.output;
+  const CliRun one = run_cli("help optimize");
+  EXPECT_EQ(one.exit_code, 0) << one.output;
+  EXPECT_NE(one.output.find("Usage: tightfit optimize [OPTIONS] scene"), std::string::npos)
+      << one.output;
+  EXPECT_NE(one.output.find("--max-iterations"), std::string::npos) << one.output;
+  const CliRun nested = run_cli("help fabric fit");
+  EXPECT_EQ(nested.exit_code, 0) << nested.output;
+  EXPECT_NE(nested.output.find("--gauge"), std::string::npos) << nested.output;
+  const CliRun typo = run_cli("help optimze");
+  EXPECT_EQ(typo.exit_code, 2) << typo.output;
+  EXPECT_NE(typo.output.find("did you mean 'optimize'?"), std::string::npos) << typo.output;
 }
 
 TEST_F(OptimizeCli, VersionFlagPrintsTheVersion) {

@@ -56,6 +56,17 @@ TEST(JsonFields, RejectsNonPositiveAndBadChoices) {
   EXPECT_THROW(f.number("absent"), InputError);
 }
 
+TEST(JsonText, ASyntaxErrorNamesFileLineAndColumnInTheEditorsForm) {
+  try {
+    parse_json_text("{\"body\": {\"radius\": 0.1,}\n}", "scene.json");
+    ADD_FAILURE() << "a trailing comma parsed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("scene.json:1:25: invalid JSON: syntax error", 0), 0u)
+        << e.what();
+    EXPECT_EQ(std::string(e.what()).find("json.exception"), std::string::npos) << e.what();
+  }
+}
+
 TEST(JsonText, DeepNestingIsAnInputErrorBeforeParsing) {
   // A million brackets would overflow the stack in nlohmann's recursive copy and dump.
   const std::string deep = std::string(1000000, '[') + std::string(1000000, ']');

@@ -295,7 +295,16 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(source, std::string("invalid JSON: ") + e.what());
+    // "[json.exception.parse_error.101] parse error at line L, column C: WHAT" becomes
+    // "SOURCE:L:C: invalid JSON: WHAT", the place as editors and compilers write it.
+    const std::string what = e.what();
+    const std::size_t at = what.find("at line "), comma = what.find(", column ", at),
+                      colon = what.find(": ", comma);
+    if (at == std::string::npos || comma == std::string::npos || colon == std::string::npos)
+      throw InputError(source, "invalid JSON: " + what.substr(what.find(']') + 2));
+    throw InputError(source + ":" + what.substr(at + 8, comma - at - 8) + ":" +
+                         what.substr(comma + 9, colon - comma - 9),
+                     "invalid JSON: " + what.substr(colon + 2));
   } catch (const nlohmann::json::out_of_range& e) {
     // A number beyond the double range (1e400): found by fuzzing, it escaped as a
     // non-input error.
