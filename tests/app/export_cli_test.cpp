@@ -102,8 +102,8 @@ nlohmann::json layout_scene() {
 }
 
 /// Files whose bytes must not change when regenerated from the state.
-const char* const kSameBytes[] = {"garment.ply", "body.ply",   "pieces.json", "pattern.svg",
-                                  "pattern.dxf", "scene.json", "state.json"};
+const char* const kSameBytes[] = {"garment.ply", "garment.csv", "body.ply",   "pieces.json",
+                                  "pattern.svg", "pattern.dxf", "scene.json", "state.json"};
 
 class ExportCli : public ::testing::Test {
  protected:

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <filesystem>
 #include <fstream>
 
@@ -226,6 +228,32 @@ TEST(PoseCli, SimulateWritesTheGarmentInEveryPoseAndItsSlidingStatisticsSlow) {
   ASSERT_EQ(ply.attributes.vertex_fields.size(), 3u);
   EXPECT_EQ(ply.attributes.vertex_fields[0].name, "sliding_excess_n");
   EXPECT_GT((ply.mesh.vertices - neutral.mesh.vertices).rowwise().norm().maxCoeff(), 0.05);
+  // The tables per face: the neutral fit and the pose, whose bent knee stretches the
+  // cover and makes part of it slide.
+  auto rows = [&](const std::string& file) {
+    std::vector<std::vector<std::string>> out;
+    std::istringstream in(test::read_text(dir / "out" / file));
+    for (std::string line; std::getline(in, line);) {
+      std::vector<std::string> cells;
+      std::istringstream cs(line);
+      for (std::string cell; std::getline(cs, cell, ',');) cells.push_back(cell);
+      out.push_back(cells);
+    }
+    return out;
+  };
+  const auto table = rows("garment.csv");
+  const auto posed = rows("garment_pose_knee_45.csv");
+  ASSERT_EQ(table.size(), static_cast<std::size_t>(neutral.mesh.num_faces()) + 1);
+  ASSERT_EQ(posed.size(), table.size());
+  EXPECT_EQ(table[0][3], "stretch_max");
+  EXPECT_EQ(posed[0].back(), "sliding_excess_n");
+  double most_stretch = 0.0, most_excess = 0.0;
+  for (std::size_t r = 1; r < posed.size(); ++r) {
+    most_stretch = std::max(most_stretch, std::stod(posed[r][3]) - std::stod(table[r][3]));
+    most_excess = std::max(most_excess, std::stod(posed[r].back()));
+  }
+  EXPECT_GT(most_stretch, 0.05);
+  EXPECT_GT(most_excess, 0.0);
   fs::remove_all(dir);
 }
 

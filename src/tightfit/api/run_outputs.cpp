@@ -70,7 +70,7 @@ std::vector<std::string> write_fit_run_outputs(const std::filesystem::path& fold
                                                const GarmentSimulation& sim, const FitAnalysis& fit,
                                                ShapeOperatorKind pressure_operator, RunState& state,
                                                const Pattern* initial_pattern) {
-  std::vector<std::string> files = {"garment.ply", "body.ply"};
+  std::vector<std::string> files = {"garment.ply", "garment.csv", "body.ply"};
   write_fit_meshes(folder, sim, fit, pressure_operator);
   const SceneSpec scene = run_state_scene(state, state.scene_file);
   // The ease table: body and pattern circumferences at the measurement levels (in

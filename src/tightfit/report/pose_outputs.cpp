@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "tightfit/geometry/mesh_io.hpp"
+#include "tightfit/physics/mid_edge_shape_operator.hpp"
+#include "tightfit/report/fit_csv.hpp"
 #include "tightfit/report/simulation_outputs.hpp"
 #include "tightfit/scene/pose_fit.hpp"
 
@@ -37,6 +39,18 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
     const std::string file = "garment_pose_" + fit.name + ".ply";
     write_ply(folder / file, mesh, attributes);
     out.files.push_back(file);
+    // Stretch and pressure (mid-edge operator of the posed garment) per face, as CSV.
+    const VecX flat = Eigen::Map<const VecX>(fit.garment.data(), fit.garment.size());
+    const std::vector<ClothElementFit> elements = analyze_cloth(sim.cloth(), flat);
+    const VecX pressure =
+        young_laplace_pressure(elements, mid_edge_shape_operators(fit.garment, faces));
+    VecX face_excess(faces.rows());
+    for (Eigen::Index t = 0; t < faces.rows(); ++t)
+      face_excess[t] =
+          (fit.excess[faces(t, 0)] + fit.excess[faces(t, 1)] + fit.excess[faces(t, 2)]) / 3.0;
+    const std::string table = "garment_pose_" + fit.name + ".csv";
+    write_fit_csv(folder / table, sim.garment(), elements, pressure, &face_excess);
+    out.files.push_back(table);
     std::vector<double> excess, pressing;
     int sliding_vertices = 0;
     double value = 0.0;
@@ -55,10 +69,7 @@ PoseOutputs write_pose_outputs(const std::filesystem::path& folder, const Garmen
     view.garment = fit.garment;
     view.garment_normals = fit.garment_normals;
     view.body = body_limit_positions(sim.body(), sim.surface(), fit.body);
-    view.sliding_excess = VecX::Zero(faces.rows());
-    for (Eigen::Index t = 0; t < faces.rows(); ++t)
-      view.sliding_excess[t] =
-          (fit.excess[faces(t, 0)] + fit.excess[faces(t, 1)] + fit.excess[faces(t, 2)]) / 3.0;
+    view.sliding_excess = face_excess;
     out.worst_excess = out.worst_excess.cwiseMax(view.sliding_excess);
     view.sliding_share = sliding_share;
     out.views.push_back(std::move(view));

@@ -1,4 +1,5 @@
 #include "tightfit/report/simulation_outputs.hpp"
+#include "tightfit/report/fit_csv.hpp"
 
 #include <vector>
 
@@ -260,6 +261,7 @@ void write_fit_meshes(const std::filesystem::path& folder, const GarmentSimulati
   // ASCII: Debian's meshio 5 misreads per-face properties of binary PLY (the files are
   // read with it in tests/app/simulate_ply_test.cpp).
   write_ply(folder / "garment.ply", garment, ga, PlyEncoding::ascii);
+  write_fit_csv(folder / "garment.csv", sim.garment(), fit.elements, chosen_pressure(fit, op));
 
   const int ns = sim.body().num_surface_vertices();
   TriMesh body{sim.body_positions().topRows(ns), sim.body().surface.faces};
