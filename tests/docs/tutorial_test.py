@@ -10,6 +10,11 @@ What it reads from the Markdown:
     the file in backticks (`NAME`);
   * every other fenced ```sh block is commands the reader types, run at that point;
   * `<!-- expect: PATH PATH ... -->` lists files the commands so far must have written;
+  * `<!-- check: FILE POINTER ~ VALUE ± TOL -->` (or `<= VALUE`, `>= VALUE`) checks a
+    number the text quotes against what the commands wrote: the JSON file FILE at the
+    JSON pointer POINTER (`*` stands for every item of an array or member of an object,
+    each of which must pass) must be within TOL of VALUE (or at most / at least VALUE);
+    VALUE must appear as written in the paragraph before the marker, which quotes it;
   * other blocks (```text, ```json without a file marker, ...) are only shown.
 All blocks run in ONE bash session (`set -euo pipefail`), as a reader would type them in
 one terminal. `tightfit` on PATH is the binary given with --tightfit, and TIGHTFIT_HOME
@@ -36,6 +41,8 @@ SOURCE = os.path.realpath(os.path.join(os.path.dirname(__file__), "..", ".."))
 FENCE = re.compile(r"^```(\w*)\s*$")
 FILE_MARK = re.compile(r"^<!--\s*file:\s*(\S+)\s*-->\s*$")
 EXPECT_MARK = re.compile(r"^<!--\s*expect:\s*(.+?)\s*-->\s*$")
+CHECK_MARK = re.compile(
+    r"^<!--\s*check:\s*(\S+)\s+(\S+)\s+(~|<=|>=)\s+(\S+)(?:\s+±\s*(\S+))?\s*-->\s*$")
 # Commands the tutorial must exercise (guards against a parser that finds nothing).
 REQUIRED_COMMANDS = ["body", "layout", "simulate", "optimize", "export"]
 
@@ -55,6 +62,23 @@ def parse(path):
         m = EXPECT_MARK.match(line)
         if m:
             steps.append(("expect", i + 1, m.group(1).split()))
+            i += 1
+            continue
+        m = CHECK_MARK.match(line)
+        if m:
+            k = i - 1
+            while k >= 0 and (not lines[k].strip() or CHECK_MARK.match(lines[k])):
+                k -= 1
+            paragraph = []
+            while k >= 0 and lines[k].strip() and not lines[k].startswith("<!--"):
+                paragraph.insert(0, lines[k])
+                k -= 1
+            if m.group(4) not in " ".join(paragraph):
+                sys.exit(f"{path}:{i + 1}: the paragraph before this check must quote {m.group(4)}")
+            if m.group(3) == "~" and not m.group(5):
+                sys.exit(f"{path}:{i + 1}: a ~ check needs a tolerance (± TOL)")
+            steps.append(("check", i + 1, m.group(1), m.group(2), m.group(3), m.group(4),
+                          m.group(5) or "0"))
             i += 1
             continue
         m = FENCE.match(line)
@@ -109,6 +133,9 @@ def bash_script(steps, tutorial):
         elif kind == "sh":
             out.append(f"echo '== {where}: run'")
             out.append(step[2])
+        elif kind == "check":
+            args = " ".join(f"'{a}'" for a in (where,) + tuple(step[2:]))
+            out.append(f"'{sys.executable}' '{os.path.realpath(__file__)}' --check {args}")
         else:
             for p in step[2]:
                 out.append(f"test -e '{p}' || {{ echo '{where}: expected file {p} is missing' >&2; exit 1; }}")
@@ -116,7 +143,44 @@ def bash_script(steps, tutorial):
     return "\n".join(out) + "\n"
 
 
+def values_at(document, pointer):
+    """The values at `pointer`, `*` standing for every item or member."""
+    nodes = [document]
+    for token in pointer.strip("/").split("/"):
+        token = token.replace("~1", "/").replace("~0", "~")
+        nxt = []
+        for n in nodes:
+            if token == "*":
+                nxt.extend(n.values() if isinstance(n, dict) else n)
+            elif isinstance(n, list):
+                nxt.append(n[int(token)])
+            else:
+                nxt.append(n[token])
+        nodes = nxt
+    return nodes
+
+
+def check(where, path, pointer, op, value, tol="0"):
+    """Exits 1 (naming the tutorial's line) when a quoted number disagrees with the file."""
+    try:
+        with open(path) as f:
+            found = values_at(json.load(f), pointer)
+    except (OSError, ValueError, KeyError, IndexError, TypeError) as e:
+        sys.exit(f"{where}: cannot read {path} {pointer}: {e}")
+    if not found:
+        sys.exit(f"{where}: {path} has nothing at {pointer}")
+    v, t = float(value), float(tol)
+    for x in found:
+        ok = abs(x - v) <= t if op == "~" else (x <= v if op == "<=" else x >= v)
+        if not ok:
+            sys.exit(f"{where}: the text quotes {value}"
+                     f"{' ± ' + tol if op == '~' else ''} ({op}), but {path} {pointer} is {x}")
+    return 0
+
+
 def main():
+    if len(sys.argv) > 1 and sys.argv[1] == "--check":
+        return check(*sys.argv[2:8])
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--tightfit", required=True, help="the tightfit binary")
     ap.add_argument("--tutorial", default=os.path.join(SOURCE, "docs", "tutorial.md"))
@@ -167,7 +231,9 @@ def main():
             print(f"FAILED: the tutorial's commands stopped with exit code {result.returncode} "
                   f"after {elapsed:.1f} s (see the last '==' line above)", file=sys.stderr)
             return 1
-        print(f"tutorial OK: {files} files written, {blocks} command blocks run in {elapsed:.1f} s")
+        checks = sum(1 for s in steps if s[0] == "check")
+        print(f"tutorial OK: {files} files written, {blocks} command blocks run, {checks} quoted "
+              f"numbers checked, in {elapsed:.1f} s")
         return 0
     finally:
         if cleanup:
