@@ -14,7 +14,8 @@ What it reads from the Markdown:
     number the text quotes against what the commands wrote: the JSON file FILE at the
     JSON pointer POINTER (`*` stands for every item of an array or member of an object,
     each of which must pass) must be within TOL of VALUE (or at most / at least VALUE);
-    VALUE must appear as written in the paragraph before the marker, which quotes it;
+    VALUE must appear as written in the paragraph before the marker, which quotes it
+    (VALUE% is a share the file holds as a fraction, quoted as "VALUE %");
   * other blocks (```text, ```json without a file marker, ...) are only shown.
 All blocks run in ONE bash session (`set -euo pipefail`), as a reader would type them in
 one terminal. `tightfit` on PATH is the binary given with --tightfit, and TIGHTFIT_HOME
@@ -42,7 +43,7 @@ FENCE = re.compile(r"^```(\w*)\s*$")
 FILE_MARK = re.compile(r"^<!--\s*file:\s*(\S+)\s*-->\s*$")
 EXPECT_MARK = re.compile(r"^<!--\s*expect:\s*(.+?)\s*-->\s*$")
 CHECK_MARK = re.compile(
-    r"^<!--\s*check:\s*(\S+)\s+(\S+)\s+(~|<=|>=)\s+(\S+)(?:\s+±\s*(\S+))?\s*-->\s*$")
+    r"^\s*<!--\s*check:\s*(\S+)\s+(\S+)\s+(~|<=|>=)\s+(\S+)(?:\s+±\s*(\S+))?\s*-->\s*$")
 # Commands the tutorial must exercise (guards against a parser that finds nothing).
 REQUIRED_COMMANDS = ["body", "layout", "simulate", "optimize", "export"]
 
@@ -70,10 +71,12 @@ def parse(path):
             while k >= 0 and (not lines[k].strip() or CHECK_MARK.match(lines[k])):
                 k -= 1
             paragraph = []
-            while k >= 0 and lines[k].strip() and not lines[k].startswith("<!--"):
+            while k >= 0 and lines[k].strip() and not lines[k].lstrip().startswith("<!--"):
                 paragraph.insert(0, lines[k])
                 k -= 1
-            if m.group(4) not in " ".join(paragraph):
+            quoted = m.group(4)
+            text = " ".join(paragraph)
+            if quoted not in text and not (quoted.endswith("%") and quoted[:-1] + " %" in text):
                 sys.exit(f"{path}:{i + 1}: the paragraph before this check must quote {m.group(4)}")
             if m.group(3) == "~" and not m.group(5):
                 sys.exit(f"{path}:{i + 1}: a ~ check needs a tolerance (± TOL)")
@@ -169,8 +172,10 @@ def check(where, path, pointer, op, value, tol="0"):
         sys.exit(f"{where}: cannot read {path} {pointer}: {e}")
     if not found:
         sys.exit(f"{where}: {path} has nothing at {pointer}")
-    v, t = float(value), float(tol)
+    percent = value.endswith("%")  # a share quoted in percent, a fraction in the file
+    v, t = float(value.rstrip("%")), float(tol.rstrip("%"))
     for x in found:
+        x = 100.0 * x if percent else x
         ok = abs(x - v) <= t if op == "~" else (x <= v if op == "<=" else x >= v)
         if not ok:
             sys.exit(f"{where}: the text quotes {value}"
