@@ -44,6 +44,10 @@ TEST(MeasuredFabricCli, ASleeveOnARigidCylinderPressesTheCurvesTensionOverItsRad
   EXPECT_NEAR(median, laplace, 5e-3 * laplace);
   // The sleeve's seam runs along the cylinder's axis, the body's up axis: 0°.
   EXPECT_LT(result["fit"]["seams"][0]["angle_to_up_deg"].get<double>(), 1.0);
+  // The console ends with the fit in a pattern maker's terms and the report to open.
+  EXPECT_NE(run.output.find("fabric stretched "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("open " + (dir / "run/report.html").string()), std::string::npos)
+      << run.output;
   // The labels name the fabric and the worn stretch per direction.
   std::ifstream svg(dir / "run/pattern.svg");
   const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
@@ -73,6 +77,10 @@ TEST(MeasuredFabricCli, APressureDesignReachesTheTutorialsTargetBandsSlow) {
   }
   EXPECT_EQ(regions, 2);
   EXPECT_EQ(result["fabric"]["working_points"].size(), 3u);
+  // The console names each region's median against its target, then the stop rule last.
+  EXPECT_NE(run.output.find("lower calf: median "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("(target 20 to 25 mmHg)"), std::string::npos) << run.output;
+  EXPECT_LT(run.output.find("open "), run.output.rfind("stopped ("));
 }
 
 TEST(MeasuredFabricCli, ABadFabricIsExitTwoNamingTheFileAndPathWithNothingWritten) {

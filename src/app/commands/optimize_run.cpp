@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "fit_summary.hpp"
 #include "kept_failure.hpp"
 #include "optimize_progress.hpp"
 #include "tightfit/api/optimize.hpp"
@@ -100,7 +101,7 @@ OptimizeSetup load_optimize_setup(const OptimizeRequest& request) {
 /// The closing lines: the objective of the returned design, the files, and last the
 /// rule that ended the run, in words.
 void print_summary(const OptimizationResult& result, const std::vector<OptimizationIteration>& h,
-                   const fs::path& out, const std::vector<std::string>& files) {
+                   const fs::path& out, const api::WrittenOutputs& written) {
   std::printf("  objective %.6e -> %.6e (iteration %d%s) in %d iterations (%.1f s)\n",
               h.front().value, result.final_value, result.best_iteration,
               result.best_after_remesh ? ", after its remeshing" : "", result.iterations,
@@ -110,7 +111,8 @@ void print_summary(const OptimizationResult& result, const std::vector<Optimizat
         "  the last iteration ended at %.6e, above the best design: the outputs hold the best "
         "one (iteration %d); checkpoint.json holds the last one\n",
         result.last_value, result.best_iteration);
-  for (const auto& f : files) std::printf("  %s\n", (out / f).c_str());
+  for (const auto& f : written.files) std::printf("  %s\n", (out / f).c_str());
+  print_fit_summary(written.result, out / "report.html");
   std::printf("  stopped (%s): %s\n", stop_rule_name(result.rule), result.stop_reason.c_str());
 }
 
@@ -183,7 +185,7 @@ void run_optimize(const OptimizeRequest& request) {
     const api::WrittenOutputs written =
         api::write_optimization_outputs(optimization, result, folder.staging());
     folder.commit();  // all at once (common/output_directory.hpp)
-    print_summary(result, optimization.history(), out, written.files);
+    print_summary(result, optimization.history(), out, written);
     if (result.interrupted) {
       const int signal = interrupt_signal();
       std::printf(

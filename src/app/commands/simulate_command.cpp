@@ -6,6 +6,7 @@
 #include <string>
 
 #include "command_registry.hpp"
+#include "fit_summary.hpp"
 #include "kept_failure.hpp"
 #include "tightfit/api/simulate.hpp"
 #include "tightfit/common/error.hpp"
@@ -51,10 +52,8 @@ void run_simulate(const std::string& scene_file, const std::string& out_dir,
       report.final_force_norm, report.tolerance, run.seconds_solve);
   const api::WrittenOutputs written = api::write_simulation_outputs(scene, run, out.staging());
   out.commit();
-  const auto& pr = written.result["fit"]["pressure_mmhg"];
-  std::printf("  pressure %.1f / %.1f / %.1f mmHg (min / median / max)\n", pr["min"].get<double>(),
-              pr["median"].get<double>(), pr["max"].get<double>());
   for (const auto& f : written.files) std::printf("  %s/%s\n", out.target().c_str(), f.c_str());
+  print_fit_summary(written.result, out.target() / "report.html");
 }
 
 /// `tightfit simulate SCENE --out DIR [--force] [--keep-failed DIR2]`.
