@@ -56,6 +56,53 @@ TEST(MeasuredFabricCli, ASleeveOnARigidCylinderPressesTheCurvesTensionOverItsRad
   EXPECT_EQ(text.find("fabric E "), std::string::npos);
 }
 
+/// A two-panel layout sleeve on a rigid cylinder (axis z) of the library's power-net, with
+/// the pieces' grain along `grain`; returns {median pressure (Pa), Laplace's pressure with
+/// the curve of the direction around the cylinder at the fit's working point}.
+std::pair<double, double> layout_sleeve_pressure(const std::string& grain, bool wale_around,
+                                                 const fs::path& dir) {
+  const std::string scale = wale_around ? "[0.85, 0.95]" : "[0.95, 0.85]";
+  std::ofstream(dir / "scene.json") << R"({
+    "body": {"generator": "cylinder", "radius": 0.05, "length": 0.3, "edge_length": 0.006},
+    "garment": {"layout": {
+        "region": [{"name": "low", "point": [0, 0, -0.06], "normal": [0, 0, 1]},
+                   {"name": "high", "point": [0, 0, 0.06], "normal": [0, 0, -1]}],
+        "dividers": [{"name": "side", "point": [0, 0, 0], "normal": [1, 0, 0]}],
+        "panels": [{"name": "right", "sides": ["+side"]}, {"name": "left", "sides": ["-side"]}],
+        "pinned": [{"name": "low cuff", "on_plane": "low"},
+                   {"name": "high cuff", "on_plane": "high"}]},
+      "pattern": {"edge_length": 0.008, "scale": )"
+                                    << scale << R"(, "grain": )" << grain << R"(}},
+    "fabric": ")" << test::source_path("data/fabrics/warp_knit_powernet.json").string()
+                                    << R"(", "body_material": {"rigid": true}})";
+  const auto run = test::run_command(std::string(TIGHTFIT_CLI) + " simulate " +
+                                         test::shell_quote(dir / "scene.json") + " --out " +
+                                         test::shell_quote(dir / "run"),
+                                     dir / "simulate.log");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json result = read_json_file((dir / "run/result.json").string());
+  const nlohmann::json& point = result["fabric"]["working_points"][0];
+  const nlohmann::json& around = point[wale_around ? "wale" : "course"];
+  const nlohmann::json& along = point[wale_around ? "course" : "wale"];
+  const double laplace =
+      around["tension_n_per_m"].get<double>() / ((1.0 + along["strain"].get<double>()) * 0.05);
+  return {result["fit"]["pressure_pa"]["median"].get<double>(), laplace};
+}
+
+TEST(MeasuredFabricCli, TheGrainOfALayoutPieceTurnsTheKnitOnTheCylinder) {
+  // Grain across the panels (around the cylinder): the wale presses; along the axis: the
+  // course, at about half the pressure for the same stretch (this knit's wale is twice
+  // as stiff).
+  test::TempDir dir("measured_fabric_grain");
+  fs::create_directories(dir / "around");
+  fs::create_directories(dir / "along");
+  const auto [wale_p, wale_laplace] = layout_sleeve_pressure("[0, 1, 0]", true, dir / "around");
+  const auto [course_p, course_laplace] = layout_sleeve_pressure("[0, 0, 1]", false, dir / "along");
+  EXPECT_NEAR(wale_p, wale_laplace, 5e-3 * wale_laplace);
+  EXPECT_NEAR(course_p, course_laplace, 5e-3 * course_laplace);
+  EXPECT_NEAR(wale_p / course_p, 2.0, 0.1);
+}
+
 TEST(MeasuredFabricCli, APressureDesignReachesTheTutorialsTargetBandsSlow) {
   // The tutorial's graduated calf sleeve in a measured power-net: at the start the lower
   // calf presses below its 20–25 mmHg band; the optimized pattern puts both regions'
