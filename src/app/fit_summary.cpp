@@ -16,6 +16,12 @@ std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0
   return text;
 }
 
+/// A share of the garment in percent: one decimal, "under 0.1 %" for a small one.
+std::string percent(double share) {
+  return share > 0.0 && share < 0.001 ? std::string("under 0.1 %")
+                                      : format("%.1f %%", 100.0 * share);
+}
+
 double number(const nlohmann::json& j, const char* key, double fallback = 0.0) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
 }
@@ -49,16 +55,15 @@ std::vector<std::string> fit_summary_lines(const nlohmann::json& result,
     }
   const double above = number(fit, "pressure_above_40mmhg_share");
   if (above > 0.0)
-    lines.push_back(
-        format("warning: %.1f %% of the garment presses harder than 40 mmHg (up to "
-               "%.0f mmHg): a risk for skin and circulation",
-               100.0 * above, number(p, "max")));
+    lines.push_back("warning: " + percent(above) +
+                    format(" of the garment presses harder than 40 mmHg (up to %.0f mmHg): a "
+                           "risk for skin and circulation",
+                           number(p, "max")));
   const double lift = number(fit, "lift_off_share");
   if (lift > kLiftOffWarningShare)
-    lines.push_back(
-        format("warning: %.1f %% of the garment lifts off the body (negative "
-               "pressure): it does not lie on the skin there",
-               100.0 * lift));
+    lines.push_back("warning: " + percent(lift) +
+                    " of the garment lifts off the body (negative pressure): it does not lie "
+                    "on the skin there");
   const double loose = number(share, "wrinkled") + number(share, "slack");
   if (loose > kLooseWarningShare)
     lines.push_back(
