@@ -6,29 +6,13 @@
 #include <map>
 #include <sstream>
 
+#include "tightfit/common/xml_text.hpp"
 #include "tightfit/physics/fabric_curve.hpp"
 
 namespace tightfit {
 namespace {
 
 constexpr double kWidth = 720, kHeight = 440, kLeft = 64, kRight = 110, kTop = 40, kBottom = 48;
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '&')
-      out += "&amp;";
-    else if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '"')
-      out += "&quot;";
-    else
-      out += c;
-  }
-  return out;
-}
 
 std::string number(double v, int digits = 3) {
   char text[32];
@@ -62,7 +46,7 @@ std::string fabric_fit_svg(const FabricFit& fit, const std::string& title) {
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n"
       << "<text x=\"" << kLeft << "\" y=\"22\" font-size=\"14\" font-weight=\"bold\">"
-      << escape(title) << "</text>\n"
+      << xml_escape(title) << "</text>\n"
       << "<rect x=\"" << kLeft << "\" y=\"" << kTop << "\" width=\"" << kWidth - kLeft - kRight
       << "\" height=\"" << kHeight - kTop - kBottom << "\" fill=\"#f7f8fa\" stroke=\"#d5dae0\"/>\n";
   for (int k = 0; k <= 4; ++k) {
